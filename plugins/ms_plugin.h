@@ -1,0 +1,168 @@
+/* ms_plugin.h: the file-format plugin interface of molscope.
+ *
+ * A plugin is a shared object exporting one function, ms_plugin_entry(), that returns a
+ * static description of the format: its name, extensions, and the functions that read and
+ * write it. A plugin never sees molscope's molecule or Tcl: it pushes what it reads into a
+ * sink the host provides, and reads what it writes from a view the host provides. Every
+ * function reports failure by returning MS_PLUGIN_ERROR after filling the error buffer with
+ * a message naming the line or record ("line 12: bad coordinate field").
+ *
+ * This header is self-contained (C99, no molscope symbols), so plugins build on their own. */
+#ifndef MS_PLUGIN_H
+#define MS_PLUGIN_H
+
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define MS_PLUGIN_ABI 1
+
+enum { MS_PLUGIN_OK = 0, MS_PLUGIN_EOF = 1, MS_PLUGIN_ERROR = -1 };
+
+/* Error buffer filled by a failing plugin call. */
+typedef struct ms_perr {
+    char msg[512];
+} ms_perr;
+
+static inline int ms_perr_set(ms_perr *e, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static inline int ms_perr_set(ms_perr *e, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(e->msg, sizeof e->msg, fmt, ap);
+    va_end(ap);
+    return MS_PLUGIN_ERROR;
+}
+
+/* Which optional fields of ms_atom_in hold data. */
+enum {
+    MS_HAS_BETA = 1u << 0,
+    MS_HAS_OCCUPANCY = 1u << 1,
+    MS_HAS_CHARGE = 1u << 2,
+    MS_HAS_MASS = 1u << 3,
+    MS_HAS_RADIUS = 1u << 4,
+    MS_HAS_ATOMICNUMBER = 1u << 5, /* atomicnumber (else element symbol, else guessed) */
+    MS_HAS_POS = 1u << 6,          /* x, y, z: this atom's position in the first frame */
+    MS_HAS_VEL = 1u << 7           /* vx, vy, vz */
+};
+
+/* One atom as a file describes it. Strings may point into the plugin's own buffers: the
+ * host copies what it keeps before add_atom returns. NULL strings mean "". */
+typedef struct ms_atom_in {
+    const char *name, *type, *resname, *segname, *chain, *element;
+    int resid;
+    char insertion, altloc; /* ' ' or '\0' when blank */
+    int hetero;             /* a HETATM record */
+    unsigned has;           /* MS_HAS_* bits */
+    float beta, occupancy, charge, mass, radius;
+    int atomicnumber;
+    float x, y, z, vx, vy, vz;
+} ms_atom_in;
+
+/* Secondary-structure codes, as VMD's `structure` keyword spells them. */
+enum {
+    MS_SS_ALPHA = 'H', MS_SS_310 = 'G', MS_SS_PI = 'I', MS_SS_EXTENDED = 'E',
+    MS_SS_BRIDGE = 'B', MS_SS_TURN = 'T', MS_SS_COIL = 'C'
+};
+
+/* Where a structure reader puts what it reads. Each function returns 0, or -1 when the host
+ * ran out of memory (the plugin then returns MS_PLUGIN_ERROR with a message). */
+typedef struct ms_struct_sink ms_struct_sink;
+struct ms_struct_sink {
+    void *host;
+    /* A hint: about this many atoms follow (may be wrong either way). */
+    int (*reserve)(ms_struct_sink *s, size_t natoms);
+    int (*add_atom)(ms_struct_sink *s, const ms_atom_in *a);
+    /* A bond between atoms i and j (0-based, in the order added); order 1 if unknown. */
+    int (*add_bond)(ms_struct_sink *s, size_t i, size_t j, float order);
+    /* The file lists every bond (a PSF): no distance search is needed. */
+    void (*bonds_complete)(ms_struct_sink *s);
+    /* A secondary-structure range (PDB HELIX/SHEET), inclusive, in one chain. */
+    int (*add_ss_range)(ms_struct_sink *s, char code, const char *chain, int resid0,
+                        char insertion0, int resid1, char insertion1);
+    /* Unit cell of the first frame: a b c (Angstrom) alpha beta gamma (degrees). */
+    void (*set_cell)(ms_struct_sink *s, const float cell[6]);
+    /* Physical time of the first frame, when the file gives one. */
+    void (*set_time)(ms_struct_sink *s, double time);
+    /* A line of free text (PDB REMARK, title). */
+    int (*add_remark)(ms_struct_sink *s, const char *text);
+};
+
+/* One frame to fill. pos (3*natoms floats) is NULL when the host only skips this frame;
+ * vel is NULL unless the host wants velocities. */
+typedef struct ms_frame_out {
+    float *pos, *vel;
+    float cell[6];    /* set has_cell when the file gives a cell */
+    double time;      /* set has_time when the file gives one */
+    int has_cell, has_time, has_vel;
+} ms_frame_out;
+
+/* What a writer reads: a read-only view of the atoms (already restricted to a selection),
+ * their bonds and the frames to write. */
+typedef struct ms_struct_view ms_struct_view;
+struct ms_struct_view {
+    void *host;
+    size_t natoms;
+    /* Fill *a for atom i (0-based in the view). Strings stay valid while the view lives. */
+    void (*get_atom)(const ms_struct_view *v, size_t i, ms_atom_in *a);
+    /* Bonds of atom i: *to points at count view indices (each bond appears for both atoms). */
+    size_t (*get_bonds)(const ms_struct_view *v, size_t i, const unsigned **to);
+    const char *remarks; /* may be NULL */
+};
+
+typedef struct ms_frame_in {
+    const float *pos;   /* 3*natoms */
+    const float *vel;   /* NULL when none */
+    float cell[6];
+    double time;
+    int index;          /* 0-based number of this frame among those written */
+} ms_frame_in;
+
+enum {
+    MS_CAN_READ_STRUCTURE = 1u << 0,
+    MS_CAN_READ_FRAMES = 1u << 1,
+    MS_CAN_WRITE_STRUCTURE = 1u << 2,
+    MS_CAN_WRITE_FRAMES = 1u << 3
+};
+
+typedef struct ms_plugin {
+    int abi;                 /* MS_PLUGIN_ABI */
+    const char *name;        /* type name, as in `mol new x type pdb` */
+    const char *description;
+    const char *extensions;  /* space-separated, without dots: "pdb ent" */
+    unsigned caps;           /* MS_CAN_* bits */
+
+    /* Reading. open_read sets *natoms to the atom count, or -1 when only read_structure
+     * can tell (that call then fixes it). read_frame returns MS_PLUGIN_EOF after the last
+     * frame; a structure reader that gave positions for the first frame does not return
+     * that frame again from read_frame. */
+    void *(*open_read)(const char *path, long *natoms, ms_perr *err);
+    int (*read_structure)(void *h, ms_struct_sink *sink, ms_perr *err);
+    int (*read_frame)(void *h, long natoms, ms_frame_out *frame, ms_perr *err);
+    void (*close_read)(void *h);
+
+    /* Writing. write_structure comes first when the format holds a structure; frames
+     * follow; close_write flushes and reports any error (a full disk). */
+    void *(*open_write)(const char *path, long natoms, ms_perr *err);
+    int (*write_structure)(void *h, const ms_struct_view *view, ms_perr *err);
+    int (*write_frame)(void *h, const ms_struct_view *view, const ms_frame_in *frame,
+                       ms_perr *err);
+    int (*close_write)(void *h, ms_perr *err);
+} ms_plugin;
+
+/* The one symbol a plugin exports. */
+typedef const ms_plugin *(*ms_plugin_entry_fn)(void);
+#define MS_PLUGIN_ENTRY_NAME "ms_plugin_entry"
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,82 @@
+/* plugin_util.h: what text-format plugins share: a fast buffered line reader that counts
+ * lines and byte offsets, fixed-column field extraction, strict number parsing that reports
+ * what was wrong, hybrid-36 numbers, and checked output. Compiled into each plugin. */
+#ifndef MS_PLUGIN_UTIL_H
+#define MS_PLUGIN_UTIL_H
+
+#include <stddef.h>
+#include <stdio.h>
+#include <stdint.h>
+
+#include "ms_plugin.h"
+
+/* ---------------------------------------------------------------- line reader */
+
+typedef struct ms_lines {
+    FILE *fp;
+    char *buf;
+    size_t cap, len, pos;   /* buffered bytes [pos, len) */
+    long long offset;       /* file offset of buf[0] */
+    long line_no;           /* number of the line last returned (1-based) */
+    char *line;             /* the line last returned, NUL-terminated, no newline */
+    size_t line_len;
+    char *long_line;        /* storage for lines that straddle buffer refills */
+    size_t long_cap;
+    int eof, error;
+} ms_lines;
+
+int ms_lines_open(ms_lines *r, const char *path, ms_perr *err);
+void ms_lines_close(ms_lines *r);
+/* The next line, or NULL at the end of the file (r->error set on a read error). The
+ * returned text stays valid until the next call. */
+const char *ms_lines_next(ms_lines *r);
+/* File offset of the start of the line last returned / of the next line. */
+long long ms_lines_tell_next(const ms_lines *r);
+/* Reposition at a file offset (from ms_lines_tell_next); line numbering restarts at
+ * line_no. */
+int ms_lines_seek(ms_lines *r, long long offset, long line_no);
+
+/* ---------------------------------------------------------------- fields */
+
+/* Copy columns [c0, c1) (0-based, end exclusive) of a line of length len into out (size
+ * >= c1 - c0 + 1), trimmed of blanks. Missing columns read as blanks. */
+void ms_field(const char *line, size_t len, size_t c0, size_t c1, char *out);
+
+/* Parse columns [c0, c1) as a float / int. Returns 1 on success, 0 when the field is blank
+ * (value untouched), -1 when it is not a number. */
+int ms_field_float(const char *line, size_t len, size_t c0, size_t c1, float *v);
+int ms_field_int(const char *line, size_t len, size_t c0, size_t c1, int *v);
+
+/* Parse a whole token (no surrounding blanks) as a number; 1 ok, -1 bad. */
+int ms_parse_float(const char *s, size_t n, float *v);
+int ms_parse_double(const char *s, size_t n, double *v);
+int ms_parse_long(const char *s, size_t n, long *v);
+
+/* Hybrid-36 (the PDB convention for serials > 99999 and resids > 9999): decode a field of
+ * `width` characters (blanks trimmed). Returns 1 ok, 0 blank, -1 invalid. */
+int ms_hy36_decode(const char *s, size_t width, long *v);
+/* Encode into exactly `width` characters plus NUL; returns 0, or -1 when out of range. */
+int ms_hy36_encode(long v, size_t width, char *out);
+
+/* Split a line into whitespace-separated tokens; returns the count (at most max). */
+int ms_tokens(char *line, char **tok, int max);
+
+/* ---------------------------------------------------------------- output */
+
+/* fprintf that remembers failure; check with ms_out_close. */
+typedef struct ms_out {
+    FILE *fp;
+    int failed;
+} ms_out;
+
+int ms_out_open(ms_out *o, const char *path, ms_perr *err);
+void ms_out_printf(ms_out *o, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+void ms_out_write(ms_out *o, const void *data, size_t n);
+/* Flush and close; MS_PLUGIN_ERROR with a message when anything failed (a full disk). */
+int ms_out_close(ms_out *o, ms_perr *err);
+
+#endif

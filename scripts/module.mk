@@ -1,0 +1,2 @@
+# scripts: set-up, example and benchmark drivers.
+EXTRA_DIST += scripts/bootstrap scripts/example scripts/example.tcl

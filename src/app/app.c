@@ -1,0 +1,235 @@
+/* app.c: creating the application, locating its Tcl library and plugins, background frame
+ * loading, VMD's trace variables, and quit/exit. */
+#include "config.h"
+#include "app/app.h"
+#include "commands/commands.h"
+#include "fileio/load.h"
+
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static int dir_has(const char *dir, const char *file)
+{
+    char path[PATH_MAX];
+    struct stat sb;
+    return snprintf(path, sizeof path, "%s/%s", dir, file) < (int)sizeof path &&
+           stat(path, &sb) == 0;
+}
+
+/* The Tcl library: MOLSCOPE_TCLLIB, then <prefix>/share/molscope/tcl beside the program,
+ * then the source tree when run from the build tree, then the configured directory. */
+static void find_tcllib(ms_app *app)
+{
+    const char *env = getenv("MOLSCOPE_TCLLIB");
+    char exe_dir[PATH_MAX], cand[PATH_MAX + 64];
+    snprintf(exe_dir, sizeof exe_dir, "%s", app->exe_path);
+    char *slash = strrchr(exe_dir, '/');
+    if (slash) *slash = '\0';
+    const char *rel[] = {"../share/molscope/tcl", "../tcl"};
+    if (env && *env && dir_has(env, "init.tcl")) {
+        snprintf(app->tcllib_dir, sizeof app->tcllib_dir, "%s", env);
+        return;
+    }
+    for (size_t i = 0; i < sizeof rel / sizeof rel[0]; i++) {
+        char real[PATH_MAX];
+        snprintf(cand, sizeof cand, "%s/%s", exe_dir, rel[i]);
+        if (dir_has(cand, "init.tcl") && realpath(cand, real)) {
+            snprintf(app->tcllib_dir, sizeof app->tcllib_dir, "%s", real);
+            return;
+        }
+    }
+    snprintf(app->tcllib_dir, sizeof app->tcllib_dir, "%s", MS_TCLLIBDIR);
+}
+
+static void find_plugins(ms_app *app)
+{
+    ms_registry_load_default(&app->plugins, app->exe_path);
+    /* Run from the build tree: plugins/.libs beside src/. */
+    char dir[PATH_MAX], real[PATH_MAX];
+    snprintf(dir, sizeof dir, "%s", app->exe_path);
+    char *slash = strrchr(dir, '/');
+    if (slash) {
+        *slash = '\0';
+        char cand[PATH_MAX + 32];
+        snprintf(cand, sizeof cand, "%s/../plugins/.libs", dir);
+        if (realpath(cand, real)) ms_registry_load_dir(&app->plugins, real);
+    }
+}
+
+ms_app *ms_app_new(const char *argv0)
+{
+    ms_app *app = calloc(1, sizeof *app);
+    if (!app) return NULL;
+    ssize_t n = readlink("/proc/self/exe", app->exe_path, sizeof app->exe_path - 1);
+    if (n > 0) app->exe_path[n] = '\0';
+    else snprintf(app->exe_path, sizeof app->exe_path, "%s", argv0);
+    strcpy(app->dispdev, "text");
+    app->width = app->height = 512;
+    ms_molset_init(&app->mols);
+    ms_registry_init(&app->plugins);
+    find_tcllib(app);
+    find_plugins(app);
+
+    Tcl_FindExecutable(argv0);
+    app->interp = Tcl_CreateInterp();
+    if (Tcl_Init(app->interp) != TCL_OK) {
+        fprintf(stderr, "molscope: Tcl_Init: %s\n", Tcl_GetStringResult(app->interp));
+        /* Tcl works without its own script library, with fewer conveniences. */
+    }
+    Tcl_SetVar2(app->interp, "env", "MOLSCOPE_TCLLIB", app->tcllib_dir, TCL_GLOBAL_ONLY);
+    ms_app_register(app);
+    ms_commands_register(app);
+    return app;
+}
+
+void ms_app_free(ms_app *app)
+{
+    if (!app) return;
+    if (app->interp) {
+        Tcl_SetVar(app->interp, "vmd_quit", "1", TCL_GLOBAL_ONLY);
+        ms_molset_free(&app->mols);
+        Tcl_DeleteInterp(app->interp);
+    } else {
+        ms_molset_free(&app->mols);
+    }
+    ms_registry_free(&app->plugins);
+    free(app);
+}
+
+int ms_app_source_init(ms_app *app)
+{
+    char path[PATH_MAX + 16];
+    snprintf(path, sizeof path, "%s/init.tcl", app->tcllib_dir);
+    if (access(path, R_OK) != 0) {
+        Tcl_SetObjResult(app->interp,
+                         Tcl_ObjPrintf("molscope: Tcl library not found (looked for %s; set "
+                                       "MOLSCOPE_TCLLIB to its directory)", path));
+        return TCL_ERROR;
+    }
+    return Tcl_EvalFile(app->interp, path);
+}
+
+/* ---------------------------------------------------------------- background loading */
+
+static void pump_one(ms_app *app, ms_molecule *m, long max)
+{
+    ms_error err = {{0}};
+    char *done = NULL;
+    size_t before = m->nframes;
+    int rc = ms_loader_pump(m, max, &done, &err);
+    if (rc < 0)
+        fprintf(stderr, "molscope: molecule %d: %s%s%s (kept %zu frames)\n", m->id,
+                done ? done : "", done ? ": " : "", err.msg, m->nframes);
+    if (m->nframes != before) {
+        ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, m, NULL);
+        ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
+    }
+    if (done && rc == 0) ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, m, done);
+    free(done);
+}
+
+static void idle_load(ClientData cd)
+{
+    ms_app *app = cd;
+    app->idle_scheduled = 0;
+    int more = 0;
+    for (size_t i = 0; i < app->mols.n; i++) {
+        ms_molecule *m = app->mols.mols[i];
+        if (!m->pending) continue;
+        pump_one(app, m, 1);  /* one frame per idle turn, as VMD's display loop does */
+        more |= m->pending != NULL;
+    }
+    if (more) ms_app_schedule_loading(app);
+}
+
+void ms_app_schedule_loading(ms_app *app)
+{
+    if (app->idle_scheduled) return;
+    app->idle_scheduled = 1;
+    Tcl_DoWhenIdle(idle_load, app);
+}
+
+void ms_app_finish_loading(ms_app *app)
+{
+    for (size_t i = 0; i < app->mols.n; i++)
+        if (app->mols.mols[i]->pending) pump_one(app, app->mols.mols[i], -1);
+}
+
+/* ---------------------------------------------------------------- trace variables */
+
+static void set_trace_var(ms_app *app, const char *var, int molid, const char *value)
+{
+    char key[32];
+    snprintf(key, sizeof key, "%d", molid);
+    Tcl_Obj *v = Tcl_NewStringObj(value, -1);
+    Tcl_IncrRefCount(v);
+    /* A trace callback that fails must not abort the command that changed the frame. */
+    if (!Tcl_SetVar2Ex(app->interp, var, key, v, TCL_GLOBAL_ONLY))
+        Tcl_BackgroundException(app->interp, TCL_ERROR);
+    Tcl_DecrRefCount(v);
+}
+
+static void on_mol_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg)
+{
+    ms_app *app = ud;
+    char buf[32];
+    switch (ev) {
+    case MS_EV_MOL_NEW:
+        set_trace_var(app, "vmd_initialize_structure", m->id, "1");
+        break;
+    case MS_EV_MOL_DELETE:
+        ms_loader_cancel(m);
+        set_trace_var(app, "vmd_initialize_structure", m->id, "0");
+        break;
+    case MS_EV_FRAME:
+        snprintf(buf, sizeof buf, "%d", m->frame);
+        set_trace_var(app, "vmd_frame", m->id, buf);
+        break;
+    case MS_EV_FRAMES_ADDED:
+        snprintf(buf, sizeof buf, "%zu", m->nframes);
+        set_trace_var(app, "vmd_timestep", m->id, buf);
+        break;
+    case MS_EV_TRAJ_DONE:
+        set_trace_var(app, "vmd_trajectory_read", m->id, arg ? arg : "");
+        break;
+    default:
+        break;
+    }
+}
+
+/* ---------------------------------------------------------------- quit / exit */
+
+/* quit ?status?: VMD schedules the exit and returns an error on purpose, so a sourcing
+ * script stops right there; the shell then exits with the status. */
+static int cmd_quit(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    ms_app *app = cd;
+    int status = 0;
+    if (objc > 2) {
+        Tcl_WrongNumArgs(interp, 1, objv, "?status?");
+        return TCL_ERROR;
+    }
+    if (objc == 2 && Tcl_GetIntFromObj(interp, objv[1], &status) != TCL_OK) return TCL_ERROR;
+    app->quit_requested = 1;
+    app->quit_status = status;
+    Tcl_SetObjResult(interp, Tcl_NewStringObj("", 0));
+    return TCL_ERROR;
+}
+
+void ms_app_register(ms_app *app)
+{
+    Tcl_CreateObjCommand(app->interp, "quit", cmd_quit, app, NULL);
+    Tcl_CreateObjCommand(app->interp, "exit", cmd_quit, app, NULL);
+    ms_molset_listen(&app->mols, on_mol_event, app);
+}
+
+int ms_app_eval_file(ms_app *app, const char *path)
+{
+    int rc = Tcl_EvalFile(app->interp, path);
+    if (rc != TCL_OK && app->quit_requested) return TCL_OK;
+    return rc;
+}

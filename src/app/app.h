@@ -1,0 +1,46 @@
+/* app.h: the running program: the Tcl interpreter, the molecules, the plugins, the display
+ * settings from the command line, and the pieces of VMD's startup and shell behaviour. The
+ * Tcl command bindings receive an ms_app* as their client data. */
+#ifndef MS_APP_H
+#define MS_APP_H
+
+#include <tcl.h>
+
+#include "fileio/registry.h"
+#include "molecule/molset.h"
+
+typedef struct ms_app {
+    Tcl_Interp *interp;
+    ms_molset mols;
+    ms_registry plugins;
+    char exe_path[4096];
+    char tcllib_dir[4096];
+    char dispdev[32];          /* as given: text, none, osmesa, egl, opengl, ... */
+    int width, height;         /* display size in pixels (VMD's text mode: 512 x 512) */
+    int interactive;           /* stdin is a terminal */
+    int quit_requested, quit_status;
+    int idle_scheduled;        /* a background frame-loading callback is queued */
+    void *module[16];          /* state owned by other modules (scene, reps, ...) */
+} ms_app;
+
+/* Create the application: interpreter, plugins, molecule set, commands. NULL on failure
+ * (the reason is printed). */
+ms_app *ms_app_new(const char *argv0);
+void ms_app_free(ms_app *app);
+
+/* Source the Tcl library's init script. Returns TCL_OK or TCL_ERROR. */
+int ms_app_source_init(ms_app *app);
+
+/* Queue background reading of pending frames (VMD's waitfor) when Tcl is idle. */
+void ms_app_schedule_loading(ms_app *app);
+/* Read every pending frame of every molecule now. */
+void ms_app_finish_loading(ms_app *app);
+
+/* Register the app's own commands (quit/exit) and the trace-variable listener. */
+void ms_app_register(ms_app *app);
+
+/* Evaluate a script as a top-level command (batch: an error prints the message and stack
+ * trace). Returns TCL_OK, TCL_ERROR, or TCL_OK after a quit (check app->quit_requested). */
+int ms_app_eval_file(ms_app *app, const char *path);
+
+#endif

@@ -1,0 +1,158 @@
+/* main.c: molscope's entry point. Parses VMD's command line, starts the Tcl interpreter,
+ * and follows VMD's startup order: the Tcl library's init script, the files named on the
+ * command line, the first startup file found, the -e script, then the shell. */
+#include "config.h"
+#include "app/app.h"
+#include "app/options.h"
+#include "app/shell.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+static int is_plugin_type(void *ud, const char *name)
+{
+    return ms_registry_find(&((ms_app *)ud)->plugins, name) != NULL;
+}
+
+static void set_tcl_argv(ms_app *app, const char *argv0, const ms_options *o)
+{
+    Tcl_Obj *list = Tcl_NewListObj(0, NULL);
+    for (int i = 0; i < o->tcl_argc; i++)
+        Tcl_ListObjAppendElement(NULL, list, Tcl_NewStringObj(o->tcl_argv[i], -1));
+    Tcl_SetVar2Ex(app->interp, "argv", NULL, list, TCL_GLOBAL_ONLY);
+    Tcl_SetVar2Ex(app->interp, "argc", NULL, Tcl_NewIntObj(o->tcl_argc), TCL_GLOBAL_ONLY);
+    Tcl_SetVar2Ex(app->interp, "argv0", NULL, Tcl_NewStringObj(argv0, -1), TCL_GLOBAL_ONLY);
+    Tcl_SetVar2Ex(app->interp, "tcl_interactive", NULL, Tcl_NewIntObj(app->interactive),
+                  TCL_GLOBAL_ONLY);
+}
+
+/* Display devices: text and none need nothing; the others are offscreen renderers that
+ * later modules provide. A device that is not built is reported and text mode is used. */
+static void choose_dispdev(ms_app *app, const char *dev)
+{
+    static const char *known[] = {"text", "none", "win", "opengl", "openglpbuffer", "osmesa",
+                                  "egl", "cave", "caveforms", "freevr", "freevrforms"};
+    if (!dev) return;
+    for (size_t i = 0; i < sizeof known / sizeof known[0]; i++) {
+        if (strcasecmp(dev, known[i]) != 0) continue;
+        if (i >= 2)
+            fprintf(stderr, "molscope: display device '%s' is not built into this version; "
+                            "using text (render snapshot and the ray tracers work without a "
+                            "display)\n", dev);
+        else
+            snprintf(app->dispdev, sizeof app->dispdev, "%s", known[i]);
+        return;
+    }
+    fprintf(stderr, "molscope: unknown display device '%s'; using text\n", dev);
+}
+
+/* Run one startup stage; in batch mode an error ends the program. Returns 0 to continue,
+ * or 1 when the program should exit with *status. */
+static int stage(ms_app *app, int rc, const char *what, int *status)
+{
+    if (app->quit_requested) {
+        *status = app->quit_status;
+        return 1;
+    }
+    if (rc == TCL_OK) return 0;
+    ms_shell_report_error(app, what);
+    if (!app->interactive) {
+        *status = 1;
+        return 1;
+    }
+    return 0;
+}
+
+static int load_cmdline_files(ms_app *app, const ms_options *o, int *status)
+{
+    for (int i = 0; i < o->nfiles; i++) {
+        const ms_cmdfile *f = &o->files[i];
+        Tcl_Obj *cmd = Tcl_NewListObj(0, NULL);
+        Tcl_IncrRefCount(cmd);
+        Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj("mol", -1));
+        Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj(f->new_molecule ? "new" : "addfile", -1));
+        Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj(f->path, -1));
+        if (f->type) {
+            Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj("type", -1));
+            Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj(f->type, -1));
+        }
+        Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj("waitfor", -1));
+        Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj("all", -1));
+        int rc = Tcl_EvalObjEx(app->interp, cmd, TCL_EVAL_GLOBAL);
+        Tcl_DecrRefCount(cmd);
+        if (stage(app, rc, "molscope", status)) return 1;
+    }
+    return 0;
+}
+
+static int run_startup_file(ms_app *app, const ms_options *o, int *status)
+{
+    char path[4096];
+    const char *home = getenv("HOME");
+    if (o->startup) {
+        if (access(o->startup, R_OK) != 0) {
+            fprintf(stderr, "molscope: -startup %s: cannot read the file\n", o->startup);
+            if (!app->interactive) {
+                *status = 1;
+                return 1;
+            }
+            return 0;
+        }
+        return stage(app, ms_app_eval_file(app, o->startup), o->startup, status);
+    }
+    const char *names[] = {".molscoperc", ".vmdrc"};
+    for (int k = 0; k < 2; k++) {
+        const char *dirs[] = {".", home};
+        for (int d = 0; d < 2; d++) {
+            if (!dirs[d]) continue;
+            snprintf(path, sizeof path, "%s/%s", dirs[d], names[k]);
+            if (access(path, R_OK) == 0)
+                return stage(app, ms_app_eval_file(app, path), path, status);
+        }
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    ms_app *app = ms_app_new(argv[0]);
+    if (!app) {
+        fprintf(stderr, "molscope: cannot start (out of memory)\n");
+        return 1;
+    }
+    ms_options o;
+    int status = 0;
+    if (ms_options_parse(argc, argv, is_plugin_type, app, &o) != 0) {
+        ms_options_free(&o);
+        ms_app_free(app);
+        return 2;
+    }
+    if (o.help || o.version) {
+        if (o.help) ms_options_usage(argv[0]);
+        else printf("molscope %s\n", PACKAGE_VERSION);
+        ms_options_free(&o);
+        ms_app_free(app);
+        return 0;
+    }
+    app->interactive = isatty(0);
+    choose_dispdev(app, o.dispdev);
+    if (o.width) {
+        app->width = o.width;
+        app->height = o.height;
+    }
+    set_tcl_argv(app, argv[0], &o);
+
+    if (stage(app, ms_app_source_init(app), "molscope: init.tcl", &status) ||
+        load_cmdline_files(app, &o, &status) || run_startup_file(app, &o, &status) ||
+        (o.escript && stage(app, ms_app_eval_file(app, o.escript), o.escript, &status)))
+        goto done;
+    status = ms_shell_run(app);
+done:
+    ms_options_free(&o);
+    ms_app_free(app);
+    fflush(stdout);
+    return status;
+}

@@ -1,0 +1,161 @@
+/* shell.c: the read-evaluate loop. Interactive when stdin is a terminal (line editing and
+ * history through tclreadline when it is installed, loaded at run time; a plain prompt
+ * otherwise); batch otherwise, where an error prints the message with its stack trace and
+ * ends the program with status 1. Tcl events (background frame loading, servers) run while
+ * the shell waits for input. */
+#include "config.h"
+#include "app/shell.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define PROMPT "molscope > "
+
+typedef struct shell {
+    ms_app *app;
+    Tcl_Obj *pending;   /* lines of an incomplete command */
+    int done;           /* EOF reached */
+    int status;         /* exit status */
+} shell;
+
+void ms_shell_report_error(ms_app *app, const char *context)
+{
+    Tcl_Interp *interp = app->interp;
+    const char *info = Tcl_GetVar(interp, "errorInfo", TCL_GLOBAL_ONLY);
+    const char *msg = Tcl_GetStringResult(interp);
+    if (context) fprintf(stderr, "%s: ", context);
+    fprintf(stderr, "%s\n", msg);
+    if (info && *info && strcmp(info, msg) != 0) fprintf(stderr, "while executing\n%s\n", info);
+    fflush(stderr);
+}
+
+/* Evaluate one complete command; returns 0 to go on, 1 to stop. */
+static int shell_eval(shell *sh, Tcl_Obj *cmd)
+{
+    ms_app *app = sh->app;
+    int rc = Tcl_RecordAndEvalObj(app->interp, cmd, TCL_EVAL_GLOBAL);
+    if (app->quit_requested) {
+        sh->status = app->quit_status;
+        return 1;
+    }
+    if (rc == TCL_OK) {
+        const char *res = Tcl_GetStringResult(app->interp);
+        if (*res) printf("%s\n", res);
+    } else {
+        ms_shell_report_error(app, NULL);
+        if (!app->interactive) {
+            sh->status = 1;
+            return 1;
+        }
+    }
+    fflush(stdout);
+    return 0;
+}
+
+/* Add a line; evaluate when the command is complete. Returns 1 to stop. */
+static int shell_line(shell *sh, const char *line, int len)
+{
+    if (!sh->pending) {
+        sh->pending = Tcl_NewObj();
+        Tcl_IncrRefCount(sh->pending);
+    }
+    Tcl_AppendToObj(sh->pending, line, len);
+    Tcl_AppendToObj(sh->pending, "\n", 1);
+    if (!Tcl_CommandComplete(Tcl_GetString(sh->pending))) return 0;
+    Tcl_Obj *cmd = sh->pending;
+    sh->pending = NULL;
+    int stop = shell_eval(sh, cmd);
+    Tcl_DecrRefCount(cmd);
+    return stop;
+}
+
+static void prompt(shell *sh)
+{
+    if (!sh->app->interactive) return;
+    fputs(sh->pending ? "? " : PROMPT, stdout);
+    fflush(stdout);
+}
+
+static void on_stdin(ClientData cd, int mask)
+{
+    shell *sh = cd;
+    Tcl_Channel in = Tcl_GetStdChannel(TCL_STDIN);
+    Tcl_Obj *line = Tcl_NewObj();
+    Tcl_IncrRefCount(line);
+    int n = Tcl_GetsObj(in, line);
+    if (n < 0) {
+        if (Tcl_Eof(in) || !Tcl_InputBlocked(in)) {
+            sh->done = 1;
+            if (sh->pending && sh->app->interactive == 0) {
+                /* An unfinished command at the end of input is an error, as for a script. */
+                fprintf(stderr, "molscope: standard input ended inside an unfinished command\n");
+                sh->status = 1;
+            }
+        }
+        Tcl_DecrRefCount(line);
+        return;
+    }
+    int len;
+    const char *s = Tcl_GetStringFromObj(line, &len);
+    if (shell_line(sh, s, len)) sh->done = 1;
+    Tcl_DecrRefCount(line);
+    if (!sh->done) prompt(sh);
+}
+
+/* The loop through tclreadline: returns 0 when tclreadline is not available. */
+static int readline_loop(shell *sh)
+{
+    Tcl_Interp *interp = sh->app->interp;
+    if (getenv("MOLSCOPE_NOREADLINE") ||
+        Tcl_Eval(interp, "package require tclreadline") != TCL_OK)
+        return 0;
+    Tcl_Eval(interp, "::tclreadline::readline initialize [file join $::env(HOME) "
+                     ".molscope_history]; ::tclreadline::readline eofchar "
+                     "{set ::molscope::eof 1; return {}}; namespace eval ::molscope {set eof 0}");
+    while (!sh->done) {
+        const char *p = sh->pending ? "? " : PROMPT;
+        Tcl_Obj *cmd = Tcl_ObjPrintf("::tclreadline::readline read {%s}", p);
+        Tcl_IncrRefCount(cmd);
+        int rc = Tcl_EvalObjEx(interp, cmd, TCL_EVAL_GLOBAL);
+        Tcl_DecrRefCount(cmd);
+        const char *eof = Tcl_GetVar(interp, "::molscope::eof", TCL_GLOBAL_ONLY);
+        if (rc != TCL_OK || (eof && strcmp(eof, "1") == 0)) {
+            if (sh->app->quit_requested) sh->status = sh->app->quit_status;
+            putchar('\n');
+            break;
+        }
+        Tcl_Obj *line = Tcl_GetObjResult(interp);
+        Tcl_IncrRefCount(line);
+        int len;
+        const char *s = Tcl_GetStringFromObj(line, &len);
+        char *copy = malloc((size_t)len + 1);
+        if (copy) {
+            memcpy(copy, s, (size_t)len + 1);
+            if (shell_line(sh, copy, len)) sh->done = 1;
+            free(copy);
+        }
+        Tcl_DecrRefCount(line);
+    }
+    return 1;
+}
+
+int ms_shell_run(ms_app *app)
+{
+    shell sh = {.app = app};
+    if (app->interactive && readline_loop(&sh)) {
+        if (sh.pending) Tcl_DecrRefCount(sh.pending);
+        return sh.status;
+    }
+    Tcl_Channel in = Tcl_GetStdChannel(TCL_STDIN);
+    if (!in) return 0;
+    Tcl_CreateChannelHandler(in, TCL_READABLE, on_stdin, &sh);
+    prompt(&sh);
+    while (!sh.done && !app->quit_requested) Tcl_DoOneEvent(TCL_ALL_EVENTS);
+    Tcl_DeleteChannelHandler(in, on_stdin, &sh);
+    if (app->quit_requested) sh.status = app->quit_status;
+    if (sh.pending) Tcl_DecrRefCount(sh.pending);
+    if (app->interactive && !app->quit_requested) putchar('\n');
+    return sh.status;
+}

@@ -1,0 +1,5 @@
+# src/base: utilities shared by every module.
+src_libmscore_la_SOURCES += \
+	src/base/base.h src/base/base.c \
+	src/base/strtab.h src/base/strtab.c \
+	src/base/threads.h src/base/threads.c

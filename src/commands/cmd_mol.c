@@ -1,0 +1,242 @@
+/* cmd_mol.c: the `mol` command (alias `molecule`): loading and managing molecules. The
+ * representation subcommands (addrep, modstyle, ...) are added by the rep module.
+ *
+ *   mol new [file [options]] | mol new atoms N       -> molid
+ *   mol addfile file [options] [molid]                -> molid
+ *   mol load type file [type file ...]                -> molid   (obsolescent form)
+ *   mol delete molid|all; mol top molid; mol list [molid]; mol rename molid name
+ *   mol on|off|fix|free|unfix|active|inactive molspec
+ *   mol cancel molid; mol reanalyze molid; mol bondsrecalc molid */
+#include "config.h"
+#include "commands/commands.h"
+#include "fileio/load.h"
+#include "molecule/analysis.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+static int mol_new_atoms(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    long n;
+    if (objc != 4)
+        return ms_cmd_error(interp, "mol new atoms: usage: mol new atoms <count>");
+    if (ms_cmd_get_count(interp, objv[3], 0x7fffffffL, "mol new atoms", &n)) return TCL_ERROR;
+    ms_error err = {{0}};
+    ms_molecule *m = ms_mol_new(&err);
+    if (!m || !(m->name = ms_strdup("molecule")) || ms_mol_reserve_atoms(m, (size_t)n, &err))
+        goto fail;
+    for (long i = 0; i < n; i++)
+        if (ms_mol_add_blank_atom(m, &err) < 0) goto fail;
+    for (long i = 0; i < n; i++) ms_analysis_atom_defaults(m, (size_t)i, 0, 0, 0);
+    if (ms_bonds_build(m, NULL, 0, NULL, &err) || ms_analysis_classify(m, &err) ||
+        ms_molset_add(&app->mols, m, &err))
+        goto fail;
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(m->id));
+    return TCL_OK;
+fail:
+    ms_mol_free(m);
+    return ms_cmd_error(interp, "mol new atoms: %s", err.msg[0] ? err.msg : "out of memory");
+}
+
+static int mol_new(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc == 2) {
+        ms_error err = {{0}};
+        ms_molecule *m = ms_mol_new(&err);
+        if (!m || !(m->name = ms_strdup("molecule")) || ms_molset_add(&app->mols, m, &err)) {
+            ms_mol_free(m);
+            return ms_cmd_error(interp, "mol new: out of memory");
+        }
+        Tcl_SetObjResult(interp, Tcl_NewIntObj(m->id));
+        return TCL_OK;
+    }
+    if (!strcasecmp(Tcl_GetString(objv[2]), "atoms") && objc == 4)
+        return mol_new_atoms(app, interp, objc, objv);
+    ms_load_opts o;
+    ms_load_opts_default(&o);
+    if (ms_cmd_parse_load_opts(interp, "mol new", objc, objv, 3, &o, NULL)) return TCL_ERROR;
+    return ms_cmd_load(app, interp, "mol new", Tcl_GetString(objv[2]), &o, NULL);
+}
+
+static int mol_addfile(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc < 3)
+        return ms_cmd_error(interp, "mol addfile: usage: mol addfile <file> ?options? ?molid?");
+    ms_load_opts o;
+    ms_load_opts_default(&o);
+    Tcl_Obj *molword;
+    if (ms_cmd_parse_load_opts(interp, "mol addfile", objc, objv, 3, &o, &molword))
+        return TCL_ERROR;
+    ms_molecule *m;
+    if (molword) m = ms_cmd_mol(app, interp, molword, "mol addfile");
+    else if (!(m = ms_molset_top(&app->mols)))
+        /* VMD: with no molecule loaded, addfile makes a new one. */
+        return ms_cmd_load(app, interp, "mol addfile", Tcl_GetString(objv[2]), &o, NULL);
+    if (!m) return TCL_ERROR;
+    return ms_cmd_load(app, interp, "mol addfile", Tcl_GetString(objv[2]), &o, m);
+}
+
+static int mol_load(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc < 4 || (objc - 2) % 2)
+        return ms_cmd_error(interp, "mol load: usage: mol load <type> <file> ?<type> <file>...?");
+    ms_molecule *m = NULL;
+    for (int i = 2; i < objc; i += 2) {
+        ms_load_opts o;
+        ms_load_opts_default(&o);
+        o.type = Tcl_GetString(objv[i]);
+        o.waitfor = -1;
+        if (ms_cmd_load(app, interp, "mol load", Tcl_GetString(objv[i + 1]), &o, m)) {
+            if (m && i > 2) ms_molset_delete(&app->mols, m->id); /* all or nothing */
+            return TCL_ERROR;
+        }
+        if (!m) m = ms_molset_top(&app->mols);
+    }
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(m->id));
+    return TCL_OK;
+}
+
+static int mol_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3) return ms_cmd_error(interp, "mol delete: usage: mol delete <molid|all>");
+    int *ids, n;
+    if (ms_cmd_molspec(app, interp, Tcl_GetString(objv[2]), "mol delete", &ids, &n))
+        return TCL_ERROR;
+    for (int i = 0; i < n; i++) ms_molset_delete(&app->mols, ids[i]);
+    free(ids);
+    return TCL_OK;
+}
+
+static int mol_top(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3) return ms_cmd_error(interp, "mol top: usage: mol top <molid>");
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol top");
+    if (!m) return TCL_ERROR;
+    app->mols.top = m->id;
+    return TCL_OK;
+}
+
+static int mol_rename(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 4) return ms_cmd_error(interp, "mol rename: usage: mol rename <molid> <name>");
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol rename");
+    if (!m) return TCL_ERROR;
+    char *name = ms_strdup(Tcl_GetString(objv[3]));
+    if (!name) return ms_cmd_error(interp, "mol rename: out of memory");
+    free(m->name);
+    m->name = name;
+    return TCL_OK;
+}
+
+static void list_line(Tcl_Obj *out, const ms_molecule *m, int top)
+{
+    char line[256];
+    snprintf(line, sizeof line, "%-4d%c %c %c %c  %-24.24s %9zu %6zu %4d\n", m->id,
+             m->id == top ? 'T' : ' ', m->active ? 'A' : ' ', m->displayed ? 'D' : ' ',
+             m->fixed ? 'F' : ' ', m->name ? m->name : "", m->atoms.n, m->nframes, 0);
+    Tcl_AppendToObj(out, line, -1);
+}
+
+static int mol_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc > 3) return ms_cmd_error(interp, "mol list: usage: mol list ?molid?");
+    Tcl_Obj *out = Tcl_NewObj();
+    if (objc == 3) {
+        ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol list");
+        if (!m) return TCL_ERROR;
+        char line[512];
+        snprintf(line, sizeof line,
+                 "Molecule %d: %s\n  Atoms: %zu  Bonds: %u  Residues: %zu  Fragments: %zu  "
+                 "Frames: %zu\n", m->id, m->name ? m->name : "", m->atoms.n,
+                 m->has_bonds ? m->bonds.start[m->atoms.n] / 2 : 0, m->nresidues,
+                 m->nfragments, m->nframes);
+        Tcl_AppendToObj(out, line, -1);
+        for (size_t i = 0; i < m->nfiles; i++)
+            Tcl_AppendPrintfToObj(out, "  File: %s (%s)\n", m->files[i].path, m->files[i].type);
+    } else {
+        Tcl_AppendToObj(out, "ID  T A D F  Molecule                     Atoms Frames  Vol\n", -1);
+        for (size_t i = 0; i < app->mols.n; i++) list_line(out, app->mols.mols[i], app->mols.top);
+    }
+    /* VMD prints the table; returning it lets scripts capture it too. */
+    int len;
+    const char *s = Tcl_GetStringFromObj(out, &len);
+    if (len && s[len - 1] == '\n') Tcl_SetObjLength(out, len - 1);
+    Tcl_SetObjResult(interp, out);
+    return TCL_OK;
+}
+
+/* mol on|off|fix|free|unfix|active|inactive <molspec> */
+static int mol_flag(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *what = Tcl_GetString(objv[1]);
+    char cmd[64];
+    snprintf(cmd, sizeof cmd, "mol %s", what);
+    if (objc != 3) return ms_cmd_error(interp, "%s: usage: %s <molspec>", cmd, cmd);
+    int *ids, n;
+    if (ms_cmd_molspec(app, interp, Tcl_GetString(objv[2]), cmd, &ids, &n)) return TCL_ERROR;
+    for (int i = 0; i < n; i++) {
+        ms_molecule *m = ms_molset_get(&app->mols, ids[i]);
+        if (!strcasecmp(what, "on")) m->displayed = 1;
+        else if (!strcasecmp(what, "off")) m->displayed = 0;
+        else if (!strcasecmp(what, "fix")) m->fixed = 1;
+        else if (!strcasecmp(what, "free") || !strcasecmp(what, "unfix")) m->fixed = 0;
+        else if (!strcasecmp(what, "active")) m->active = 1;
+        else if (!strcasecmp(what, "inactive")) m->active = 0;
+    }
+    free(ids);
+    return TCL_OK;
+}
+
+static int mol_cancel(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3) return ms_cmd_error(interp, "mol cancel: usage: mol cancel <molid>");
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol cancel");
+    if (!m) return TCL_ERROR;
+    ms_loader_cancel(m);
+    return TCL_OK;
+}
+
+/* mol reanalyze / bondsrecalc: redo the structure analysis (bondsrecalc also redoes the
+ * distance bonds from the current frame). */
+static int mol_reanalyze(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *what = Tcl_GetString(objv[1]);
+    int bonds = !strcasecmp(what, "bondsrecalc");
+    char cmd[64];
+    snprintf(cmd, sizeof cmd, "mol %s", bonds ? "bondsrecalc" : "reanalyze");
+    if (objc != 3) return ms_cmd_error(interp, "%s: usage: %s <molid>", cmd, cmd);
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[2], cmd);
+    if (!m) return TCL_ERROR;
+    ms_error err = {{0}};
+    const float *pos = ms_mol_pos(m);
+    if (bonds && pos) {
+        uint32_t *pairs = NULL;
+        size_t np = 0, cap = 0;
+        int rc = ms_bond_search(m, pos, &pairs, &np, &cap, &err) ||
+                 ms_mol_set_bonds(m, np, pairs, NULL, &err);
+        free(pairs);
+        if (rc) return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
+    } else if (ms_analysis_classify(m, &err)) {
+        return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
+    }
+    ms_molset_emit(&app->mols, MS_EV_STRUCTURE, m, NULL);
+    return TCL_OK;
+}
+
+static const ms_subcmd mol_table[] = {
+    {"new", mol_new},           {"addfile", mol_addfile},   {"load", mol_load},
+    {"delete", mol_delete},     {"top", mol_top},           {"rename", mol_rename},
+    {"list", mol_list},         {"on", mol_flag},           {"off", mol_flag},
+    {"fix", mol_flag},          {"free", mol_flag},         {"unfix", mol_flag},
+    {"active", mol_flag},       {"inactive", mol_flag},     {"cancel", mol_cancel},
+    {"reanalyze", mol_reanalyze}, {"bondsrecalc", mol_reanalyze},
+    {NULL, NULL}};
+
+void ms_cmd_mol_register(ms_app *app)
+{
+    ms_cmdset_create(app, "mol", mol_table);
+    /* VMD accepts `molecule` as a synonym. */
+    Tcl_Eval(app->interp, "interp alias {} molecule {} mol");
+}

@@ -1,0 +1,72 @@
+/* commands.h: the Tcl command bindings and what they share: subcommand tables that other
+ * modules can extend (the representation module adds `mol addrep` ...), molecule id and
+ * molspec parsing, and error messages that name the command and the object.
+ *
+ * Each binding is thin: parse the arguments, call the core, set the result. */
+#ifndef MS_COMMANDS_H
+#define MS_COMMANDS_H
+
+#include <tcl.h>
+
+#include "app/app.h"
+
+/* A subcommand: objv[0] is the command, objv[1] the subcommand word. */
+typedef int (*ms_subcmd_fn)(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[]);
+
+typedef struct ms_subcmd {
+    const char *name;
+    ms_subcmd_fn fn;
+} ms_subcmd;
+
+/* A command made of subcommands (mol, molinfo, animate, display, color ...). */
+typedef struct ms_cmdset ms_cmdset;
+
+/* Create the Tcl command `name` (and its aliases) dispatching over `table` (ended by a
+ * {NULL, NULL} entry). Subcommand words match case-insensitively over 15 characters. */
+ms_cmdset *ms_cmdset_create(ms_app *app, const char *name, const ms_subcmd *table);
+/* Add subcommands to an existing command (from another module). */
+int ms_cmdset_extend(ms_app *app, const char *name, const ms_subcmd *table);
+/* Called for words that match no subcommand (molinfo <id> get ...): may be NULL. */
+void ms_cmdset_fallback(ms_app *app, const char *name, ms_subcmd_fn fn);
+
+/* Set an error message "<fmt...>" and return TCL_ERROR. */
+int ms_cmd_error(Tcl_Interp *interp, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* A molecule named by id or "top"; NULL with an error naming cmd and the word. */
+ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const char *cmd);
+/* Molecule ids named by a molspec: ids, all, top, none, active, inactive, displayed/on,
+ * off, fixed, free/unfix, joined with | / or :. *out is malloc'd. */
+int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char *cmd,
+                   int **out, int *n);
+
+/* Parse a non-negative count with an upper bound, naming what it is on error. */
+int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out);
+
+/* A selection object (atomselectN) resolved for commands that take `sel`: the selection
+ * module installs this; NULL until then. Returns TCL_OK with malloc'd ascending indices. */
+typedef int (*ms_sel_resolver)(ms_app *app, Tcl_Interp *interp, const char *name, int *molid,
+                               uint32_t **atoms, size_t *natoms);
+extern ms_sel_resolver ms_cmd_sel_resolver;
+
+/* Move every molecule's view so the given molecule fills the screen (VMD's resetview
+ * centre and scale); the view module may replace this. */
+extern void (*ms_cmd_reset_view)(ms_app *app);
+
+/* Register every command of this module. */
+void ms_commands_register(ms_app *app);
+void ms_cmd_mol_register(ms_app *app);
+void ms_cmd_molinfo_register(ms_app *app);
+void ms_cmd_animate_register(ms_app *app);
+void ms_cmd_vmdinfo_register(ms_app *app);
+
+/* Shared by mol and animate: load a file as `mol new` (new molecule) or into mol. */
+typedef struct ms_load_opts ms_load_opts;
+int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *path,
+                const ms_load_opts *o, ms_molecule *into);
+/* Parse VMD's load options (type first last step waitfor filebonds autobonds volsets)
+ * from objv[start..]; a trailing odd word is returned in *molid_word when allowed. */
+int ms_cmd_parse_load_opts(Tcl_Interp *interp, const char *cmd, int objc, Tcl_Obj *const objv[],
+                           int start, ms_load_opts *o, Tcl_Obj **molid_word);
+
+#endif

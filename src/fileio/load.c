@@ -1,0 +1,715 @@
+/* load.c: reading files into molecules. A structure sink turns a plugin's atom records into
+ * the molecule's arrays (interning strings, filling defaults); a loader streams frames; both
+ * undo everything on error so a failed load leaves no trace. */
+#include "config.h"
+#include "fileio/load.h"
+#include "molecule/analysis.h"
+#include "molecule/elements.h"
+#include "molecule/molecule.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+typedef struct ms_loader {
+    const ms_plugin *p;
+    void *h;
+    char *path;
+    long natoms;
+    long next_index;       /* file index of the frame read_frame returns next */
+    long first, last, step;
+    int with_vel;
+} ms_loader;
+
+void ms_load_opts_default(ms_load_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->last = -1;
+    o->step = 1;
+    o->waitfor = 1;
+    o->filebonds = 1;
+    o->autobonds = 1;
+}
+
+/* ================================================================ the structure sink */
+
+enum { F_NAME, F_TYPE, F_RESNAME, F_SEGNAME, F_CHAIN, F_NFIELDS };
+
+typedef struct sink_state {
+    ms_struct_sink sink;   /* first member: the plugin sees this */
+    ms_molecule *m;
+    ms_error *err;
+    float *pos, *vel;      /* first-frame positions/velocities, 3 per atom */
+    size_t pos_cap, vel_cap;
+    int any_pos, any_vel;
+    float cell[6];
+    int has_cell, has_time;
+    double time;
+    uint32_t *pairs;       /* file bonds */
+    float *orders;
+    size_t npairs, pairs_cap, orders_cap;
+    int any_order, bonds_complete;
+    ms_ss_range *ss;
+    size_t nss, ss_cap;
+    ms_str last_id[F_NFIELDS];
+    char *remarks;
+    size_t remarks_len, remarks_cap;
+} sink_state;
+
+static ms_str sink_intern(sink_state *st, int field, const char *s)
+{
+    if (!s) s = "";
+    ms_str last = st->last_id[field];
+    if (last != MS_STR_NONE && strcmp(ms_mol_str(st->m, last), s) == 0) return last;
+    ms_str id = ms_strtab_intern_cstr(st->m->strings, s);
+    st->last_id[field] = id;
+    return id;
+}
+
+static int sink_reserve(ms_struct_sink *s, size_t natoms)
+{
+    sink_state *st = (sink_state *)s;
+    if (natoms > ((size_t)1 << 31)) natoms = (size_t)1 << 31; /* a hint, not a promise */
+    return ms_mol_reserve_atoms(st->m, natoms, st->err);
+}
+
+static char blank_to_nul(char c) { return c == ' ' ? '\0' : c; }
+
+static int sink_add_atom(ms_struct_sink *s, const ms_atom_in *in)
+{
+    sink_state *st = (sink_state *)s;
+    ms_molecule *m = st->m;
+    if (m->atoms.n >= 0x7fffffffu) {
+        ms_error_set(st->err, "more than 2^31 atoms");
+        return -1;
+    }
+    long li = ms_mol_add_blank_atom(m, st->err);
+    if (li < 0) return -1;
+    size_t i = (size_t)li;
+    ms_atoms *a = &m->atoms;
+    a->name[i] = sink_intern(st, F_NAME, in->name);
+    a->type[i] = sink_intern(st, F_TYPE, in->type);
+    a->resname[i] = sink_intern(st, F_RESNAME, in->resname);
+    a->segname[i] = sink_intern(st, F_SEGNAME, in->segname);
+    a->chain[i] = sink_intern(st, F_CHAIN, in->chain);
+    for (int f = 0; f < F_NFIELDS; f++)
+        if (st->last_id[f] == MS_STR_NONE) {
+            ms_error_set(st->err, "out of memory for atom names");
+            return -1;
+        }
+    a->resid[i] = in->resid;
+    a->insertion[i] = blank_to_nul(in->insertion);
+    a->altloc[i] = blank_to_nul(in->altloc);
+    if (in->hetero) a->flags[i] |= MS_AF_HETERO;
+    unsigned has = in->has;
+    if (has & MS_HAS_BETA) a->beta[i] = in->beta;
+    if (has & MS_HAS_OCCUPANCY) a->occupancy[i] = in->occupancy;
+    if (has & MS_HAS_CHARGE) a->charge[i] = in->charge;
+    if (has & MS_HAS_MASS) a->mass[i] = in->mass;
+    if (has & MS_HAS_RADIUS) a->radius[i] = in->radius;
+    int z = 0;
+    if ((has & MS_HAS_ATOMICNUMBER) && in->atomicnumber > 0 && in->atomicnumber < 119)
+        z = in->atomicnumber;
+    else if (in->element && in->element[0])
+        z = ms_element_from_symbol(in->element);
+    a->atomicnumber[i] = (uint8_t)z;
+    ms_analysis_atom_defaults(m, i, has & MS_HAS_MASS, has & MS_HAS_RADIUS, z > 0);
+
+    if (has & MS_HAS_POS) {
+        if (ms_grow((void **)&st->pos, &st->pos_cap, a->cap, 3 * sizeof(float))) goto oom;
+        if (!st->any_pos) memset(st->pos, 0, 3 * sizeof(float) * i);
+        st->any_pos = 1;
+        st->pos[3 * i] = in->x;
+        st->pos[3 * i + 1] = in->y;
+        st->pos[3 * i + 2] = in->z;
+    } else if (st->any_pos) {
+        if (ms_grow((void **)&st->pos, &st->pos_cap, a->cap, 3 * sizeof(float))) goto oom;
+        memset(st->pos + 3 * i, 0, 3 * sizeof(float));
+    }
+    if (has & MS_HAS_VEL) {
+        if (ms_grow((void **)&st->vel, &st->vel_cap, a->cap, 3 * sizeof(float))) goto oom;
+        if (!st->any_vel) memset(st->vel, 0, 3 * sizeof(float) * i);
+        st->any_vel = 1;
+        st->vel[3 * i] = in->vx;
+        st->vel[3 * i + 1] = in->vy;
+        st->vel[3 * i + 2] = in->vz;
+    } else if (st->any_vel) {
+        if (ms_grow((void **)&st->vel, &st->vel_cap, a->cap, 3 * sizeof(float))) goto oom;
+        memset(st->vel + 3 * i, 0, 3 * sizeof(float));
+    }
+    return 0;
+oom:
+    ms_error_set(st->err, "out of memory for coordinates of %zu atoms", a->n);
+    return -1;
+}
+
+static int sink_add_bond(ms_struct_sink *s, size_t i, size_t j, float order)
+{
+    sink_state *st = (sink_state *)s;
+    if (i > UINT32_MAX || j > UINT32_MAX) return 0;
+    if (ms_grow((void **)&st->pairs, &st->pairs_cap, 2 * (st->npairs + 1), sizeof(uint32_t)) ||
+        ms_grow((void **)&st->orders, &st->orders_cap, st->npairs + 1, sizeof(float))) {
+        ms_error_set(st->err, "out of memory for bonds");
+        return -1;
+    }
+    st->pairs[2 * st->npairs] = (uint32_t)i;
+    st->pairs[2 * st->npairs + 1] = (uint32_t)j;
+    st->orders[st->npairs] = order;
+    if (order != 1.0f) st->any_order = 1;
+    st->npairs++;
+    return 0;
+}
+
+static void sink_bonds_complete(ms_struct_sink *s) { ((sink_state *)s)->bonds_complete = 1; }
+
+static int sink_add_ss(ms_struct_sink *s, char code, const char *chain, int resid0, char ins0,
+                       int resid1, char ins1)
+{
+    sink_state *st = (sink_state *)s;
+    if (ms_grow((void **)&st->ss, &st->ss_cap, st->nss + 1, sizeof *st->ss)) {
+        ms_error_set(st->err, "out of memory for secondary structure records");
+        return -1;
+    }
+    ms_ss_range *r = &st->ss[st->nss++];
+    r->code = code;
+    r->chain = ms_strtab_intern_cstr(st->m->strings, chain ? chain : "");
+    r->resid0 = resid0;
+    r->resid1 = resid1;
+    r->insertion0 = blank_to_nul(ins0);
+    r->insertion1 = blank_to_nul(ins1);
+    return r->chain == MS_STR_NONE ? -1 : 0;
+}
+
+static void sink_set_cell(ms_struct_sink *s, const float cell[6])
+{
+    sink_state *st = (sink_state *)s;
+    memcpy(st->cell, cell, sizeof st->cell);
+    st->has_cell = 1;
+}
+
+static void sink_set_time(ms_struct_sink *s, double t)
+{
+    sink_state *st = (sink_state *)s;
+    st->time = t;
+    st->has_time = 1;
+}
+
+static int sink_add_remark(ms_struct_sink *s, const char *text)
+{
+    sink_state *st = (sink_state *)s;
+    size_t len = strlen(text);
+    if (st->remarks_len > (1u << 20)) return 0; /* keep the first megabyte */
+    if (ms_grow((void **)&st->remarks, &st->remarks_cap, st->remarks_len + len + 2, 1)) {
+        ms_error_set(st->err, "out of memory for remarks");
+        return -1;
+    }
+    memcpy(st->remarks + st->remarks_len, text, len);
+    st->remarks_len += len;
+    st->remarks[st->remarks_len++] = '\n';
+    st->remarks[st->remarks_len] = '\0';
+    return 0;
+}
+
+static void sink_init(sink_state *st, ms_molecule *m, ms_error *err)
+{
+    memset(st, 0, sizeof *st);
+    st->m = m;
+    st->err = err;
+    for (int f = 0; f < F_NFIELDS; f++) st->last_id[f] = MS_STR_NONE;
+    st->sink.host = st;
+    st->sink.reserve = sink_reserve;
+    st->sink.add_atom = sink_add_atom;
+    st->sink.add_bond = sink_add_bond;
+    st->sink.bonds_complete = sink_bonds_complete;
+    st->sink.add_ss_range = sink_add_ss;
+    st->sink.set_cell = sink_set_cell;
+    st->sink.set_time = sink_set_time;
+    st->sink.add_remark = sink_add_remark;
+}
+
+static void sink_free(sink_state *st)
+{
+    free(st->pos);
+    free(st->vel);
+    free(st->pairs);
+    free(st->orders);
+    free(st->ss);
+    free(st->remarks);
+}
+
+/* ================================================================ plugin choice */
+
+const ms_plugin *ms_load_pick_plugin(const ms_registry *r, const char *path, const char *type,
+                                     ms_error *err)
+{
+    const ms_plugin *p = NULL;
+    if (type && *type) {
+        p = ms_registry_find(r, type);
+        if (!p) {
+            char known[512] = "";
+            for (size_t i = 0; i < r->n; i++) {
+                size_t len = strlen(known);
+                snprintf(known + len, sizeof known - len, "%s%s", i ? " " : "",
+                         r->plugins[i]->name);
+            }
+            ms_error_set(err, "unknown file type '%s' (known types: %s)", type,
+                         r->n ? known : "none: no plugins were found");
+            return NULL;
+        }
+        return p;
+    }
+    p = ms_registry_for_path(r, path);
+    if (!p) p = ms_registry_find(r, "pdb"); /* VMD reads unknown extensions as PDB */
+    if (!p) {
+        ms_error_set(err, "no plugin reads this file (searched for plugins in %s)",
+                     r->searched ? r->searched : "no directory");
+        return NULL;
+    }
+    return p;
+}
+
+/* ================================================================ loading */
+
+static int check_readable(const char *path, ms_error *err)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0) {
+        ms_error_set(err, "%s", strerror(errno));
+        return -1;
+    }
+    if (S_ISDIR(sb.st_mode)) {
+        ms_error_set(err, "is a directory");
+        return -1;
+    }
+    return 0;
+}
+
+static int wants_frame(long index, long first, long last, long step)
+{
+    return index >= first && (last < 0 || index <= last) && (index - first) % step == 0;
+}
+
+static const char *base_name(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    return s ? s + 1 : path;
+}
+
+/* Bonds from the file and/or by distance, then residues and classification. */
+static int finish_structure(ms_molecule *m, sink_state *st, const ms_load_opts *o,
+                            ms_error *err)
+{
+    size_t n = m->atoms.n;
+    if (!o->filebonds) st->npairs = 0;
+    for (size_t k = 0; k < st->npairs; k++) {
+        if (st->pairs[2 * k] >= n || st->pairs[2 * k + 1] >= n) {
+            ms_error_set(err, "bond %zu names atom %u but the file has %zu atoms", k + 1,
+                         (unsigned)(MS_MAX(st->pairs[2 * k], st->pairs[2 * k + 1]) + 1), n);
+            return -1;
+        }
+    }
+    size_t nfile = st->npairs;
+    int search = o->autobonds && !(st->bonds_complete && o->filebonds);
+    if (search && st->any_pos) {
+        /* Distance bonds go after the file's; duplicates keep the file's order. */
+        if (ms_bond_search(m, st->pos, &st->pairs, &st->npairs, &st->pairs_cap, err)) return -1;
+    } else if (search) {
+        m->autobonds_pending = 1;
+    }
+    float *orders = NULL;
+    if (st->any_order && nfile) {
+        orders = ms_alloc_array(st->npairs, sizeof *orders);
+        if (!orders) {
+            ms_error_set(err, "out of memory for bond orders");
+            return -1;
+        }
+        memcpy(orders, st->orders, nfile * sizeof *orders);
+        for (size_t k = nfile; k < st->npairs; k++) orders[k] = 1.0f;
+    }
+    int rc = ms_bonds_build(m, st->pairs, st->npairs, orders, err);
+    free(orders);
+    if (rc || ms_analysis_classify(m, err)) return -1;
+    if (st->nss) ms_analysis_apply_ss(m, st->ss, st->nss);
+    return 0;
+}
+
+/* Turn the sink's first-frame positions into frame 0 when the range keeps it. */
+static int take_first_frame(ms_molecule *m, sink_state *st, const ms_load_opts *o,
+                            ms_error *err)
+{
+    if (!st->any_pos || !wants_frame(0, o->first, o->last, o->step)) return 0;
+    if (ms_grow((void **)&m->frames, &m->frames_cap, m->nframes + 1, sizeof *m->frames)) {
+        ms_error_set(err, "out of memory for frames");
+        return -1;
+    }
+    ms_frame *f = &m->frames[m->nframes];
+    memset(f, 0, sizeof *f);
+    size_t bytes = m->atoms.n * 3 * sizeof(float);
+    f->pos = realloc(st->pos, bytes ? bytes : 1);
+    if (!f->pos) f->pos = st->pos;
+    st->pos = NULL;
+    st->pos_cap = 0;
+    if (st->any_vel) {
+        f->vel = realloc(st->vel, bytes ? bytes : 1);
+        if (!f->vel) f->vel = st->vel;
+        st->vel = NULL;
+        st->vel_cap = 0;
+    }
+    if (st->has_cell) memcpy(f->cell, st->cell, sizeof f->cell);
+    f->time = st->has_time ? st->time : 0.0;
+    m->nframes++;
+    return 0;
+}
+
+static ms_loader *loader_new(const ms_plugin *p, void *h, const char *path, long natoms,
+                             long next_index, const ms_load_opts *o, int with_vel)
+{
+    ms_loader *ld = calloc(1, sizeof *ld);
+    if (!ld || !(ld->path = ms_strdup(path))) {
+        free(ld);
+        return NULL;
+    }
+    ld->p = p;
+    ld->h = h;
+    ld->natoms = natoms;
+    ld->next_index = next_index;
+    ld->first = o->first;
+    ld->last = o->last;
+    ld->step = o->step;
+    ld->with_vel = with_vel;
+    return ld;
+}
+
+static void loader_free(ms_loader *ld)
+{
+    if (!ld) return;
+    if (ld->h) ld->p->close_read(ld->h);
+    free(ld->path);
+    free(ld);
+}
+
+/* Read up to max frames (max < 0: all). Returns 1 more remain, 0 done, -1 error. The frames
+ * appended before an error stay; the caller decides whether to roll back. */
+static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
+{
+    long kept = 0;
+    while (max < 0 || kept < max) {
+        long idx = ld->next_index;
+        if (ld->last >= 0 && idx > ld->last) return 0;
+        if (!ld->p->read_frame) return 0;
+        ms_perr perr = {{0}};
+        ms_frame_out out;
+        memset(&out, 0, sizeof out);
+        ms_frame *f = NULL;
+        int keep = wants_frame(idx, ld->first, ld->last, ld->step);
+        if (keep) {
+            if (!(f = ms_mol_add_frame(m, ld->with_vel, err))) return -1;
+            out.pos = f->pos;
+            out.vel = f->vel;
+        }
+        int rc = ld->p->read_frame(ld->h, ld->natoms, &out, &perr);
+        if (rc != MS_PLUGIN_OK) {
+            if (keep) ms_mol_truncate_frames(m, m->nframes - 1);
+            if (rc == MS_PLUGIN_EOF) return 0;
+            ms_error_set(err, "frame %ld: %s", idx, perr.msg[0] ? perr.msg : "read error");
+            return -1;
+        }
+        ld->next_index++;
+        if (!keep) continue;
+        if (out.has_cell) memcpy(f->cell, out.cell, sizeof f->cell);
+        else if (m->nframes >= 2) memcpy(f->cell, m->frames[m->nframes - 2].cell, sizeof f->cell);
+        f->time = out.has_time ? out.time : 0.0;
+        if (f->vel && !out.has_vel) memset(f->vel, 0, m->atoms.n * 3 * sizeof(float));
+        kept++;
+    }
+    return 1;
+}
+
+/* Open a frame reader on an already-open plugin handle and read the first `waitfor` frames
+ * (counting `already` frames the structure gave). Leaves a pending loader on the molecule
+ * when frames remain. */
+static int read_frames(ms_molecule *m, const ms_plugin *p, void *h, const char *path,
+                       long next_index, long already, const ms_load_opts *o, int with_vel,
+                       ms_error *err)
+{
+    ms_loader *ld = loader_new(p, h, path, (long)m->atoms.n, next_index, o, with_vel);
+    if (!ld) {
+        p->close_read(h);
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    long now = o->waitfor < 0 ? -1 : MS_MAX(0, o->waitfor - already);
+    int rc = loader_read(m, ld, now, err);
+    if (rc <= 0) {
+        loader_free(ld);
+        return rc;
+    }
+    m->pending = ld;
+    return 0;
+}
+
+static int open_plugin(const ms_plugin *p, const char *path, long *natoms, void **h,
+                       ms_error *err)
+{
+    ms_perr perr = {{0}};
+    if (check_readable(path, err)) return -1;
+    if (!p->open_read) {
+        ms_error_set(err, "the %s plugin cannot read files", p->name);
+        return -1;
+    }
+    *natoms = -1;
+    *h = p->open_read(path, natoms, &perr);
+    if (!*h) {
+        ms_error_set(err, "%s", perr.msg[0] ? perr.msg : "cannot open");
+        return -1;
+    }
+    return 0;
+}
+
+/* Read the structure (and first frame) of an open file into m, then finish analysis. */
+static int read_structure_into(ms_molecule *m, const ms_plugin *p, void *h, long natoms,
+                               const ms_load_opts *o, sink_state *st, ms_error *err)
+{
+    if (p->read_structure) {
+        ms_perr perr = {{0}};
+        if (p->read_structure(h, &st->sink, &perr) != MS_PLUGIN_OK) {
+            if (!err->msg[0] || perr.msg[0]) ms_error_set(err, "%s", perr.msg[0] ? perr.msg : "read error");
+            return -1;
+        }
+    } else {
+        if (natoms < 0) {
+            ms_error_set(err, "the %s format has no structure and gave no atom count", p->name);
+            return -1;
+        }
+        if (ms_mol_reserve_atoms(m, (size_t)natoms, err)) return -1;
+        for (long i = 0; i < natoms; i++) {
+            if (ms_mol_add_blank_atom(m, err) < 0) return -1;
+            ms_analysis_atom_defaults(m, (size_t)i, 0, 0, 0);
+        }
+    }
+    if (m->atoms.n == 0) {
+        ms_error_set(err, "no atoms found");
+        return -1;
+    }
+    ms_mol_shrink(m);
+    return finish_structure(m, st, o, err);
+}
+
+ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_opts *o,
+                         ms_error *err)
+{
+    err->msg[0] = '\0';
+    const ms_plugin *p = ms_load_pick_plugin(r, path, o->type, err);
+    if (!p) return NULL;
+    if (!(p->caps & (MS_CAN_READ_STRUCTURE | MS_CAN_READ_FRAMES))) {
+        ms_error_set(err, "the %s plugin cannot read files", p->name);
+        return NULL;
+    }
+    long natoms;
+    void *h;
+    if (open_plugin(p, path, &natoms, &h, err)) return NULL;
+    ms_molecule *m = ms_mol_new(err);
+    if (!m) {
+        p->close_read(h);
+        return NULL;
+    }
+    sink_state st;
+    sink_init(&st, m, err);
+    if (natoms > 0) sink_reserve(&st.sink, (size_t)natoms);
+    if (read_structure_into(m, p, h, natoms, o, &st, err) ||
+        take_first_frame(m, &st, o, err) || !(m->name = ms_strdup(base_name(path))) ||
+        ms_mol_add_file(m, path, p->name, err)) {
+        if (!err->msg[0]) ms_error_set(err, "out of memory");
+        p->close_read(h);
+        goto fail;
+    }
+    if (st.remarks) {
+        m->remarks = st.remarks;
+        st.remarks = NULL;
+    }
+    int with_vel = st.any_vel;
+    long next_index = st.any_pos ? 1 : 0;
+    long already = (long)m->nframes;
+    sink_free(&st);
+    if (read_frames(m, p, h, path, next_index, already, o, with_vel, err)) goto fail_nosink;
+    if (ms_load_finish_bonds(m, err)) goto fail_nosink;
+    m->frame = m->nframes ? (int)m->nframes - 1 : -1;
+    return m;
+fail:
+    sink_free(&st);
+fail_nosink:
+    ms_loader_cancel(m);
+    ms_mol_free(m);
+    return NULL;
+}
+
+/* Move a freshly loaded structure into an existing empty molecule, keeping its identity
+ * (id, flags, view, attachments). */
+static void adopt_structure(ms_molecule *dst, ms_molecule *src)
+{
+    ms_molecule old = *dst;
+    *dst = *src;
+    dst->id = old.id;
+    dst->active = old.active;
+    dst->displayed = old.displayed;
+    dst->fixed = old.fixed;
+    memcpy(dst->center, old.center, sizeof old.center);
+    dst->scale = old.scale;
+    memcpy(dst->rotate, old.rotate, sizeof old.rotate);
+    memcpy(dst->global, old.global, sizeof old.global);
+    memcpy(dst->ext, old.ext, sizeof old.ext);
+    memset(old.ext, 0, sizeof old.ext);
+    ms_mol_free_contents(&old);
+    free(src);
+}
+
+/* Frames from a file into a molecule that already has atoms. */
+static int add_frames(const ms_plugin *p, ms_molecule *m, const char *path,
+                      const ms_load_opts *o, ms_error *err)
+{
+    long natoms;
+    void *h;
+    if (open_plugin(p, path, &natoms, &h, err)) return -1;
+    long next_index = 0;
+    int with_vel = 0;
+    size_t before = m->nframes;
+    if (p->read_structure) {
+        /* A structure format read as a trajectory (a PDB added to a PSF): parse it into a
+         * scratch molecule and take its coordinates. */
+        ms_molecule *tmp = ms_mol_new(err);
+        if (!tmp) {
+            p->close_read(h);
+            return -1;
+        }
+        sink_state st;
+        sink_init(&st, tmp, err);
+        ms_perr perr = {{0}};
+        if (p->read_structure(h, &st.sink, &perr) != MS_PLUGIN_OK) {
+            ms_error_set(err, "%s", perr.msg[0] ? perr.msg : "read error");
+            goto fail_tmp;
+        }
+        if (tmp->atoms.n != m->atoms.n) {
+            ms_error_set(err, "has %zu atoms but molecule %d has %zu", tmp->atoms.n, m->id,
+                         m->atoms.n);
+            goto fail_tmp;
+        }
+        if (st.any_pos && wants_frame(0, o->first, o->last, o->step)) {
+            ms_frame *f = ms_mol_add_frame(m, st.any_vel, err);
+            if (!f) goto fail_tmp;
+            memcpy(f->pos, st.pos, m->atoms.n * 3 * sizeof(float));
+            if (st.any_vel) memcpy(f->vel, st.vel, m->atoms.n * 3 * sizeof(float));
+            if (st.has_cell) memcpy(f->cell, st.cell, sizeof f->cell);
+            f->time = st.has_time ? st.time : 0.0;
+        }
+        next_index = st.any_pos ? 1 : 0;
+        with_vel = st.any_vel;
+        sink_free(&st);
+        ms_mol_free(tmp);
+        goto frames;
+    fail_tmp:
+        sink_free(&st);
+        ms_mol_free(tmp);
+        p->close_read(h);
+        return -1;
+    }
+    if (natoms >= 0 && (size_t)natoms != m->atoms.n) {
+        ms_error_set(err, "has %ld atoms but molecule %d has %zu", natoms, m->id, m->atoms.n);
+        p->close_read(h);
+        return -1;
+    }
+frames:
+    /* A structure format's first frame counts towards waitfor. */
+    return read_frames(m, p, h, path, next_index, (long)(m->nframes - before), o, with_vel,
+                       err);
+}
+
+int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms_load_opts *o,
+                ms_error *err)
+{
+    err->msg[0] = '\0';
+    const ms_plugin *p = ms_load_pick_plugin(r, path, o->type, err);
+    if (!p) return -1;
+    /* Files load in order: finish a previous file's pending frames first. */
+    if (m->pending) {
+        char *done = NULL;
+        if (ms_loader_pump(m, -1, &done, err) < 0) {
+            free(done);
+            return -1;
+        }
+        free(done);
+    }
+    if (m->atoms.n == 0) {
+        ms_molecule *src = ms_load_new(r, path, o, err);
+        if (!src) return -1;
+        adopt_structure(m, src);
+        return 0;
+    }
+    size_t before = m->nframes;
+    int frame_before = m->frame;
+    if (add_frames(p, m, path, o, err)) {
+        ms_loader_cancel(m);
+        ms_mol_truncate_frames(m, before);
+        m->frame = frame_before;
+        return -1;
+    }
+    if (ms_mol_add_file(m, path, p->name, err) || ms_load_finish_bonds(m, err)) {
+        ms_loader_cancel(m);
+        ms_mol_truncate_frames(m, before);
+        m->frame = frame_before;
+        return -1;
+    }
+    if (m->nframes > before) m->frame = (int)m->nframes - 1;
+    return 0;
+}
+
+int ms_loader_pump(ms_molecule *m, long max_frames, char **path_done, ms_error *err)
+{
+    *path_done = NULL;
+    ms_loader *ld = m->pending;
+    if (!ld) return 0;
+    int rc = loader_read(m, ld, max_frames, err);
+    if (rc == 1) return 1;
+    *path_done = ld->path;
+    ld->path = NULL;
+    loader_free(ld);
+    m->pending = NULL;
+    if (rc == 0 && ms_load_finish_bonds(m, err)) return -1;
+    return rc;
+}
+
+void ms_loader_cancel(ms_molecule *m)
+{
+    loader_free(m->pending);
+    m->pending = NULL;
+}
+
+int ms_load_finish_bonds(ms_molecule *m, ms_error *err)
+{
+    if (!m->autobonds_pending || m->nframes == 0) return 0;
+    uint32_t *pairs = NULL;
+    size_t npairs = 0, cap = 0;
+    /* Keep the bonds the file gave and add the distance ones. */
+    if (m->has_bonds) {
+        for (size_t i = 0; i < m->atoms.n; i++)
+            for (uint32_t k = m->bonds.start[i]; k < m->bonds.start[i + 1]; k++) {
+                if (m->bonds.to[k] <= i) continue;
+                if (ms_grow((void **)&pairs, &cap, 2 * (npairs + 1), sizeof *pairs)) goto oom;
+                pairs[2 * npairs] = (uint32_t)i;
+                pairs[2 * npairs + 1] = m->bonds.to[k];
+                npairs++;
+            }
+    }
+    if (ms_bond_search(m, m->frames[0].pos, &pairs, &npairs, &cap, err) ||
+        ms_mol_set_bonds(m, npairs, pairs, NULL, err)) {
+        free(pairs);
+        return -1;
+    }
+    free(pairs);
+    m->autobonds_pending = 0;
+    return 0;
+oom:
+    free(pairs);
+    ms_error_set(err, "out of memory for bonds");
+    return -1;
+}

@@ -1,0 +1,48 @@
+/* load.h: reading files into molecules through plugins, the way `mol new` and `mol addfile`
+ * do: transactional (a failed load leaves nothing behind), frame ranges (first, last, step),
+ * and VMD's `waitfor`: the frames beyond it are read later, a batch at a time, by
+ * ms_loader_pump (molscope calls it when Tcl is idle and on `display update`). */
+#ifndef MS_LOAD_H
+#define MS_LOAD_H
+
+#include "fileio/registry.h"
+#include "molecule/molecule.h"
+
+typedef struct ms_load_opts {
+    const char *type;   /* plugin name; NULL = guess from the extension (pdb if unknown) */
+    long first, last;   /* file frame range, inclusive; last < 0 = to the end */
+    long step;          /* >= 1 */
+    long waitfor;       /* frames to read now; < 0 = all */
+    int filebonds;      /* use bonds the file lists */
+    int autobonds;      /* add bonds by distance unless the file lists every bond */
+} ms_load_opts;
+
+void ms_load_opts_default(ms_load_opts *o);
+
+/* Which plugin reads `path` given opts->type; error names the type and the known ones. */
+const ms_plugin *ms_load_pick_plugin(const ms_registry *r, const char *path, const char *type,
+                                     ms_error *err);
+
+/* Read a new molecule from a file: its structure, then frames. The molecule is complete and
+ * analysed (bonds, residues, classification) but not yet added to any molecule set. */
+ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_opts *o,
+                         ms_error *err);
+
+/* Add a file to an existing molecule: a structure file when the molecule has no atoms,
+ * frames otherwise (the atom count must match). On error the molecule is as before. */
+int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms_load_opts *o,
+                ms_error *err);
+
+/* Read up to max_frames pending frames (all when max_frames < 0). Returns 1 when frames are
+ * still pending, 0 when the file is done, -1 on a read error (frames read so far are kept,
+ * the rest dropped; err says why). *path_done is set to the file's path when it finished
+ * (owned by the caller: free it). */
+int ms_loader_pump(ms_molecule *m, long max_frames, char **path_done, ms_error *err);
+/* Stop reading pending frames and close the file. */
+void ms_loader_cancel(ms_molecule *m);
+
+/* Run the distance bond search now if a structure was loaded without coordinates and has
+ * received its first frame since. */
+int ms_load_finish_bonds(ms_molecule *m, ms_error *err);
+
+#endif

@@ -1,0 +1,142 @@
+/* registry.c: finding and loading file-format plugins. */
+#include "config.h"
+#include "fileio/registry.h"
+
+#include <dirent.h>
+#include <dlfcn.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+void ms_registry_init(ms_registry *r) { memset(r, 0, sizeof *r); }
+
+void ms_registry_free(ms_registry *r)
+{
+    for (size_t i = 0; i < r->n; i++) {
+        if (r->handles[i]) dlclose(r->handles[i]);
+        free(r->paths[i]);
+    }
+    free(r->plugins);
+    free(r->handles);
+    free(r->paths);
+    free(r->searched);
+    ms_registry_init(r);
+}
+
+int ms_registry_add(ms_registry *r, const ms_plugin *p, void *handle, const char *from)
+{
+    if (ms_registry_find(r, p->name)) return 0;
+    size_t cap = r->cap;
+    if (ms_grow((void **)&r->plugins, &cap, r->n + 1, sizeof *r->plugins)) return -1;
+    cap = r->cap;
+    if (ms_grow((void **)&r->handles, &cap, r->n + 1, sizeof *r->handles)) return -1;
+    cap = r->cap;
+    if (ms_grow((void **)&r->paths, &cap, r->n + 1, sizeof *r->paths)) return -1;
+    r->cap = cap;
+    r->plugins[r->n] = p;
+    r->handles[r->n] = handle;
+    r->paths[r->n] = ms_strdup(from ? from : "built in");
+    r->n++;
+    return 1;
+}
+
+static void note_searched(ms_registry *r, const char *dir)
+{
+    size_t old = r->searched ? strlen(r->searched) : 0;
+    char *s = realloc(r->searched, old + strlen(dir) + 3);
+    if (!s) return;
+    if (old) strcpy(s + old, ", ");
+    else s[0] = '\0';
+    strcat(s, dir);
+    r->searched = s;
+}
+
+int ms_registry_load_dir(ms_registry *r, const char *dir)
+{
+    DIR *d = opendir(dir);
+    note_searched(r, dir);
+    if (!d) return 0;
+    int loaded = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        size_t len = strlen(e->d_name);
+        if (len < 4 || strcmp(e->d_name + len - 3, ".so") != 0) continue;
+        char path[PATH_MAX];
+        if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path) continue;
+        void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+        if (!h) {
+            fprintf(stderr, "molscope: plugin %s: %s\n", path, dlerror());
+            continue;
+        }
+        ms_plugin_entry_fn entry;
+        *(void **)&entry = dlsym(h, MS_PLUGIN_ENTRY_NAME);
+        const ms_plugin *p = entry ? entry() : NULL;
+        if (!p || p->abi != MS_PLUGIN_ABI || !p->name) {
+            fprintf(stderr, "molscope: plugin %s: not a molscope plugin of ABI %d\n", path,
+                    MS_PLUGIN_ABI);
+            dlclose(h);
+            continue;
+        }
+        int added = ms_registry_add(r, p, h, path);
+        if (added <= 0) dlclose(h);
+        else loaded++;
+    }
+    closedir(d);
+    return loaded;
+}
+
+void ms_registry_load_default(ms_registry *r, const char *exe_path)
+{
+    const char *env = getenv("MOLSCOPE_PLUGINDIR");
+    if (env && *env) {
+        char *copy = ms_strdup(env), *save = NULL;
+        for (char *dir = copy ? strtok_r(copy, ":", &save) : NULL; dir;
+             dir = strtok_r(NULL, ":", &save))
+            ms_registry_load_dir(r, dir);
+        free(copy);
+    }
+    /* <prefix>/bin/molscope -> <prefix>/lib/molscope/plugins */
+    if (exe_path) {
+        char dir[PATH_MAX];
+        snprintf(dir, sizeof dir, "%s", exe_path);
+        char *slash = strrchr(dir, '/');
+        if (slash) {
+            *slash = '\0';
+            char rel[PATH_MAX];
+            if (snprintf(rel, sizeof rel, "%s/../lib/molscope/plugins", dir) < (int)sizeof rel) {
+                char real[PATH_MAX];
+                if (realpath(rel, real) && strcmp(real, MS_PLUGINDIR) != 0)
+                    ms_registry_load_dir(r, real);
+            }
+        }
+    }
+    ms_registry_load_dir(r, MS_PLUGINDIR);
+}
+
+const ms_plugin *ms_registry_find(const ms_registry *r, const char *type)
+{
+    for (size_t i = 0; i < r->n; i++)
+        if (strcasecmp(r->plugins[i]->name, type) == 0) return r->plugins[i];
+    return NULL;
+}
+
+const ms_plugin *ms_registry_for_path(const ms_registry *r, const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash : path, '.');
+    if (!dot || !dot[1]) return NULL;
+    const char *ext = dot + 1;
+    size_t elen = strlen(ext);
+    for (size_t i = 0; i < r->n; i++) {
+        const char *list = r->plugins[i]->extensions;
+        while (list && *list) {
+            while (*list == ' ') list++;
+            size_t len = strcspn(list, " ");
+            if (len == elen && strncasecmp(list, ext, len) == 0) return r->plugins[i];
+            list += len;
+        }
+    }
+    return NULL;
+}

@@ -1,0 +1,35 @@
+/* registry.h: the file-format plugins molscope knows: loaded from shared objects at run
+ * time (from MOLSCOPE_PLUGINDIR, the install tree next to the program, and the configured
+ * plugin directory), found by type name or by file extension. */
+#ifndef MS_REGISTRY_H
+#define MS_REGISTRY_H
+
+#include "base/base.h"
+#include "ms_plugin.h"
+
+typedef struct ms_registry {
+    const ms_plugin **plugins;
+    void **handles;            /* dlopen handles (NULL for plugins added directly) */
+    char **paths;              /* where each came from ("built in" for direct ones) */
+    size_t n, cap;
+    char *searched;            /* the directories searched, for error messages */
+} ms_registry;
+
+void ms_registry_init(ms_registry *r);
+void ms_registry_free(ms_registry *r);
+
+/* Add a plugin description directly (tests, fuzzers). A plugin whose name is already known
+ * is ignored: the first one found wins. */
+int ms_registry_add(ms_registry *r, const ms_plugin *p, void *handle, const char *from);
+/* Load every *.so of a directory. Returns the number loaded; bad files are skipped with a
+ * line on stderr naming them. */
+int ms_registry_load_dir(ms_registry *r, const char *dir);
+/* The default search: MOLSCOPE_PLUGINDIR (colon-separated), <prefix>/lib/molscope/plugins
+ * relative to the running program, then the configured directory. */
+void ms_registry_load_default(ms_registry *r, const char *exe_path);
+
+const ms_plugin *ms_registry_find(const ms_registry *r, const char *type);
+/* The plugin for a file name's extension (".pdb" -> pdb), NULL when none matches. */
+const ms_plugin *ms_registry_for_path(const ms_registry *r, const char *path);
+
+#endif

@@ -1,0 +1,203 @@
+/* write.c: the structure view a writer plugin reads (restricted to the selected atoms, with
+ * bonds renumbered), frame gathering, and the write-to-temporary-then-rename discipline. */
+#include "config.h"
+#include "fileio/write.h"
+#include "fileio/load.h"
+#include "molecule/elements.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+void ms_write_opts_default(ms_write_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->last = -1;
+    o->step = 1;
+}
+
+typedef struct write_view {
+    ms_struct_view view;       /* first member */
+    const ms_molecule *m;
+    const uint32_t *atoms;     /* view index -> molecule index; NULL = identity */
+    uint32_t *bond_start, *bond_to;  /* renumbered CSR */
+    char chain_buf[2], ins_buf[2];
+} write_view;
+
+static size_t atom_index(const write_view *w, size_t i)
+{
+    return w->atoms ? w->atoms[i] : i;
+}
+
+static void view_get_atom(const ms_struct_view *v, size_t i, ms_atom_in *out)
+{
+    const write_view *w = (const write_view *)v;
+    const ms_molecule *m = w->m;
+    const ms_atoms *a = &m->atoms;
+    size_t k = atom_index(w, i);
+    memset(out, 0, sizeof *out);
+    out->name = ms_mol_str(m, a->name[k]);
+    out->type = ms_mol_str(m, a->type[k]);
+    out->resname = ms_mol_str(m, a->resname[k]);
+    out->segname = ms_mol_str(m, a->segname[k]);
+    out->chain = ms_mol_str(m, a->chain[k]);
+    out->element = a->atomicnumber[k] ? ms_element_symbol(a->atomicnumber[k]) : "";
+    out->resid = a->resid[k];
+    out->insertion = a->insertion[k] ? a->insertion[k] : ' ';
+    out->altloc = a->altloc[k] ? a->altloc[k] : ' ';
+    out->hetero = (a->flags[k] & MS_AF_HETERO) != 0;
+    out->beta = a->beta[k];
+    out->occupancy = a->occupancy[k];
+    out->charge = a->charge[k];
+    out->mass = a->mass[k];
+    out->radius = a->radius[k];
+    out->atomicnumber = a->atomicnumber[k];
+    out->has = MS_HAS_BETA | MS_HAS_OCCUPANCY | MS_HAS_CHARGE | MS_HAS_MASS | MS_HAS_RADIUS |
+               MS_HAS_ATOMICNUMBER;
+}
+
+static size_t view_get_bonds(const ms_struct_view *v, size_t i, const unsigned **to)
+{
+    const write_view *w = (const write_view *)v;
+    if (!w->bond_start) {
+        *to = NULL;
+        return 0;
+    }
+    *to = w->bond_to + w->bond_start[i];
+    return w->bond_start[i + 1] - w->bond_start[i];
+}
+
+/* Renumber the bonds among the selected atoms. */
+static int view_build_bonds(write_view *w, size_t n, ms_error *err)
+{
+    const ms_molecule *m = w->m;
+    if (!m->has_bonds) return 0;
+    int32_t *map = NULL;
+    if (w->atoms) {
+        map = ms_alloc_array(m->atoms.n, sizeof *map);
+        if (!map) goto oom;
+        for (size_t i = 0; i < m->atoms.n; i++) map[i] = -1;
+        for (size_t i = 0; i < n; i++) map[w->atoms[i]] = (int32_t)i;
+    }
+    w->bond_start = ms_alloc_array(n + 1, sizeof *w->bond_start);
+    size_t total = 0;
+    for (size_t i = 0; w->bond_start && i < n; i++) {
+        size_t k = atom_index(w, i);
+        for (uint32_t b = m->bonds.start[k]; b < m->bonds.start[k + 1]; b++)
+            total += !map || map[m->bonds.to[b]] >= 0;
+    }
+    w->bond_to = ms_alloc_array(total, sizeof *w->bond_to);
+    if (!w->bond_start || !w->bond_to) {
+        free(map);
+        goto oom;
+    }
+    size_t pos = 0;
+    for (size_t i = 0; i < n; i++) {
+        w->bond_start[i] = (uint32_t)pos;
+        size_t k = atom_index(w, i);
+        for (uint32_t b = m->bonds.start[k]; b < m->bonds.start[k + 1]; b++) {
+            uint32_t j = m->bonds.to[b];
+            if (map && map[j] < 0) continue;
+            w->bond_to[pos++] = map ? (uint32_t)map[j] : j;
+        }
+    }
+    w->bond_start[n] = (uint32_t)pos;
+    free(map);
+    return 0;
+oom:
+    ms_error_set(err, "out of memory renumbering bonds");
+    return -1;
+}
+
+/* Gather the selected atoms' coordinates of one frame. */
+static const float *gather(const write_view *w, const float *src, float *buf, size_t n)
+{
+    if (!w->atoms || !src) return src;
+    for (size_t i = 0; i < n; i++) memcpy(buf + 3 * i, src + 3 * (size_t)w->atoms[i], 12);
+    return buf;
+}
+
+long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
+                   const ms_write_opts *o, ms_error *err)
+{
+    const ms_plugin *p = NULL;
+    if (o->type && *o->type) p = ms_load_pick_plugin(r, path, o->type, err);
+    else if (!(p = ms_registry_for_path(r, path)))
+        ms_error_set(err, "cannot tell the file type from the name; give a type");
+    if (!p) return -1;
+    int can_struct = p->write_structure && (p->caps & MS_CAN_WRITE_STRUCTURE);
+    int can_frames = p->write_frame && (p->caps & MS_CAN_WRITE_FRAMES);
+    if (!p->open_write || (!can_struct && !can_frames)) {
+        ms_error_set(err, "the %s plugin cannot write files", p->name);
+        return -1;
+    }
+    size_t n = o->atoms ? o->natoms : m->atoms.n;
+    long first = o->first < 0 ? 0 : o->first, step = o->step < 1 ? 1 : o->step;
+    long last = o->last < 0 || o->last >= (long)m->nframes ? (long)m->nframes - 1 : o->last;
+    long nwrite = last >= first ? (last - first) / step + 1 : 0;
+    if (can_frames && nwrite == 0) {
+        ms_error_set(err, "no frames to write (molecule %d has %zu)", m->id, m->nframes);
+        return -1;
+    }
+
+    write_view w;
+    memset(&w, 0, sizeof w);
+    w.m = m;
+    w.atoms = o->atoms;
+    w.view.natoms = n;
+    w.view.get_atom = view_get_atom;
+    w.view.get_bonds = view_get_bonds;
+    w.view.remarks = m->remarks;
+    float *buf = NULL;
+    long written = 0;
+    char tmp[4200];
+    if (snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid()) >= (int)sizeof tmp) {
+        ms_error_set(err, "file name too long");
+        return -1;
+    }
+    if (view_build_bonds(&w, n, err)) goto fail_view;
+    if (o->atoms && !(buf = ms_alloc_array(3 * n, sizeof *buf))) {
+        ms_error_set(err, "out of memory");
+        goto fail_view;
+    }
+    ms_perr perr = {{0}};
+    void *h = p->open_write(tmp, (long)n, &perr);
+    if (!h) {
+        ms_error_set(err, "%s", perr.msg[0] ? perr.msg : strerror(errno));
+        goto fail_view;
+    }
+    int rc = can_struct ? p->write_structure(h, &w.view, &perr) : MS_PLUGIN_OK;
+    for (long f = first; rc == MS_PLUGIN_OK && can_frames && f <= last; f += step) {
+        const ms_frame *fr = &m->frames[f];
+        ms_frame_in in;
+        memset(&in, 0, sizeof in);
+        in.pos = gather(&w, fr->pos, buf, n);
+        memcpy(in.cell, fr->cell, sizeof in.cell);
+        in.time = fr->time;
+        in.index = (int)written;
+        rc = p->write_frame(h, &w.view, &in, &perr);
+        if (rc == MS_PLUGIN_OK) written++;
+    }
+    int rc_close = p->close_write(h, rc == MS_PLUGIN_OK ? &perr : &(ms_perr){{0}});
+    if (rc != MS_PLUGIN_OK || rc_close != MS_PLUGIN_OK) {
+        ms_error_set(err, "%s", perr.msg[0] ? perr.msg : "write error");
+        unlink(tmp);
+        goto fail_view;
+    }
+    if (rename(tmp, path) != 0) {
+        ms_error_set(err, "%s", strerror(errno));
+        unlink(tmp);
+        goto fail_view;
+    }
+    free(buf);
+    free(w.bond_start);
+    free(w.bond_to);
+    return written;
+fail_view:
+    free(buf);
+    free(w.bond_start);
+    free(w.bond_to);
+    return -1;
+}

@@ -1,0 +1,222 @@
+/* molecule.c: creating, growing and freeing molecules; frames; the bond table setter. */
+#include "config.h"
+#include "molecule/molecule.h"
+#include "molecule/analysis.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Every per-atom array of ms_atoms, with its element size, so growth and release are one
+ * loop instead of fifteen copies. */
+#define ATOM_FIELD(f) {offsetof(ms_atoms, f), sizeof(*((ms_atoms *)0)->f)}
+static const struct {
+    size_t offset, elsize;
+} atom_fields[] = {
+    ATOM_FIELD(name),      ATOM_FIELD(type),      ATOM_FIELD(resname),
+    ATOM_FIELD(segname),   ATOM_FIELD(chain),     ATOM_FIELD(resid),
+    ATOM_FIELD(insertion), ATOM_FIELD(altloc),    ATOM_FIELD(atomicnumber),
+    ATOM_FIELD(beta),      ATOM_FIELD(occupancy), ATOM_FIELD(charge),
+    ATOM_FIELD(mass),      ATOM_FIELD(radius),    ATOM_FIELD(flags),
+    ATOM_FIELD(ss),        ATOM_FIELD(residue),   ATOM_FIELD(fragment),
+};
+
+static void **atom_field(ms_atoms *a, size_t k)
+{
+    return (void **)((char *)a + atom_fields[k].offset);
+}
+
+static const float identity4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+ms_molecule *ms_mol_new(ms_error *err)
+{
+    ms_molecule *m = calloc(1, sizeof *m);
+    if (!m || !(m->strings = ms_strtab_new())) {
+        free(m);
+        ms_error_set(err, "out of memory creating a molecule");
+        return NULL;
+    }
+    m->frame = -1;
+    m->active = m->displayed = 1;
+    m->scale = 1.0f;
+    memcpy(m->rotate, identity4, sizeof identity4);
+    return m;
+}
+
+static void free_bonds(ms_bonds *b)
+{
+    free(b->start);
+    free(b->to);
+    free(b->order);
+    free(b->type);
+    memset(b, 0, sizeof *b);
+}
+
+void ms_mol_free(ms_molecule *m)
+{
+    if (!m) return;
+    ms_mol_free_contents(m);
+    free(m);
+}
+
+void ms_mol_free_contents(ms_molecule *m)
+{
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) free(*atom_field(&m->atoms, k));
+    free_bonds(&m->bonds);
+    for (size_t f = 0; f < m->nframes; f++) {
+        free(m->frames[f].pos);
+        free(m->frames[f].vel);
+    }
+    free(m->frames);
+    for (size_t i = 0; i < m->nfiles; i++) {
+        free(m->files[i].path);
+        free(m->files[i].type);
+    }
+    free(m->files);
+    for (int i = 0; i < 4; i++) free(m->user[i]);
+    free(m->pfrag);
+    free(m->nfrag);
+    free(m->res_start);
+    free(m->remarks);
+    free(m->name);
+    ms_strtab_free(m->strings);
+    memset(m, 0, sizeof *m);
+}
+
+int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err)
+{
+    if (n <= m->atoms.cap) return 0;
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) {
+        size_t bytes;
+        void **p = atom_field(&m->atoms, k);
+        void *q;
+        if (ms_mul_size(n, atom_fields[k].elsize, &bytes) || !(q = realloc(*p, bytes))) {
+            ms_error_set(err, "out of memory for %zu atoms", n);
+            return -1;
+        }
+        *p = q;
+    }
+    m->atoms.cap = n;
+    return 0;
+}
+
+long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err)
+{
+    ms_atoms *a = &m->atoms;
+    if (a->n == a->cap) {
+        size_t ncap = a->cap ? a->cap + a->cap / 2 : 1024;
+        if (ms_mol_reserve_atoms(m, ncap, err)) return -1;
+    }
+    size_t i = a->n++;
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++)
+        memset((char *)*atom_field(a, k) + i * atom_fields[k].elsize, 0, atom_fields[k].elsize);
+    a->ss[i] = MS_SS_COIL_CODE;
+    return (long)i;
+}
+
+void ms_mol_shrink(ms_molecule *m)
+{
+    ms_atoms *a = &m->atoms;
+    if (a->n == a->cap || a->n == 0) return;
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) {
+        void **p = atom_field(a, k);
+        void *q = realloc(*p, a->n * atom_fields[k].elsize);
+        if (q) *p = q;
+    }
+    a->cap = a->n;
+}
+
+ms_frame *ms_mol_add_frame(ms_molecule *m, int with_vel, ms_error *err)
+{
+    if (ms_grow((void **)&m->frames, &m->frames_cap, m->nframes + 1, sizeof *m->frames)) {
+        ms_error_set(err, "out of memory for frame %zu", m->nframes);
+        return NULL;
+    }
+    ms_frame *f = &m->frames[m->nframes];
+    memset(f, 0, sizeof *f);
+    f->pos = ms_alloc_array(m->atoms.n * 3, sizeof(float));
+    f->vel = with_vel ? ms_alloc_array(m->atoms.n * 3, sizeof(float)) : NULL;
+    if (!f->pos || (with_vel && !f->vel)) {
+        free(f->pos);
+        free(f->vel);
+        ms_error_set(err, "out of memory for frame %zu of %zu atoms", m->nframes, m->atoms.n);
+        return NULL;
+    }
+    m->nframes++;
+    return f;
+}
+
+void ms_mol_truncate_frames(ms_molecule *m, size_t first)
+{
+    while (m->nframes > first) {
+        ms_frame *f = &m->frames[--m->nframes];
+        free(f->pos);
+        free(f->vel);
+    }
+    if (m->frame >= (int)m->nframes) m->frame = (int)m->nframes - 1;
+}
+
+void ms_mol_delete_frames(ms_molecule *m, size_t first, size_t last, size_t step)
+{
+    if (step == 0) step = 1;
+    if (last >= m->nframes) last = m->nframes - 1;
+    size_t w = 0;
+    for (size_t r = 0; r < m->nframes; r++) {
+        int drop = r >= first && r <= last && (r - first) % step == 0;
+        if (drop) {
+            free(m->frames[r].pos);
+            free(m->frames[r].vel);
+        } else {
+            m->frames[w++] = m->frames[r];
+        }
+    }
+    m->nframes = w;
+    if (m->frame >= (int)w) m->frame = (int)w - 1;
+    if (m->frame < 0 && w > 0) m->frame = 0;
+}
+
+const float *ms_mol_pos(const ms_molecule *m)
+{
+    if (m->frame < 0 || (size_t)m->frame >= m->nframes) return NULL;
+    return m->frames[m->frame].pos;
+}
+
+int ms_mol_set_bonds(ms_molecule *m, size_t npairs, const uint32_t *pairs, const float *order,
+                     ms_error *err)
+{
+    if (ms_bonds_build(m, pairs, npairs, order, err)) return -1;
+    return ms_analysis_classify(m, err);
+}
+
+size_t ms_mol_structure_bytes(const ms_molecule *m)
+{
+    size_t per_atom = 0;
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) per_atom += atom_fields[k].elsize;
+    size_t bytes = per_atom * m->atoms.cap + ms_strtab_bytes(m->strings);
+    if (m->has_bonds) {
+        size_t nb = m->bonds.start[m->atoms.n];
+        bytes += (m->atoms.n + 1) * sizeof(uint32_t) + nb * sizeof(uint32_t);
+        if (m->bonds.order) bytes += nb * sizeof(float);
+        if (m->bonds.type) bytes += nb * sizeof(ms_str);
+    }
+    bytes += (m->nresidues + 1) * sizeof(uint32_t);
+    return bytes;
+}
+
+int ms_mol_add_file(ms_molecule *m, const char *path, const char *type, ms_error *err)
+{
+    ms_molfile *f = realloc(m->files, (m->nfiles + 1) * sizeof *f);
+    if (!f) goto oom;
+    m->files = f;
+    f[m->nfiles].path = ms_strdup(path);
+    f[m->nfiles].type = ms_strdup(type);
+    if (!f[m->nfiles].path || !f[m->nfiles].type) {
+        free(f[m->nfiles].path);
+        free(f[m->nfiles].type);
+        goto oom;
+    }
+    m->nfiles++;
+    return 0;
+oom:
+    ms_error_set(err, "out of memory");
+    return -1;
+}

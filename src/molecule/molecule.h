@@ -1,0 +1,143 @@
+/* molecule.h: the Molecule, molscope's central data: atoms as structure-of-arrays with
+ * interned strings, residues, fragments, bonds in CSR form, and frames of float32
+ * coordinates with their unit cells. About 80 bytes per atom of structure plus 12 bytes per
+ * atom per frame. Nothing here knows about Tcl or about drawing. */
+#ifndef MS_MOLECULE_H
+#define MS_MOLECULE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "base/base.h"
+#include "base/strtab.h"
+
+/* Per-atom classification flags (ms_atoms.flags). */
+enum {
+    MS_AF_PROTEIN = 1u << 0,    /* in a protein residue */
+    MS_AF_NUCLEIC = 1u << 1,    /* in a nucleic residue */
+    MS_AF_PROT_BB = 1u << 2,    /* protein backbone (CA C O N, terminal oxygens) */
+    MS_AF_NUC_BB = 1u << 3,     /* nucleic backbone (P O1P ... C5') */
+    MS_AF_WATER = 1u << 4,
+    MS_AF_HYDROGEN = 1u << 5,   /* by name, as VMD decides */
+    MS_AF_HETERO = 1u << 6,     /* read from a HETATM record */
+    MS_AF_USER_FLAGS = 8        /* bits 8..15: flag0..flag7 of the selection language */
+};
+
+/* Secondary structure codes, as VMD's `structure` keyword spells them. */
+#define MS_SS_COIL_CODE 'C'
+#define MS_SS_CODES "HGIEBTC"
+
+/* The structure: one array per attribute, natoms long. */
+typedef struct ms_atoms {
+    size_t n, cap;
+    ms_str *name, *type, *resname, *segname, *chain;
+    int32_t *resid;
+    char *insertion, *altloc;   /* '\0' when blank */
+    uint8_t *atomicnumber;      /* 0 = unknown ("X") */
+    float *beta, *occupancy, *charge, *mass, *radius;
+    uint16_t *flags;            /* MS_AF_* */
+    char *ss;                   /* secondary structure code: H G I E B T C */
+    int32_t *residue;           /* 0-based unique residue number */
+    int32_t *fragment;          /* 0-based connected component */
+} ms_atoms;
+
+/* Bonds in compressed-sparse-row form: the partners of atom i are to[start[i] .. start[i+1]),
+ * sorted ascending; every bond appears once for each of its atoms. */
+typedef struct ms_bonds {
+    uint32_t *start;   /* natoms + 1 entries */
+    uint32_t *to;
+    float *order;      /* parallel to `to`, NULL when every order is 1 */
+    ms_str *type;      /* parallel to `to`, NULL when no bond has a type */
+} ms_bonds;
+
+/* One frame: coordinates (and velocities when the file had them), cell and time. */
+typedef struct ms_frame {
+    float *pos;        /* 3 * natoms, x y z interleaved */
+    float *vel;        /* NULL when absent */
+    float cell[6];     /* a b c alpha beta gamma; zeros when unknown */
+    double time;       /* physical time */
+} ms_frame;
+
+/* A file that contributed to the molecule (for molinfo filename/filetype). */
+typedef struct ms_molfile {
+    char *path, *type;
+} ms_molfile;
+
+struct ms_loader;      /* a reader still delivering frames (fileio/load.h) */
+
+typedef struct ms_molecule {
+    int id;
+    char *name;
+    ms_strtab *strings;
+    ms_atoms atoms;
+    ms_bonds bonds;
+    int has_bonds;            /* bonds.start allocated */
+    int ss_known;             /* secondary structure came from the file or was computed */
+    size_t nresidues;         /* residue numbers are 0..nresidues-1, contiguous runs */
+    uint32_t *res_start;      /* nresidues + 1: first atom of each residue */
+    size_t nfragments;
+
+    ms_frame *frames;
+    size_t nframes, frames_cap;
+    int frame;                /* current frame, -1 when there is none */
+
+    ms_molfile *files;
+    size_t nfiles;
+    char *remarks;
+
+    unsigned active : 1, displayed : 1, fixed : 1;
+    unsigned autobonds_pending : 1; /* bonds by distance once the first frame arrives */
+
+    /* View state: model = global * rotate * scale * center (see view/ in later modules). */
+    float center[3];          /* the centering translation is -center */
+    float scale;
+    float rotate[16];         /* row-major 4x4 */
+    float global[3];          /* global translation */
+
+    float *user[4];           /* user, user2, user3, user4: allocated on first set */
+    int32_t *pfrag, *nfrag;   /* computed on first use (ms_mol_polymer_fragments) */
+    struct ms_loader *pending;/* frames still to read in the background */
+    void *ext[8];             /* per-module attachments (reps, selections...), see molset.h */
+} ms_molecule;
+
+/* Create an empty molecule (no atoms, no frames). */
+ms_molecule *ms_mol_new(ms_error *err);
+void ms_mol_free(ms_molecule *m);
+/* Free everything a molecule owns but not the struct itself (for moving data between). */
+void ms_mol_free_contents(ms_molecule *m);
+
+/* Reserve room for n atoms in every per-atom array. */
+int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err);
+/* Append one blank atom (all fields zero / ""), returning its index, or -1. */
+long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err);
+/* Release unused capacity of the per-atom arrays after loading. */
+void ms_mol_shrink(ms_molecule *m);
+
+/* Append a frame of natoms positions (uninitialised) and return it, or NULL. The current
+ * frame is not changed. */
+ms_frame *ms_mol_add_frame(ms_molecule *m, int with_vel, ms_error *err);
+/* Drop frames [first, nframes). */
+void ms_mol_truncate_frames(ms_molecule *m, size_t first);
+/* Delete frames first..last step `step` (inclusive), keeping the others in order. */
+void ms_mol_delete_frames(ms_molecule *m, size_t first, size_t last, size_t step);
+/* Current frame's coordinates, or NULL. */
+const float *ms_mol_pos(const ms_molecule *m);
+
+/* Replace all bonds with the given undirected pairs (i < j not required; duplicates and
+ * self-bonds are dropped). order may be NULL. Recomputes fragments and classification. */
+int ms_mol_set_bonds(ms_molecule *m, size_t npairs, const uint32_t *pairs, const float *order,
+                     ms_error *err);
+
+/* Per-atom strings. */
+static inline const char *ms_mol_str(const ms_molecule *m, ms_str id)
+{
+    return ms_strtab_get(m->strings, id);
+}
+
+/* Bytes used by the structure (not frames), for memory reports. */
+size_t ms_mol_structure_bytes(const ms_molecule *m);
+
+/* Record a file the molecule was read from. */
+int ms_mol_add_file(ms_molecule *m, const char *path, const char *type, ms_error *err);
+
+#endif

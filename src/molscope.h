@@ -1,0 +1,27 @@
+/* molscope.h: the map of molscope's source. Each module has one header with its public API;
+ * this one includes them in pipeline order, so a reader can start here.
+ *
+ *   base/       utilities: errors, interned strings, worker threads
+ *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set
+ *   fileio/     the plugin registry, loading files into molecules, writing them out
+ *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
+ *   app/        the program: command line, startup order, shell
+ *   ../plugins  file formats, each a module loaded at run time (ms_plugin.h)
+ */
+#ifndef MOLSCOPE_H
+#define MOLSCOPE_H
+
+#include "base/base.h"
+#include "base/strtab.h"
+#include "base/threads.h"
+#include "molecule/molecule.h"
+#include "molecule/elements.h"
+#include "molecule/analysis.h"
+#include "molecule/molset.h"
+#include "fileio/registry.h"
+#include "fileio/load.h"
+#include "fileio/write.h"
+#include "app/app.h"
+#include "commands/commands.h"
+
+#endif

@@ -1,0 +1,16 @@
+# init.tcl: molscope's Tcl library, sourced at startup before any file is loaded.
+# It sets up the package path and loads the library scripts that define VMD's Tcl-level
+# commands; the commands themselves are C (see src/commands).
+
+namespace eval ::molscope {
+    variable libdir [file dirname [file normalize [info script]]]
+}
+if {[lsearch -exact $::auto_path $::molscope::libdir] < 0} {
+    lappend ::auto_path $::molscope::libdir
+}
+
+# Library scripts, in order; each defines procs only.
+foreach ::molscope::script {} {
+    source [file join $::molscope::libdir $::molscope::script]
+}
+unset -nocomplain ::molscope::script

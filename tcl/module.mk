@@ -1,0 +1,2 @@
+# tcl: the Tcl library shipped with molscope.
+tcllib_DATA += tcl/init.tcl

@@ -1,0 +1,139 @@
+/* test_base.c: unit tests of the base utilities: interned strings, array growth, the
+ * worker pool, hybrid-36 numbers and field parsing of the plugin helpers. */
+#include "config.h"
+#include "ms_test.h"
+#include "base/base.h"
+#include "base/strtab.h"
+#include "base/threads.h"
+#include "plugin_util.h"
+
+#include <stdatomic.h>
+#include <string.h>
+
+static void test_strtab(void)
+{
+    t_suite = "strtab";
+    ms_strtab *t = ms_strtab_new();
+    t_ok(t && ms_strtab_intern_cstr(t, "") == 0, "empty string is id 0");
+    ms_str ca = ms_strtab_intern_cstr(t, "CA");
+    ms_str cb = ms_strtab_intern_cstr(t, "CB");
+    t_ok(ca != cb && ms_strtab_intern_cstr(t, "CA") == ca, "same string, same id");
+    t_ok(strcmp(ms_strtab_get(t, cb), "CB") == 0, "id gives the string back");
+    t_ok(ms_strtab_find(t, "CG") == MS_STR_NONE, "find does not add");
+    /* Many strings force rehashing; every one must still be found. */
+    char buf[32];
+    int ok = 1;
+    for (int i = 0; i < 100000; i++) {
+        snprintf(buf, sizeof buf, "s%d", i);
+        ms_str id = ms_strtab_intern_cstr(t, buf);
+        if (id == MS_STR_NONE || strcmp(ms_strtab_get(t, id), buf)) ok = 0;
+    }
+    for (int i = 0; i < 100000 && ok; i += 997) {
+        snprintf(buf, sizeof buf, "s%d", i);
+        ms_str id = ms_strtab_find(t, buf);
+        if (id == MS_STR_NONE || strcmp(ms_strtab_get(t, id), buf)) ok = 0;
+    }
+    t_ok(ok && ms_strtab_count(t) == 100003, "100000 strings interned and found (count %u)",
+         ms_strtab_count(t));
+    t_ok(strcmp(ms_strtab_get(t, 0xfffffff0u), "") == 0, "an unknown id reads as empty");
+    ms_strtab_free(t);
+}
+
+static void test_grow(void)
+{
+    t_suite = "base";
+    int *a = NULL;
+    size_t cap = 0;
+    t_ok(ms_grow((void **)&a, &cap, 1000, sizeof *a) == 0 && cap >= 1000, "grow to 1000");
+    size_t old = cap;
+    t_ok(ms_grow((void **)&a, &cap, SIZE_MAX / 2, sizeof *a) == -1 && cap == old,
+         "an overflowing size fails and leaves the array alone");
+    free(a);
+    size_t out;
+    t_ok(ms_mul_size(SIZE_MAX / 2, 3, &out) == -1, "size multiplication detects overflow");
+    t_ok(ms_word_eq("newcartoon", "NewCartoon") && !ms_word_eq("new", "NewCartoon"),
+         "subcommand words compare case-insensitively");
+    t_ok(ms_word_eq("ambientocclusionXYZ", "ambientocclusion"),
+         "subcommand words compare over 15 characters");
+}
+
+typedef struct {
+    atomic_long sum;
+    atomic_int calls;
+    char *seen;
+} pf_ctx;
+
+static void pf_body(void *vctx, size_t b, size_t e, int tid)
+{
+    pf_ctx *c = vctx;
+    long s = 0;
+    for (size_t i = b; i < e; i++) {
+        s += (long)i;
+        c->seen[i]++;
+    }
+    atomic_fetch_add(&c->sum, s);
+    atomic_fetch_add(&c->calls, 1);
+}
+
+static void test_threads(void)
+{
+    t_suite = "threads";
+    size_t n = 1000003;
+    pf_ctx c = {.seen = calloc(n, 1)};
+    atomic_init(&c.sum, 0);
+    atomic_init(&c.calls, 0);
+    for (int rep = 0; rep < 20; rep++) ms_parallel_for(n, 1000, pf_body, &c);
+    int each = 1;
+    for (size_t i = 0; i < n; i++) each &= c.seen[i] == 20;
+    t_ok(each, "every index visited exactly once per loop (%d threads)", ms_threads_count());
+    t_ok(atomic_load(&c.sum) == 20L * (long)(n * (n - 1) / 2), "sums agree");
+    free(c.seen);
+}
+
+static void test_hy36(void)
+{
+    t_suite = "hybrid36";
+    struct { const char *s; long v; } cases[] = {
+        {"99999", 99999}, {"A0000", 100000}, {"A0001", 100001}, {"ZZZZZ", 100000 + 26 * 1679616 - 1},
+        {"a0000", 100000 + 26 * 1679616}, {"    1", 1}, {"-9999", -9999}};
+    int ok = 1;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        long v;
+        char enc[8];
+        if (ms_hy36_decode(cases[i].s, 5, &v) != 1 || v != cases[i].v) ok = 0;
+        if (ms_hy36_encode(cases[i].v, 5, enc) || strcmp(enc, cases[i].s)) ok = 0;
+    }
+    t_ok(ok, "width 5 decodes and encodes the reference values");
+    long v;
+    t_ok(ms_hy36_decode("A000", 4, &v) == 1 && v == 10000, "width 4: A000 is 10000");
+    t_ok(ms_hy36_decode("    ", 4, &v) == 0, "blank field is blank");
+    t_ok(ms_hy36_decode("1A2", 3, &v) == -1, "mixed field is invalid");
+    t_ok(ms_hy36_decode("A!00", 4, &v) == -1, "bad digit is invalid");
+}
+
+static void test_fields(void)
+{
+    t_suite = "fields";
+    const char *line = "ATOM      1  N   SER     4      17.166  -7.606  -4.933  1.00 44.05";
+    size_t n = strlen(line);
+    float x = 0;
+    t_ok(ms_field_float(line, n, 30, 38, &x) == 1 && x == 17.166f, "x field parses exactly");
+    t_ok(ms_field_float(line, n, 70, 78, &x) == 0, "missing columns read as blank");
+    t_ok(ms_field_float("  1.2.3 ", 8, 0, 8, &x) == -1, "malformed number is an error");
+    t_ok(ms_field_float(" 1e3", 4, 0, 4, &x) == 1 && x == 1000.0f, "exponent form parses");
+    double d;
+    t_ok(ms_parse_double("-0.001", 6, &d) == 1 && d == -0.001, "fast path is exact here");
+    char out[8];
+    ms_field(line, n, 12, 16, out);
+    t_ok(strcmp(out, "N") == 0, "field trimmed");
+}
+
+int main(void)
+{
+    test_strtab();
+    test_grow();
+    test_threads();
+    test_hy36();
+    test_fields();
+    return t_done();
+}
