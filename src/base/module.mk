@@ -2,4 +2,5 @@
 src_libmscore_la_SOURCES += \
 	src/base/base.h src/base/base.c \
 	src/base/strtab.h src/base/strtab.c \
-	src/base/threads.h src/base/threads.c
+	src/base/threads.h src/base/threads.c \
+	src/base/bitset.h src/base/bitset.c

@@ -1,0 +1,33 @@
+/* atomsel.h: atom selection objects, the `atomselect` Tcl command and its per-object
+ * commands (atomselectN num/list/get/set/...). Other commands that take a selection
+ * (measure, animate write ... sel, mol fromsels) look objects up here. */
+#ifndef MS_ATOMSEL_H
+#define MS_ATOMSEL_H
+
+#include <tcl.h>
+
+#include "app/app.h"
+#include "select/select.h"
+
+typedef struct ms_atomsel {
+    char name[32];       /* the Tcl command: atomselectN */
+    int molid;
+    long frame;          /* a frame number, or -1 for "now" (the molecule's current frame) */
+    ms_selexpr *expr;
+    ms_bitset bits;      /* the atoms selected when last evaluated */
+    size_t count;
+    uint32_t *indices;   /* ascending, count long (kept in step with bits) */
+} ms_atomsel;
+
+/* Find a selection object by its command name; NULL with an error "<cmd>: no atom selection
+ * named '<name>'" (also when its molecule was deleted). */
+ms_atomsel *ms_atomsel_lookup(ms_app *app, Tcl_Interp *interp, const char *name,
+                              const char *cmd);
+/* The molecule and resolved frame (-1 when the molecule has no frames) of a selection. */
+ms_molecule *ms_atomsel_mol(ms_app *app, const ms_atomsel *s);
+long ms_atomsel_frame(ms_app *app, const ms_atomsel *s);
+
+/* Register atomselect and install the resolver commands.h declares. */
+void ms_atomsel_register(ms_app *app);
+
+#endif
