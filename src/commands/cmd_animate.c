@@ -235,10 +235,13 @@ static int an_write(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     uint32_t *atoms = NULL;
     if (r.sel) {
         int selmol;
+        long selframe;
         size_t n;
         if (!ms_cmd_sel_resolver)
             return ms_cmd_error(interp, "animate write: sel: atom selections are not available");
-        if (ms_cmd_sel_resolver(app, interp, r.sel, &selmol, &atoms, &n) != TCL_OK) return TCL_ERROR;
+        if (ms_cmd_sel_resolver(app, interp, r.sel, "animate write", &selmol, &selframe, &atoms,
+                                &n) != TCL_OK)
+            return TCL_ERROR;
         if (selmol != m->id) {
             free(atoms);
             return ms_cmd_error(interp, "animate write: selection %s belongs to molecule %d, not %d",
