@@ -3,6 +3,8 @@
  *
  *   base/       utilities: errors, interned strings, worker threads
  *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set
+ *   select/     the atom selection language (compiled to a tree, evaluated to bit sets) and
+ *               the atomselect command
  *   fileio/     the plugin registry, loading files into molecules, writing them out
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   app/        the program: command line, startup order, shell
@@ -18,10 +20,12 @@
 #include "molecule/elements.h"
 #include "molecule/analysis.h"
 #include "molecule/molset.h"
+#include "select/select.h"
 #include "fileio/registry.h"
 #include "fileio/load.h"
 #include "fileio/write.h"
 #include "app/app.h"
 #include "commands/commands.h"
+#include "select/atomsel.h"
 
 #endif

@@ -3,6 +3,7 @@
 #include "config.h"
 #include "commands/commands.h"
 #include "fileio/load.h"
+#include "select/atomsel.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -347,4 +348,5 @@ void ms_commands_register(ms_app *app)
     ms_cmd_molinfo_register(app);
     ms_cmd_animate_register(app);
     ms_cmd_vmdinfo_register(app);
+    ms_atomsel_register(app);
 }

@@ -1,0 +1,246 @@
+/* grid.c: `within d of S` through a uniform cell grid. The atoms of S (and, for pbwithin,
+ * their periodic images near the candidates) are sorted into cubic cells at least d wide;
+ * each candidate atom then looks only at the 27 cells around its own. Building is linear in
+ * |S|, the search linear in the candidates, and the candidate loop runs in parallel. */
+#include "config.h"
+#include "select/selint.h"
+#include "base/threads.h"
+
+#include <math.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct grid {
+    double lo[3];            /* origin: the lowest corner of the points */
+    double inv;              /* 1 / cell size */
+    long dim[3];
+    uint32_t *start;         /* cells + 1 offsets into pts */
+    float *pts;              /* points sorted by cell, xyz */
+} grid;
+
+/* ---------------------------------------------------------------- gathering S */
+
+typedef struct points {
+    float *xyz;
+    size_t n, cap;
+} points;
+
+static int push(points *p, float x, float y, float z)
+{
+    if (!isfinite(x) || !isfinite(y) || !isfinite(z)) return 0;
+    if (ms_grow((void **)&p->xyz, &p->cap, 3 * (p->n + 1), sizeof *p->xyz)) return -1;
+    p->xyz[3 * p->n] = x;
+    p->xyz[3 * p->n + 1] = y;
+    p->xyz[3 * p->n + 2] = z;
+    p->n++;
+    return 0;
+}
+
+/* The cell vectors A, B, C from a b c alpha beta gamma (A along x, B in the xy plane);
+ * 0 when the cell is unknown or degenerate. */
+static int cell_vectors(const float *cell, double v[3][3])
+{
+    double a = cell[0], b = cell[1], c = cell[2];
+    double al = cell[3] * M_PI / 180, be = cell[4] * M_PI / 180, ga = cell[5] * M_PI / 180;
+    if (!(a > 0 && b > 0 && c > 0) || !(sin(ga) != 0)) return 0;
+    double cx = c * cos(be), cy = c * (cos(al) - cos(be) * cos(ga)) / sin(ga);
+    double cz2 = c * c - cx * cx - cy * cy;
+    if (!(cz2 > 0)) return 0;
+    double vv[3][3] = {{a, 0, 0}, {b * cos(ga), b * sin(ga), 0}, {cx, cy, sqrt(cz2)}};
+    memcpy(v, vv, sizeof vv);
+    return 1;
+}
+
+/* Bounding box of the candidates' coordinates, grown by d. */
+static void candidate_box(const ms_selctx *c, const ms_bitset *cand, double d, float lo[3],
+                          float hi[3])
+{
+    for (int k = 0; k < 3; k++) lo[k] = INFINITY, hi[k] = -INFINITY;
+    for (size_t w = 0; w < ms_bitset_nwords(cand); w++)
+        for (uint64_t m = cand->words[w]; m; m &= m - 1) {
+            const float *p = c->pos + 3 * (w * 64 + (size_t)__builtin_ctzll(m));
+            for (int k = 0; k < 3; k++) {
+                if (p[k] < lo[k]) lo[k] = p[k];
+                if (p[k] > hi[k]) hi[k] = p[k];
+            }
+        }
+    for (int k = 0; k < 3; k++) lo[k] -= (float)d, hi[k] += (float)d;
+}
+
+/* The points of S; with periodic set, also their images in the 26 neighbouring cells that
+ * fall near a candidate. */
+static int gather(const ms_selctx *c, const ms_bitset *cand, const ms_bitset *src, double d,
+                  int periodic, points *pts)
+{
+    double v[3][3];
+    float lo[3], hi[3];
+    int images = periodic && c->cell && cell_vectors(c->cell, v);
+    if (images) candidate_box(c, cand, d, lo, hi);
+    for (size_t w = 0; w < ms_bitset_nwords(src); w++)
+        for (uint64_t m = src->words[w]; m; m &= m - 1) {
+            const float *p = c->pos + 3 * (w * 64 + (size_t)__builtin_ctzll(m));
+            for (int i = images ? -1 : 0; i <= (images ? 1 : 0); i++)
+                for (int j = images ? -1 : 0; j <= (images ? 1 : 0); j++)
+                    for (int k = images ? -1 : 0; k <= (images ? 1 : 0); k++) {
+                        float q[3];
+                        for (int e = 0; e < 3; e++)
+                            q[e] = p[e] + (float)(i * v[0][e] + j * v[1][e] + k * v[2][e]);
+                        if ((i || j || k) && (q[0] < lo[0] || q[0] > hi[0] || q[1] < lo[1] ||
+                                              q[1] > hi[1] || q[2] < lo[2] || q[2] > hi[2]))
+                            continue;
+                        if (push(pts, q[0], q[1], q[2])) return -1;
+                    }
+        }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- the grid */
+
+/* Choose the cell size: at least d, and coarse enough that the grid has no more than a few
+ * cells per point (memory stays linear however spread out the points are). */
+static int grid_shape(grid *g, const points *p, double d)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < p->n; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = MS_MIN(lo[k], p->xyz[3 * i + k]);
+            hi[k] = MS_MAX(hi[k], p->xyz[3 * i + k]);
+        }
+    /* a hair wider than d, so rounding never puts two points d apart two cells apart */
+    double h = MS_MAX(d * 1.000001, 1e-3), limit = 8.0 * (double)p->n + 4096;
+    for (int tries = 0; tries < 200; tries++) {
+        double cells = 1;
+        for (int k = 0; k < 3; k++) cells *= floor((hi[k] - lo[k]) / h) + 1;
+        if (cells <= limit) break;
+        h *= MS_MAX(1.1, cbrt(cells / limit));
+    }
+    for (int k = 0; k < 3; k++) {
+        g->lo[k] = lo[k];
+        g->dim[k] = (long)floor((hi[k] - lo[k]) / h) + 1;
+    }
+    g->inv = 1.0 / h;
+    return 0;
+}
+
+/* The cell of coordinate x along axis k, clamped to [-2, dim+1] (NaN gives -2). */
+static long cell_coord(const grid *g, float x, int k)
+{
+    double f = floor(((double)x - g->lo[k]) * g->inv);
+    if (!(f >= -2)) return -2;
+    return f > (double)g->dim[k] + 1 ? g->dim[k] + 1 : (long)f;
+}
+
+static size_t cell_index(const grid *g, long x, long y, long z)
+{
+    return ((size_t)z * (size_t)g->dim[1] + (size_t)y) * (size_t)g->dim[0] + (size_t)x;
+}
+
+/* Counting sort of the points into cells. */
+static int grid_build(grid *g, const points *p, double d)
+{
+    grid_shape(g, p, d);
+    size_t ncells = (size_t)g->dim[0] * (size_t)g->dim[1] * (size_t)g->dim[2];
+    uint32_t *cellof = ms_alloc_array(p->n, sizeof *cellof);
+    g->start = ms_calloc_array(ncells + 2, sizeof *g->start);
+    g->pts = ms_alloc_array(3 * p->n, sizeof *g->pts);
+    if (!cellof || !g->start || !g->pts) {
+        free(cellof);
+        return -1;
+    }
+    for (size_t i = 0; i < p->n; i++) {
+        const float *q = p->xyz + 3 * i;
+        long x = cell_coord(g, q[0], 0), y = cell_coord(g, q[1], 1), z = cell_coord(g, q[2], 2);
+        x = MS_MIN(MS_MAX(x, 0), g->dim[0] - 1);   /* rounding at the top edge */
+        y = MS_MIN(MS_MAX(y, 0), g->dim[1] - 1);
+        z = MS_MIN(MS_MAX(z, 0), g->dim[2] - 1);
+        cellof[i] = (uint32_t)cell_index(g, x, y, z);
+        g->start[cellof[i] + 2]++;
+    }
+    for (size_t k = 2; k < ncells + 2; k++) g->start[k] += g->start[k - 1];
+    for (size_t i = 0; i < p->n; i++) {
+        uint32_t at = g->start[cellof[i] + 1]++;
+        memcpy(g->pts + 3 * at, p->xyz + 3 * i, 3 * sizeof(float));
+    }
+    free(cellof);
+    return 0;
+}
+
+/* Is p within d (d2 = d*d) of a point in the 27 cells around it? */
+static int near_point(const grid *g, const float *p, float d2)
+{
+    long cx = cell_coord(g, p[0], 0), cy = cell_coord(g, p[1], 1), cz = cell_coord(g, p[2], 2);
+    if (cx < -1 || cy < -1 || cz < -1 || cx > g->dim[0] || cy > g->dim[1] || cz > g->dim[2])
+        return 0;
+    for (long z = MS_MAX(cz - 1, 0); z <= MS_MIN(cz + 1, g->dim[2] - 1); z++)
+        for (long y = MS_MAX(cy - 1, 0); y <= MS_MIN(cy + 1, g->dim[1] - 1); y++) {
+            long x0 = MS_MAX(cx - 1, 0), x1 = MS_MIN(cx + 1, g->dim[0] - 1);
+            /* cells x0..x1 of one row are contiguous: one run of points */
+            const float *q = g->pts + 3 * g->start[cell_index(g, x0, y, z)];
+            const float *end = g->pts + 3 * g->start[cell_index(g, x1, y, z) + 1];
+            for (; q < end; q += 3) {
+                float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+                if (dx * dx + dy * dy + dz * dz <= d2) return 1;
+            }
+        }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- the search */
+
+typedef struct search_job {
+    const ms_selctx *c;
+    const grid *g;
+    const ms_bitset *cand, *src;
+    ms_bitset *out;
+    float d2;
+} search_job;
+
+static void search_range(void *ctx, size_t w0, size_t w1, int thread)
+{
+    search_job *j = ctx;
+    for (size_t w = w0; w < w1; w++) {
+        uint64_t bits = 0;
+        for (uint64_t m = j->cand->words[w]; m; m &= m - 1) {
+            int b = __builtin_ctzll(m);
+            size_t i = w * 64 + (size_t)b;
+            if ((j->src->words[w] >> b) & 1 || near_point(j->g, j->c->pos + 3 * i, j->d2))
+                bits |= 1ull << b;
+        }
+        j->out->words[w] = bits;
+    }
+}
+
+int ms_sel_within(ms_selctx *c, const ms_bitset *cand, const ms_bitset *src, double cutoff,
+                  int periodic, ms_bitset *out)
+{
+    if (!c->pos) {
+        ms_error_set(c->err, "%s: molecule %d has no coordinates", periodic ? "pbwithin" : "within",
+                     c->m->id);
+        return -1;
+    }
+    size_t nw = ms_bitset_nwords(out);
+    if (!(cutoff > 0)) {   /* within 0 of S is S itself (VMD) */
+        for (size_t w = 0; w < nw; w++) out->words[w] = cand->words[w] & src->words[w];
+        return 0;
+    }
+    points pts = {0};
+    grid g = {0};
+    int rc = -1;
+    int gathered = gather(c, cand, src, cutoff, periodic, &pts) == 0;
+    if (gathered && pts.n == 0) {
+        /* S has no finite coordinates: only its own atoms are within */
+        for (size_t w = 0; w < nw; w++) out->words[w] = cand->words[w] & src->words[w];
+        rc = 0;
+    } else if (gathered && grid_build(&g, &pts, cutoff) == 0) {
+        search_job j = {c, &g, cand, src, out, (float)(cutoff * cutoff)};
+        ms_parallel_for(nw, 256, search_range, &j);
+        rc = 0;
+    } else {
+        ms_error_set(c->err, "out of memory in a within search over %zu atoms", pts.n);
+    }
+    free(pts.xyz);
+    free(g.start);
+    free(g.pts);
+    return rc;
+}
