@@ -142,17 +142,6 @@ static int eval_x(const ms_selctx *c, const ms_selnode *nd, size_t begin, size_t
 
 /* ---------------------------------------------------------------- comparisons */
 
-static int num_cmp(int op, double a, double b)
-{
-    switch (op) {
-    case TK_NLT: return a < b;
-    case TK_NLE: return a <= b;
-    case TK_NEQ: return a == b;
-    case TK_NGE: return a >= b;
-    case TK_NGT: return a > b;
-    default: return a != b;
-    }
-}
 
 static int str_cmp(int op, const char *a, const char *b)
 {
@@ -183,6 +172,26 @@ static int match_one(const regex_t *re, const char *s, const char *pattern, rege
     return *last_ok && regexec(last, s, 0, NULL, 0) == 0;
 }
 
+/* Numeric comparison of one word of atoms: branch-free, the operator chosen outside. */
+#define NUM_LOOP(OP)                                                                       \
+    for (size_t k = 0; k < n; k++) bits |= (uint64_t)(l[lk * k] OP r[rk * k]) << k;     \
+    break
+
+static uint64_t num_word(int op, const double *l, size_t lk, const double *r, size_t rk,
+                         size_t n)
+{
+    uint64_t bits = 0;
+    switch (op) {
+    case TK_NLT: NUM_LOOP(<);
+    case TK_NLE: NUM_LOOP(<=);
+    case TK_NEQ: NUM_LOOP(==);
+    case TK_NGE: NUM_LOOP(>=);
+    case TK_NGT: NUM_LOOP(>);
+    default: NUM_LOOP(!=);
+    }
+    return bits;
+}
+
 static int compare_block(const ms_selctx *c, const void *data, size_t begin, size_t len,
                          const uint64_t *mask, uint64_t *out, void *scratch)
 {
@@ -197,14 +206,18 @@ static int compare_block(const ms_selctx *c, const void *data, size_t begin, siz
         goto done;
     const regex_t *re = op == TK_MATCH && nd->nvals ? nd->vals[0].re : NULL;
     for (size_t w = 0; w * 64 < len; w++) {
-        uint64_t bits = 0, m = mask[w];
-        while (m) {
+        size_t lj0 = l.konst ? 0 : w * 64, rj0 = r.konst ? 0 : w * 64;
+        if (!strop) {
+            out[w] = num_word(op, l.num + lj0, !l.konst, r.num + rj0, !r.konst,
+                              MS_MIN(64, len - w * 64));
+            continue;
+        }
+        uint64_t bits = 0;
+        for (uint64_t m = mask[w]; m; m &= m - 1) {
             int b = __builtin_ctzll(m);
-            m &= m - 1;
-            size_t j = w * 64 + (size_t)b, lj = l.konst ? 0 : j, rj = r.konst ? 0 : j;
+            size_t lj = l.konst ? 0 : w * 64 + (size_t)b, rj = r.konst ? 0 : w * 64 + (size_t)b;
             int hit = op == TK_MATCH ? match_one(re, l.s[lj], r.s[rj], &last, &last_pat, &last_ok)
-                      : strop ? str_cmp(op, l.s[lj], r.s[rj])
-                              : num_cmp(op, l.num[lj], r.num[rj]);
+                                     : str_cmp(op, l.s[lj], r.s[rj]);
             bits |= (uint64_t)hit << b;
         }
         out[w] = bits;
@@ -233,7 +246,8 @@ static int class_block(const ms_selctx *c, const void *data, size_t begin, size_
     for (size_t w = 0; w * 64 < len; w++) {
         uint64_t bits = 0;
         size_t end = MS_MIN(len, w * 64 + 64);
-        for (size_t j = w * 64; j < end; j++) bits |= (uint64_t)cc->hit[cls[j]] << (j & 63);
+        if (mask[w])
+            for (size_t j = w * 64; j < end; j++) bits |= (uint64_t)cc->hit[cls[j]] << (j & 63);
         out[w] = bits;
     }
     return 0;

@@ -191,9 +191,9 @@ static int numlist_block(const ms_selctx *c, const void *data, size_t begin, siz
 {
     const numlist *l = data;
     double *v = scratch;
-    ms_selkw_numbers(l->kw, c, begin, len, v);
     for (size_t w = 0; w * 64 < len; w++) {
         uint64_t bits = 0, m = mask[w];
+        if (m) ms_selkw_numbers(l->kw, c, begin + w * 64, MS_MIN(64, len - w * 64), v + w * 64);
         while (m) {
             int b = __builtin_ctzll(m);
             m &= m - 1;
@@ -225,7 +225,8 @@ static int strlist_block(const ms_selctx *c, const void *data, size_t begin, siz
     for (size_t w = 0; w * 64 < len; w++) {
         uint64_t bits = 0;
         size_t end = MS_MIN(len, w * 64 + 64);
-        for (size_t j = w * 64; j < end; j++) bits |= (uint64_t)l->match[cls[j]] << (j & 63);
+        if (mask[w])
+            for (size_t j = w * 64; j < end; j++) bits |= (uint64_t)l->match[cls[j]] << (j & 63);
         out[w] = bits;
     }
     return 0;

@@ -14,6 +14,7 @@
 typedef struct grid {
     double lo[3];            /* origin: the lowest corner of the points */
     double inv;              /* 1 / cell size */
+    float reach_lo[3], reach_hi[3];  /* the points' box grown by d: nothing outside is near */
     long dim[3];
     uint32_t *start;         /* cells + 1 offsets into pts */
     float *pts;              /* points sorted by cell, xyz */
@@ -118,6 +119,10 @@ static int grid_shape(grid *g, const points *p, double d)
     for (int k = 0; k < 3; k++) {
         g->lo[k] = lo[k];
         g->dim[k] = (long)floor((hi[k] - lo[k]) / h) + 1;
+        /* generous by 1e-3 relative: the exact test is the distance, this only skips */
+        double pad = d + 1e-3 * (fabs(lo[k]) + fabs(hi[k]) + d) + 1e-3;
+        g->reach_lo[k] = (float)(lo[k] - pad);
+        g->reach_hi[k] = (float)(hi[k] + pad);
     }
     g->inv = 1.0 / h;
     return 0;
@@ -166,6 +171,19 @@ static int grid_build(grid *g, const points *p, double d)
     return 0;
 }
 
+/* The candidates among atoms [i0, i0+n) (n <= 64) that lie in the points' box grown by d:
+ * a branch-free pass that rejects most atoms of a large molecule at once. */
+static uint64_t in_reach(const grid *g, const float *pos, size_t i0, size_t n)
+{
+    uint64_t in = 0;
+    const float *p = pos + 3 * i0;
+    for (size_t b = 0; b < n; b++, p += 3)
+        in |= (uint64_t)((p[0] >= g->reach_lo[0]) & (p[0] <= g->reach_hi[0]) &
+                         (p[1] >= g->reach_lo[1]) & (p[1] <= g->reach_hi[1]) &
+                         (p[2] >= g->reach_lo[2]) & (p[2] <= g->reach_hi[2])) << b;
+    return in;
+}
+
 /* Is p within d (d2 = d*d) of a point in the 27 cells around it? */
 static int near_point(const grid *g, const float *p, float d2)
 {
@@ -199,13 +217,14 @@ typedef struct search_job {
 static void search_range(void *ctx, size_t w0, size_t w1, int thread)
 {
     search_job *j = ctx;
+    size_t n = j->c->n;
     for (size_t w = w0; w < w1; w++) {
-        uint64_t bits = 0;
-        for (uint64_t m = j->cand->words[w]; m; m &= m - 1) {
-            int b = __builtin_ctzll(m);
-            size_t i = w * 64 + (size_t)b;
-            if ((j->src->words[w] >> b) & 1 || near_point(j->g, j->c->pos + 3 * i, j->d2))
-                bits |= 1ull << b;
+        uint64_t cand = j->cand->words[w], bits = cand & j->src->words[w];
+        uint64_t rest = cand & ~bits;
+        if (rest) rest &= in_reach(j->g, j->c->pos, w * 64, MS_MIN(64, n - w * 64));
+        for (; rest; rest &= rest - 1) {
+            int b = __builtin_ctzll(rest);
+            if (near_point(j->g, j->c->pos + 3 * (w * 64 + (size_t)b), j->d2)) bits |= 1ull << b;
         }
         j->out->words[w] = bits;
     }

@@ -1,10 +1,9 @@
 /* relations.c: selections defined through other atoms: `same K as S` (the values of K found
  * in S, as a set: a table per string, a bitmap or hash set of numbers), `withinbonds n of S`
  * (a breadth-first walk of n bonds) and `sequence "re"` (regular expressions over the
- * one-letter sequence of each protein and nucleic fragment). All linear in the atoms. */
+ * one-letter sequence of each backbone-linked protein or nucleic chain). All linear. */
 #include "config.h"
 #include "select/selint.h"
-#include "molecule/analysis.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -241,13 +240,14 @@ static char one_letter(const char *resname, int nucleic)
     return 'X';
 }
 
-/* Mark the residues of one fragment (res[0..n)) whose letters a pattern matches. */
-static void match_fragment(const ms_selctx *c, const ms_selnode *nd, const uint32_t *res,
-                           size_t n, int nucleic, char *seq, uint8_t *resmark)
+/* Mark the residues r0..r1-1 (one chain) whose letters a pattern matches. */
+static void match_chain(const ms_selctx *c, const ms_selnode *nd, size_t r0, size_t r1,
+                        int nucleic, char *seq, uint8_t *resmark)
 {
     const ms_molecule *m = c->m;
+    size_t n = r1 - r0;
     for (size_t i = 0; i < n; i++)
-        seq[i] = one_letter(ms_mol_str(m, m->atoms.resname[m->res_start[res[i]]]), nucleic);
+        seq[i] = one_letter(ms_mol_str(m, m->atoms.resname[m->res_start[r0 + i]]), nucleic);
     seq[n] = '\0';
     for (size_t v = 0; v < nd->nvals; v++) {
         size_t start = 0;
@@ -255,61 +255,72 @@ static void match_fragment(const ms_selctx *c, const ms_selnode *nd, const uint3
         while (start <= n &&
                regexec(nd->vals[v].re, seq + start, 1, &mt, start ? REG_NOTBOL : 0) == 0) {
             size_t b = start + (size_t)mt.rm_so, e = start + (size_t)mt.rm_eo;
-            for (size_t k = b; k < e; k++) resmark[res[k]] = 1;
+            memset(resmark + r0 + b, 1, e - b);
             start = e > b ? e : e + 1;
         }
     }
 }
 
-/* Residues of each fragment in order (frag[] per atom, -1 outside): counting sort. */
-static int fragments_residues(const ms_molecule *m, const int32_t *frag, uint32_t **res,
-                              size_t **off, size_t *nfrag)
+/* 0 for protein, 1 for nucleic, -1 for other residues. */
+static int residue_kind(const ms_molecule *m, size_t r)
 {
-    size_t nf = 0;
-    for (size_t r = 0; r < m->nresidues; r++)
-        nf = MS_MAX(nf, (size_t)(frag[m->res_start[r]] + 1));
-    *off = ms_calloc_array(nf + 2, sizeof **off);
-    *res = ms_alloc_array(m->nresidues + 1, sizeof **res);
-    if (!*off || !*res) return -1;
-    for (size_t r = 0; r < m->nresidues; r++)
-        if (frag[m->res_start[r]] >= 0) (*off)[frag[m->res_start[r]] + 2]++;
-    for (size_t f = 2; f < nf + 2; f++) (*off)[f] += (*off)[f - 1];
-    for (size_t r = 0; r < m->nresidues; r++)
-        if (frag[m->res_start[r]] >= 0) (*res)[(*off)[frag[m->res_start[r]] + 1]++] = (uint32_t)r;
-    *nfrag = nf;
+    uint16_t f = m->atoms.flags[m->res_start[r]];
+    return f & MS_AF_PROTEIN ? 0 : f & MS_AF_NUCLEIC ? 1 : -1;
+}
+
+/* Does residue r continue the chain of residue r-1 through the backbone: C bonded to N for
+ * proteins, O3' (or O3*) to P for nucleic acids? */
+static int chained(const ms_molecule *m, size_t r, int nucleic, const ms_str names[3])
+{
+    if (!m->has_bonds) return 0;
+    for (uint32_t i = m->res_start[r - 1]; i < m->res_start[r]; i++) {
+        ms_str nm = m->atoms.name[i];
+        if (nucleic ? nm != names[1] && nm != names[2] : nm != names[0]) continue;
+        for (uint32_t k = m->bonds.start[i]; k < m->bonds.start[i + 1]; k++) {
+            uint32_t j = m->bonds.to[k];
+            if ((size_t)m->atoms.residue[j] == r && m->atoms.name[j] == names[nucleic ? 4 : 3])
+                return 1;
+        }
+    }
     return 0;
 }
 
+/* sequence: the one-letter codes of each chain of protein (or nucleic) residues linked
+ * through their backbones, in order, searched with each pattern; matched residues are
+ * selected whole. */
 int ms_sel_eval_sequence(ms_selctx *c, const ms_selnode *nd, const ms_bitset *mask,
                          ms_bitset *out)
 {
     ms_molecule *m = c->m;
-    if (ms_mol_polymer_fragments(m, c->err)) return -1;
     uint8_t *resmark = ms_calloc_array(m->nresidues, 1);
     char *seq = ms_alloc_array(m->nresidues + 1, 1);
-    int rc = resmark && seq ? 0 : -1;
-    for (int nucleic = 0; rc == 0 && nucleic < 2 && m->res_start; nucleic++) {
-        uint32_t *res = NULL;
-        size_t *off = NULL, nf = 0;
-        rc = fragments_residues(m, nucleic ? m->nfrag : m->pfrag, &res, &off, &nf);
-        for (size_t f = 0; rc == 0 && f < nf; f++)
-            match_fragment(c, nd, res + off[f], off[f + 1] - off[f], nucleic, seq, resmark);
-        free(res);
-        free(off);
-    }
-    if (rc == 0) {
-        for (size_t w = 0; w < ms_bitset_nwords(out); w++) {
-            uint64_t bits = 0;
-            for (uint64_t mm = mask->words[w]; mm; mm &= mm - 1) {
-                int b = __builtin_ctzll(mm);
-                bits |= (uint64_t)resmark[m->atoms.residue[w * 64 + (size_t)b]] << b;
-            }
-            out->words[w] = bits;
-        }
-    } else {
+    if (!resmark || !seq) {
+        free(resmark);
+        free(seq);
         ms_error_set(c->err, "sequence: out of memory");
+        return -1;
+    }
+    const char *nm[5] = {"C", "O3'", "O3*", "N", "P"};
+    ms_str names[5];
+    for (int k = 0; k < 5; k++) names[k] = ms_strtab_find(m->strings, nm[k]);
+    for (size_t r0 = 0; m->res_start && r0 < m->nresidues;) {
+        int kind = residue_kind(m, r0);
+        size_t r1 = r0 + 1;
+        while (kind >= 0 && r1 < m->nresidues && residue_kind(m, r1) == kind &&
+               chained(m, r1, kind, names))
+            r1++;
+        if (kind >= 0) match_chain(c, nd, r0, r1, kind, seq, resmark);
+        r0 = r1;
+    }
+    for (size_t w = 0; w < ms_bitset_nwords(out); w++) {
+        uint64_t bits = 0;
+        for (uint64_t mm = mask->words[w]; mm; mm &= mm - 1) {
+            int b = __builtin_ctzll(mm);
+            bits |= (uint64_t)resmark[m->atoms.residue[w * 64 + (size_t)b]] << b;
+        }
+        out->words[w] = bits;
     }
     free(resmark);
     free(seq);
-    return rc;
+    return 0;
 }

@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""bench_select.py: the selection benchmark. Builds systems of N atoms by replicating
+tests/data/1tii.pdb on a lattice (scripts/bench/replicate_pdb.py; the PDB goes to bench-out/),
+times molscope's selections (bench_select.tcl, through the binary) and MDAnalysis'
+equivalents on the same coordinates in the same run, checks that both select the same
+number of atoms, and prints a table with the ratios.
+
+usage: bench_select.py [--repeat R] N [N ...]      (e.g. 1000000 2000000)"""
+import os
+import subprocess
+import sys
+import time
+import warnings
+
+warnings.filterwarnings("ignore")
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+import replicate_pdb  # noqa: E402
+
+# MDAnalysis' selections with the same meaning as bench_select.sels. VMD's `within d of S`
+# includes S; MDAnalysis' `around` excludes it, hence the `or`.
+MDA = {
+    "within": "(around 5 index 0:999) or index 0:999",
+    "sameres": "byres ((around 3 index 0:999) or index 0:999)",
+    "boolean10": "(name CA or name CB or name N) and (resname ALA or resname GLY or resname LEU)"
+                 " and not resname HOH and resid 10:200 and chainID A D and prop x > 100",
+}
+
+
+def build_universe(records, xyz):
+    import MDAnalysis as mda
+    import numpy as np
+    n = len(records)
+    resindex, residues, segs, segindex = [], [], [], {}
+    key_prev = None
+    for rec in records:
+        key = (rec[4], rec[3], rec[5])         # resid, chain, segment, as molscope's residues
+        if key != key_prev:
+            residues.append(rec)
+            key_prev = key
+        resindex.append(len(residues) - 1)
+    for r in residues:
+        segindex.setdefault(r[5], len(segindex))
+    u = mda.Universe.empty(n, n_residues=len(residues), n_segments=len(segindex),
+                           atom_resindex=np.array(resindex),
+                           residue_segindex=np.array([segindex[r[5]] for r in residues]),
+                           trajectory=True)
+    u.add_TopologyAttr("name", [r[1].strip() for r in records])
+    u.add_TopologyAttr("chainIDs", [r[3] for r in records])
+    u.add_TopologyAttr("resname", [r[2].strip() for r in residues])
+    u.add_TopologyAttr("resid", [r[4] for r in residues])
+    u.add_TopologyAttr("segid", list(segindex))
+    u.atoms.positions = np.array(xyz, dtype=np.float32)
+    return u
+
+
+def time_mda(u, text, repeat):
+    best, n = 1e99, 0
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        n = len(u.select_atoms(text))
+        best = min(best, (time.perf_counter() - t0) * 1e3)
+    return best, n
+
+
+def run_molscope(pdb, repeat):
+    env = dict(os.environ, BENCH_PDB=pdb, BENCH_REPEAT=str(repeat),
+               MOLSCOPE_TCLLIB=os.path.join(ROOT, "tcl"))
+    out = subprocess.run([os.path.join(ROOT, "src", "molscope"), "-dispdev", "text", "-e",
+                          os.path.join(HERE, "bench_select.tcl")], env=env, check=True,
+                         stdin=subprocess.DEVNULL, capture_output=True, text=True).stdout
+    rows = {}
+    for line in out.splitlines():
+        f = line.split("\t")
+        if len(f) == 3:
+            rows[f[0]] = (float(f[1]), int(f[2]))
+    return rows
+
+
+def main():
+    args = sys.argv[1:]
+    repeat = 3
+    if args[:1] == ["--repeat"]:
+        repeat, args = int(args[1]), args[2:]
+    sizes = [int(a) for a in args] or [1000000, 2000000]
+    os.makedirs(os.path.join(ROOT, "bench-out"), exist_ok=True)
+    results = {}
+    for n in sizes:
+        pdb = os.path.join(ROOT, "bench-out", "rep%d.pdb" % n)
+        records, xyz = replicate_pdb.replicate(os.path.join(ROOT, "tests", "data", "1tii.pdb"), n)
+        if not os.path.exists(pdb):
+            replicate_pdb.write(records, xyz, pdb)
+        ms = run_molscope(pdb, repeat)
+        u = build_universe(records, xyz)
+        for label, text in MDA.items():
+            t, count = time_mda(u, text, repeat)
+            mt, mcount = ms[label]
+            results[(n, label)] = (mt, t)
+            same = "same" if count == mcount else "DIFFERENT (%d vs %d)" % (mcount, count)
+            print("%9d atoms %-10s molscope %9.2f ms  MDAnalysis %9.1f ms  ratio %6.0fx  %d atoms, %s"
+                  % (n, label, mt, t, t / mt, mcount, same), flush=True)
+        print("%9d atoms load: molscope %.0f ms" % (n, ms["load"][0]), flush=True)
+    if len(sizes) >= 2:
+        a, b = sizes[0], sizes[-1]
+        for label in MDA:
+            print("scaling %-10s molscope %d -> %d atoms: %.2fx time"
+                  % (label, a, b, results[(b, label)][0] / results[(a, label)][0]))
+
+
+if __name__ == "__main__":
+    main()
