@@ -13,7 +13,15 @@ tests_unit_test_select_SOURCES = tests/unit/test_select.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_select_LDADD = $(TEST_CORE_LIBS)
 
-EXTRA_DIST += tests/run-tests tests/tcl tests/data tests/python
+# The selection parser's fuzz smoke run: the selection core compiled again with sanitizers.
+check_PROGRAMS += tests/fuzz/fuzz_select
+tests_fuzz_fuzz_select_SOURCES = tests/fuzz/fuzz_select.c tests/fuzz/select_driver.c \
+	$(SELECT_CORE_SOURCES)
+tests_fuzz_fuzz_select_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_select_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_select_LDADD = $(TEST_CORE_LIBS)
+
+EXTRA_DIST += tests/run-tests tests/tcl tests/data tests/python tests/fuzz/corpus
 
 check-build: all $(check_PROGRAMS)
 

@@ -12,7 +12,8 @@
 typedef struct ms_atomsel {
     char name[32];       /* the Tcl command: atomselectN */
     int molid;
-    long frame;          /* a frame number, or -1 for "now" (the molecule's current frame) */
+    long frame;          /* a frame number, or -1 for "now" (the molecule's current frame),
+                            -2 for "last" */
     ms_selexpr *expr;
     ms_bitset bits;      /* the atoms selected when last evaluated */
     size_t count;

@@ -224,20 +224,14 @@ static long bond_slot(const ms_molecule *m, uint32_t i, uint32_t j)
     return -1;
 }
 
-/* setbondorders / setbondtypes: per selected atom, values for its first bonds (both
- * directions of each bond change). */
-static int set_bond_values(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, Tcl_Obj *arg,
-                           const char *method, int types)
+/* Check setbondorders/setbondtypes lists: one per selected atom, no more values than the
+ * atom has bonds, numbers for orders. */
+static int check_bond_values(Tcl_Interp *interp, ms_atomsel *s, const ms_molecule *m,
+                             Tcl_Obj **lists, int nl, const char *method, int types)
 {
-    ms_molecule *m = ms_atomsel_fresh(app, interp, s, method);
-    if (!m) return TCL_ERROR;
-    Tcl_Obj **lists;
-    int nl;
-    if (Tcl_ListObjGetElements(NULL, arg, &nl, &lists) != TCL_OK || (size_t)nl != s->count)
+    if ((size_t)nl != s->count)
         return ms_atomsel_error(interp, s, method, "expected %zu lists, one per selected atom",
                                 s->count);
-    size_t nb = m->has_bonds ? m->bonds.start[m->atoms.n] : 0;
-    /* Check every value before changing anything. */
     for (int q = 0; q < nl; q++) {
         Tcl_Obj **v;
         int nv;
@@ -253,25 +247,46 @@ static int set_bond_values(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, Tcl_O
                                         Tcl_GetString(v[t]));
         }
     }
-    if (!types && !m->bonds.order && nb) {
-        if (!(m->bonds.order = ms_alloc_array(nb, sizeof *m->bonds.order)))
-            return ms_atomsel_error(interp, s, method, "out of memory");
+    return TCL_OK;
+}
+
+/* The per-bond order or type array, made (all 1, all "unknown") on first use. */
+static int bond_values_array(ms_molecule *m, int types)
+{
+    size_t nb = m->has_bonds ? m->bonds.start[m->atoms.n] : 0;
+    if (!nb || (types ? m->bonds.type != NULL : m->bonds.order != NULL)) return 0;
+    if (!types) {
+        if (!(m->bonds.order = ms_alloc_array(nb, sizeof *m->bonds.order))) return -1;
         for (size_t k = 0; k < nb; k++) m->bonds.order[k] = 1.0f;
+        return 0;
     }
-    if (types && !m->bonds.type && nb) {
-        ms_str unknown = ms_strtab_intern_cstr(m->strings, "unknown");
-        if (unknown == MS_STR_NONE || !(m->bonds.type = ms_alloc_array(nb, sizeof *m->bonds.type)))
-            return ms_atomsel_error(interp, s, method, "out of memory");
-        for (size_t k = 0; k < nb; k++) m->bonds.type[k] = unknown;
-    }
+    ms_str unknown = ms_strtab_intern_cstr(m->strings, "unknown");
+    if (unknown == MS_STR_NONE || !(m->bonds.type = ms_alloc_array(nb, sizeof *m->bonds.type)))
+        return -1;
+    for (size_t k = 0; k < nb; k++) m->bonds.type[k] = unknown;
+    return 0;
+}
+
+/* setbondorders / setbondtypes: per selected atom, values for its first bonds (both
+ * directions of each bond change). Everything is checked before anything changes. */
+static int set_bond_values(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, Tcl_Obj *arg,
+                           const char *method, int types)
+{
+    ms_molecule *m = ms_atomsel_fresh(app, interp, s, method);
+    if (!m) return TCL_ERROR;
+    Tcl_Obj **lists;
+    int nl;
+    if (Tcl_ListObjGetElements(NULL, arg, &nl, &lists) != TCL_OK) nl = -1;
+    if (check_bond_values(interp, s, m, lists, nl, method, types)) return TCL_ERROR;
+    if (bond_values_array(m, types)) return ms_atomsel_error(interp, s, method, "out of memory");
     for (int q = 0; q < nl; q++) {
         Tcl_Obj **v;
         int nv;
         uint32_t i = s->indices[q];
         Tcl_ListObjGetElements(NULL, lists[q], &nv, &v);
         for (int t = 0; t < nv; t++) {
-            uint32_t k = m->bonds.start[i] + (uint32_t)t, j = m->bonds.to[k];
-            long back = bond_slot(m, j, i);
+            uint32_t k = m->bonds.start[i] + (uint32_t)t;
+            long back = bond_slot(m, m->bonds.to[k], i);
             if (types) {
                 ms_str id = ms_strtab_intern_cstr(m->strings, Tcl_GetString(v[t]));
                 if (id == MS_STR_NONE) return ms_atomsel_error(interp, s, method, "out of memory");

@@ -36,6 +36,10 @@ static int to_num(xval *v, size_t len)
     size_t n = count(v, len);
     if (!(v->num = ms_alloc_array(n, sizeof *v->num))) return -1;
     for (size_t j = 0; j < n; j++) v->num[j] = strtod(v->s[j], NULL);
+    free(v->s);     /* each value has one form at a time */
+    free(v->buf);
+    v->s = NULL;
+    v->buf = NULL;
     v->str = 0;
     return 0;
 }
@@ -54,6 +58,8 @@ static int to_str(xval *v, size_t len)
         else snprintf(b, w, "%f", v->num[j]);
         v->s[j] = b;
     }
+    free(v->num);
+    v->num = NULL;
     v->str = 1;
     return 0;
 }

@@ -7,6 +7,7 @@
 #include "molecule/elements.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -234,15 +235,18 @@ void ms_selkw_func(const ms_selkw *k, double *v, size_t len)
 
 /* ---------------------------------------------------------------- string classes */
 
+static char char_table[256][2];   /* "", "\001", ... "A", ...: one-character strings */
+
+static void char_table_fill(void)
+{
+    for (unsigned i = 0; i < 256; i++) char_table[i][0] = (char)i;
+}
+
 static const char *char_str(unsigned c)
 {
-    static char table[256][2];
-    static int ready;
-    if (!ready) {   /* idempotent: racing threads write the same bytes */
-        for (unsigned i = 0; i < 256; i++) table[i][0] = (char)i;
-        ready = 1;
-    }
-    return table[c & 255];
+    static pthread_once_t once = PTHREAD_ONCE_INIT;
+    pthread_once(&once, char_table_fill);
+    return char_table[c & 255];
 }
 
 static const char *const bbtype_names[] = {"normal", "proteinback", "nucleicback", "hydrogen"};

@@ -24,8 +24,9 @@ const char *ms_sel_text(const ms_selexpr *e);
  * the frame changes? */
 int ms_sel_uses_coords(const ms_selexpr *e);
 
-/* Evaluate on frame `frame` of m (coordinate terms need a frame; -1 = current). out is
- * initialised here (m->atoms.n bits); the caller frees it. */
+/* Evaluate on frame `frame` of m (coordinate terms need a frame; -1 = current, -2 = last,
+ * a number past the end = last, as VMD does). out is initialised here (m->atoms.n bits);
+ * the caller frees it (on failure it is left empty). */
 int ms_sel_eval(const ms_selexpr *e, ms_molecule *m, long frame, ms_bitset *out,
                 ms_error *err);
 
