@@ -5,7 +5,11 @@ times molscope's selections (bench_select.tcl, through the binary) and MDAnalysi
 equivalents on the same coordinates in the same run, checks that both select the same
 number of atoms, and prints a table with the ratios.
 
-usage: bench_select.py [--repeat R] N [N ...]      (e.g. 1000000 2000000)"""
+usage: bench_select.py [--repeat R] N [N ...]      (e.g. 1000000 2000000)
+
+Times are medians of R runs (the best is printed too). The machine may be shared: molscope
+loads every size in one process and runs each selection on the sizes in turn, so a burst of
+someone else's load does not land on one size only."""
 import os
 import subprocess
 import sys
@@ -55,17 +59,24 @@ def build_universe(records, xyz):
     return u
 
 
+def median(xs):
+    xs = sorted(xs)
+    n = len(xs)
+    return xs[n // 2] if n % 2 else (xs[n // 2 - 1] + xs[n // 2]) / 2
+
+
 def time_mda(u, text, repeat):
-    best, n = 1e99, 0
+    times, n = [], 0
     for _ in range(repeat):
         t0 = time.perf_counter()
         n = len(u.select_atoms(text))
-        best = min(best, (time.perf_counter() - t0) * 1e3)
-    return best, n
+        times.append((time.perf_counter() - t0) * 1e3)
+    return median(times), min(times), n
 
 
-def run_molscope(pdb, repeat):
-    env = dict(os.environ, BENCH_PDB=pdb, BENCH_REPEAT=str(repeat),
+def run_molscope(pdbs, repeat):
+    """{(natoms, label): (median ms, best ms, count)} from one molscope process."""
+    env = dict(os.environ, BENCH_PDBS=" ".join(pdbs), BENCH_REPEAT=str(repeat),
                MOLSCOPE_TCLLIB=os.path.join(ROOT, "tcl"))
     out = subprocess.run([os.path.join(ROOT, "src", "molscope"), "-dispdev", "text", "-e",
                           os.path.join(HERE, "bench_select.tcl")], env=env, check=True,
@@ -73,39 +84,43 @@ def run_molscope(pdb, repeat):
     rows = {}
     for line in out.splitlines():
         f = line.split("\t")
-        if len(f) == 3:
-            rows[f[0]] = (float(f[1]), int(f[2]))
+        if len(f) == 5:
+            rows[(int(f[0]), f[1])] = (float(f[2]), float(f[3]), int(f[4]))
     return rows
 
 
 def main():
     args = sys.argv[1:]
-    repeat = 3
+    repeat = 15
     if args[:1] == ["--repeat"]:
         repeat, args = int(args[1]), args[2:]
     sizes = [int(a) for a in args] or [1000000, 2000000]
     os.makedirs(os.path.join(ROOT, "bench-out"), exist_ok=True)
-    results = {}
+    systems = {}
     for n in sizes:
         pdb = os.path.join(ROOT, "bench-out", "rep%d.pdb" % n)
         records, xyz = replicate_pdb.replicate(os.path.join(ROOT, "tests", "data", "1tii.pdb"), n)
         if not os.path.exists(pdb):
             replicate_pdb.write(records, xyz, pdb)
-        ms = run_molscope(pdb, repeat)
-        u = build_universe(records, xyz)
+        systems[n] = (pdb, records, xyz)
+    ms = run_molscope([systems[n][0] for n in sizes], repeat)
+    results = {}
+    for n in sizes:
+        u = build_universe(systems[n][1], systems[n][2])
         for label, text in MDA.items():
-            t, count = time_mda(u, text, repeat)
-            mt, mcount = ms[label]
-            results[(n, label)] = (mt, t)
+            t, tbest, count = time_mda(u, text, repeat)
+            mt, mbest, mcount = ms[(n, label)]
+            results[(n, label)] = mt
             same = "same" if count == mcount else "DIFFERENT (%d vs %d)" % (mcount, count)
-            print("%9d atoms %-10s molscope %9.2f ms  MDAnalysis %9.1f ms  ratio %6.0fx  %d atoms, %s"
-                  % (n, label, mt, t, t / mt, mcount, same), flush=True)
-        print("%9d atoms load: molscope %.0f ms" % (n, ms["load"][0]), flush=True)
+            print("%9d atoms %-10s molscope %7.2f ms (best %7.2f)  MDAnalysis %7.1f ms "
+                  "(best %7.1f)  ratio %4.0fx  %d atoms, %s"
+                  % (n, label, mt, mbest, t, tbest, t / mt, mcount, same), flush=True)
+        print("%9d atoms load: molscope %.0f ms" % (n, ms[(n, "load")][0]), flush=True)
     if len(sizes) >= 2:
         a, b = sizes[0], sizes[-1]
         for label in MDA:
-            print("scaling %-10s molscope %d -> %d atoms: %.2fx time"
-                  % (label, a, b, results[(b, label)][0] / results[(a, label)][0]))
+            print("scaling %-10s molscope %d -> %d atoms: %.2fx time (medians)"
+                  % (label, a, b, results[(b, label)] / results[(a, label)]))
 
 
 if __name__ == "__main__":

@@ -95,10 +95,43 @@ static ms_selnode *node2(parser *p, ms_node_kind k, ms_selnode *a, ms_selnode *b
     return n;
 }
 
+static ms_selnode *join_fail(parser *p, ms_selnode *a, ms_selnode *b)
+{
+    ms_selnode_free(a);
+    ms_selnode_free(b);
+    return oom(p);
+}
+
+/* In an or-chain, `name CA or name CB` means `name CA CB`: append b's values to a keyword
+ * list of the same keyword already in chain n (one pass over the atoms instead of two).
+ * Returns 1 when merged (b is then freed), 0 when not, -1 when out of memory. */
+static int merge_values(ms_selnode *n, ms_selnode *b)
+{
+    if (b->kind != SN_KEYLIST) return 0;
+    size_t nk = n->kind == SN_OR ? n->nkids : 1;
+    for (size_t i = 0; i < nk; i++) {
+        ms_selnode *k = n->kind == SN_OR ? n->kids[i] : n;
+        if (k->kind != SN_KEYLIST || k->kw != b->kw) continue;
+        ms_selval *v = realloc(k->vals, (k->nvals + b->nvals) * sizeof *v);
+        if (!v) return -1;
+        memcpy(v + k->nvals, b->vals, b->nvals * sizeof *v);
+        k->vals = v;
+        k->nvals += b->nvals;
+        b->nvals = 0;    /* the values (and their regexes) now belong to k */
+        ms_selnode_free(b);
+        return 1;
+    }
+    return 0;
+}
+
 /* Append b to the and/or chain a (or start one), flattening chains of the same kind: and
  * and or are associative, and flat chains keep the evaluator's recursion shallow. */
 static ms_selnode *join(parser *p, ms_node_kind k, ms_selnode *a, ms_selnode *b)
 {
+    if (k == SN_OR && (a->kind == SN_OR || a->kind == SN_KEYLIST) && b->kind != SN_OR) {
+        int merged = merge_values(a, b);
+        if (merged) return merged > 0 ? a : join_fail(p, a, b);
+    }
     ms_selnode *n = a;
     size_t cap = a->kind == k ? a->nkids : 0;
     if (a->kind != k) {

@@ -176,10 +176,36 @@ oom:
     return -1;
 }
 
+/* same residue as: residues are runs of consecutive atoms, so whole runs of bits are set
+ * without reading every atom. */
+static int same_residue(ms_selctx *c, const ms_bitset *src, const ms_bitset *mask,
+                        ms_bitset *out)
+{
+    const ms_molecule *m = c->m;
+    uint8_t *mark = ms_calloc_array(m->nresidues, 1);
+    if (!mark) {
+        ms_error_set(c->err, "same residue as: out of memory");
+        return -1;
+    }
+    memset(out->words, 0, ms_bitset_nwords(out) * sizeof *out->words);
+    for (size_t w = 0; w < ms_bitset_nwords(src); w++)
+        for (uint64_t bits = src->words[w]; bits; bits &= bits - 1) {
+            int32_t r = m->atoms.residue[w * 64 + (size_t)__builtin_ctzll(bits)];
+            if (mark[r]) continue;
+            mark[r] = 1;
+            for (uint32_t i = m->res_start[r]; i < m->res_start[r + 1]; i++) ms_bitset_set(out, i);
+        }
+    ms_bitset_and(out, mask);
+    free(mark);
+    return 0;
+}
+
 int ms_sel_eval_same(ms_selctx *c, const ms_selkw *k, const ms_bitset *src,
                      const ms_bitset *mask, ms_bitset *out)
 {
     if (ms_selkw_prepare(k, c)) return -1;
+    if (!strcmp(k->name, "residue") && c->m->res_start && c->m->nresidues)
+        return same_residue(c, src, mask, out);
     if (k->kind == SK_STRING) return same_strings(c, k, src, mask, out);
     return same_numbers(c, k, src, mask, out);
 }

@@ -170,6 +170,15 @@ static void test_values(void)
     expect(m, "name eq resname", 0);
     expect(m, "x == index", 8);
     expect(m, "resid eq 2", 4);                 /* integers compare as strings with %d */
+    /* or-chains of one keyword are merged into one list: the meaning must not change */
+    expect(m, "name CA or name CB", 4);
+    expect(m, "name CA or x < 1 or name CB or name \"O\"", 6);
+    expect(m, "name CA or name CB and resname GLY or name N", 5);
+    expect(m, "x 1 or x 2 to 3 or resid 2 or x 7", 7);
+    expect(m, "not (name CA or name CB) and resname ALA", 2);
+    expect(m, "index 2 to 4 or serial 8", 4);
+    expect(m, "index 6 to 100 or index 0 or index '-5' to '-1'", 3); /* VMD lexes -5 as minus 5 */
+    expect(m, "serial 0 to 1", 1);
     expect(m, "all", 8);
     expect(m, "none", 0);
     expect(m, "not all", 0);
