@@ -158,7 +158,15 @@ ms_atomsel *ms_atomsel_lookup(ms_app *app, Tcl_Interp *interp, const char *name,
     Tcl_CmdInfo info;
     if (Tcl_GetCommandInfo(interp, name, &info) && info.objProc == atomsel_obj_cmd) {
         ms_atomsel *s = info.objClientData;
-        if (ms_molset_get(&app->mols, s->molid)) return s;
+        ms_molecule *m = ms_molset_get(&app->mols, s->molid);
+        if (m && s->bits.nbits != m->atoms.n) {   /* atoms added since: evaluate again */
+            ms_error err = {{0}};
+            if (ms_atomsel_update(app, s, &err)) {
+                ms_cmd_error(interp, "%s: %s: %s", cmd, name, err.msg);
+                return NULL;
+            }
+        }
+        if (m) return s;
         ms_cmd_error(interp, "%s: no atom selection named '%s' (its molecule %d was deleted)",
                      cmd, name, s->molid);
         return NULL;

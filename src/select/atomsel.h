@@ -21,7 +21,8 @@ typedef struct ms_atomsel {
 } ms_atomsel;
 
 /* Find a selection object by its command name; NULL with an error "<cmd>: no atom selection
- * named '<name>'" (also when its molecule was deleted). */
+ * named '<name>'" (also when its molecule was deleted). A selection whose molecule gained
+ * atoms since it was evaluated is evaluated again first, so its indices are current. */
 ms_atomsel *ms_atomsel_lookup(ms_app *app, Tcl_Interp *interp, const char *name,
                               const char *cmd);
 /* The molecule and resolved frame (-1 when the molecule has no frames) of a selection. */
