@@ -26,8 +26,8 @@ void ms_shell_report_error(ms_app *app, const char *context)
     const char *info = Tcl_GetVar(interp, "errorInfo", TCL_GLOBAL_ONLY);
     const char *msg = Tcl_GetStringResult(interp);
     if (context) fprintf(stderr, "%s: ", context);
-    fprintf(stderr, "%s\n", msg);
-    if (info && *info && strcmp(info, msg) != 0) fprintf(stderr, "while executing\n%s\n", info);
+    /* errorInfo starts with the message and goes on with the Tcl stack trace. */
+    fprintf(stderr, "%s\n", info && *info ? info : msg);
     fflush(stderr);
 }
 
