@@ -6,6 +6,7 @@
 #include "app/options.h"
 #include "app/shell.h"
 
+#include <malloc.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -118,6 +119,10 @@ static int run_startup_file(ms_app *app, const ms_options *o, int *status)
 
 int main(int argc, char **argv)
 {
+    /* A fixed mmap threshold keeps every large array in its own mapping, returned to the
+     * system when freed: without it glibc raises the threshold after the first large free
+     * and the big transient buffers of a load (bond pairs, grids) stay resident. */
+    mallopt(M_MMAP_THRESHOLD, 256 * 1024);
     ms_app *app = ms_app_new(argv[0]);
     if (!app) {
         fprintf(stderr, "molscope: cannot start (out of memory)\n");
