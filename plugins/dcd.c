@@ -410,12 +410,12 @@ static void write_header(ms_out *o, long natoms)
     memcpy(ctl, "CORD", 4);
     memcpy(ctl + 4, icntrl, sizeof icntrl);
     put_record(o, ctl, 84);
-    char title[4 + 160];
+    char title[4 + 160 + 1]; /* + 1 for snprintf's NUL, not written */
     int32_t ntitle = 2;
     memcpy(title, &ntitle, 4);
     snprintf(title + 4, 81, "%-80s", "REMARKS written by molscope");
     snprintf(title + 84, 81, "%-80s", "REMARKS CHARMM-style DCD with unit cell (A, cos g, B, cos b, cos a, C)");
-    put_record(o, title, sizeof title);
+    put_record(o, title, 4 + 160);
     int32_t n = (int32_t)natoms;
     put_record(o, &n, 4);
 }
