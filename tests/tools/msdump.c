@@ -6,11 +6,14 @@
  *   atom    i name resname resid segname chain      (once per atom, 0-based i)
  *   cell    k a b c alpha beta gamma                (once per frame)
  *   xyz     k i x y z                               (per frame and atom)
- * usage: msdump [-t type] file [[-t type] file ...]: the first file makes the molecule,
- * the others are added to it. Exit status 1 with the error on stderr when a load fails. */
+ * usage: msdump [-o out] [-t type] file [[-t type] file ...]: the first file makes the
+ * molecule, the others are added to it; with -o the molecule (every frame) is written to
+ * `out` instead, in the format its extension names. Exit status 1 with the error on stderr
+ * when a load or the write fails. */
 #include "config.h"
 #include "builtin.h"
 #include "fileio/load.h"
+#include "fileio/write.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -44,11 +47,15 @@ int main(int argc, char **argv)
     }
     ms_molecule *m = NULL;
     ms_error err = {{0}};
-    const char *type = NULL;
+    const char *type = NULL, *out = NULL;
     int status = 0;
     for (int i = 1; i < argc && status == 0; i++) {
         if (!strcmp(argv[i], "-t") && i + 1 < argc) {
             type = argv[++i];
+            continue;
+        }
+        if (!strcmp(argv[i], "-o") && i + 1 < argc) {
+            out = argv[++i];
             continue;
         }
         ms_load_opts o;
@@ -64,10 +71,19 @@ int main(int argc, char **argv)
         }
     }
     if (!m && status == 0) {
-        fprintf(stderr, "usage: msdump [-t type] file [[-t type] file ...]\n");
+        fprintf(stderr, "usage: msdump [-o out] [-t type] file [[-t type] file ...]\n");
         status = 1;
     }
-    if (status == 0) dump(m);
+    if (status == 0 && out) {
+        ms_write_opts wo;
+        ms_write_opts_default(&wo);
+        if (ms_write_file(&reg, m, out, &wo, &err) < 0) {
+            fprintf(stderr, "msdump: %s: %s\n", out, err.msg);
+            status = 1;
+        }
+    } else if (status == 0) {
+        dump(m);
+    }
     ms_mol_free(m);
     ms_registry_free(&reg);
     return status;
