@@ -71,10 +71,12 @@ tests_fuzz_fuzz_gro_LDADD = $(FUZZ_LIBS)
 LF_FLAGS = -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
 if HAVE_LIBFUZZER
 fuzz: $(FUZZ_FORMATS:%=tests/fuzz/lf_%)
-tests/fuzz/lf_%: $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c $(srcdir)/tests/fuzz/fuzz.h
+LF_CORE = $(FUZZ_CORE:%=$(srcdir)/%) $(srcdir)/plugins/plugin_util.c
+tests/fuzz/lf_%: $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c $(srcdir)/tests/fuzz/fuzz.h \
+		$(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
-		-o $@ $(srcdir)/tests/fuzz/fuzz_$*.c $(srcdir)/plugins/$*.c \
-		$(srcdir)/plugins/plugin_util.c $(FUZZ_CORE:%=$(srcdir)/%) -lpthread -lm -ldl
+		-o $@ $(srcdir)/tests/fuzz/fuzz_$*.c $(srcdir)/plugins/$*.c $(LF_CORE) \
+		-lpthread -lm -ldl
 else
 fuzz:
 	@echo "make fuzz needs clang with libFuzzer, which configure did not find"; exit 1

@@ -35,19 +35,24 @@ static int grid_build(bond_grid *g, const float *pos, size_t n, float cutoff, ms
     if (nvalid == 0) return 0;
     /* Cells at least the cutoff wide, and never more than about two per atom, so a sparse
      * system spread over a huge box does not need a huge grid. */
-    double vol = 1.0;
-    for (int k = 0; k < 3; k++) vol *= (double)(hi[k] - lo[k]) + cutoff;
+    double vol = 1.0, span[3];
+    for (int k = 0; k < 3; k++) {
+        span[k] = (double)hi[k] - (double)lo[k]; /* in double: never overflows */
+        vol *= span[k] + cutoff;
+    }
     double cell = cutoff;
     double mincell = cbrt(vol / (2.0 * (double)nvalid + 1.0));
     if (cell < mincell) cell = mincell;
     for (;;) {
-        size_t ncells = 1;
+        /* Count cells in double: a huge span must not overflow an int before the check. */
+        double dims[3], ncells = 1.0;
         for (int k = 0; k < 3; k++) {
-            g->dim[k] = (int)((hi[k] - lo[k]) / cell) + 1;
-            ncells *= (size_t)g->dim[k];
+            dims[k] = floor(span[k] / cell) + 1.0;
+            ncells *= dims[k];
         }
-        if (ncells <= 4 * nvalid + 64) {
-            g->ncells = ncells;
+        if (ncells <= 4.0 * (double)nvalid + 64.0) {
+            for (int k = 0; k < 3; k++) g->dim[k] = (int)dims[k];
+            g->ncells = (size_t)ncells;
             break;
         }
         cell *= 1.26;
