@@ -267,33 +267,10 @@ static void test_dcd_variants(const float *pdb)
     }
 }
 
-static void test_dcd_mdanalysis(const float *pdb)
+/* Write a molecule's frames as DCD, read them back, compare exactly. */
+static void test_dcd_round_trip(const ms_molecule *m)
 {
-    t_suite = "dcd";
     ms_error err = {{0}};
-    ms_molecule *m = psf_with("helix.dcd", &err);
-    if (!t_ok(m != NULL, "helix.psf + helix.dcd (%s)", err.msg)) return;
-    double worst = 0;
-    int cells = 1;
-    for (int k = 0; k < 10 && m->nframes == 10; k++) {
-        worst = fmax(worst, max_rotation_error(m->frames[k].pos, pdb, 392, k));
-        double want[6] = {30.0 + k, 32, 34 + 0.5 * k, 80, 95, 100.0 + k};
-        cells &= cell_near(m->frames[k].cell, want, 1e-4);
-    }
-    t_ok(m->nframes == 10 && worst < 2e-5, "10 frames as make_helix.py rotated them (worst %g)",
-         worst);
-    t_ok(cells, "cells in degrees as MDAnalysis wrote them");
-
-    /* first/last/step: file frames 2, 5, 8. */
-    ms_molecule *s = load(data_path("helix.psf"), &err);
-    if (s && !add(s, data_path("helix.dcd"), 2, 8, 3, &err))
-        t_ok(s->nframes == 3 && max_rotation_error(s->frames[1].pos, pdb, 392, 5) < 2e-5,
-             "first 2 last 8 step 3 keeps frames 2 5 8");
-    else
-        t_ok(0, "first/last/step load (%s)", err.msg);
-    ms_mol_free(s);
-
-    /* Round trip: write, read back, compare exactly. */
     const char *dir = getenv("MS_TEST_OUT");
     char out[4096];
     snprintf(out, sizeof out, "%s/rt_%ld.dcd", dir ? dir : "/tmp", (long)getpid());
@@ -325,7 +302,51 @@ static void test_dcd_mdanalysis(const float *pdb)
          "header: 84-byte record, CORD, NSET 10");
     unlink(out);
     ms_mol_free(r);
+}
+
+static void test_dcd_mdanalysis(const float *pdb)
+{
+    t_suite = "dcd";
+    ms_error err = {{0}};
+    ms_molecule *m = psf_with("helix.dcd", &err);
+    if (!t_ok(m != NULL, "helix.psf + helix.dcd (%s)", err.msg)) return;
+    double worst = 0;
+    int cells = 1;
+    for (int k = 0; k < 10 && m->nframes == 10; k++) {
+        worst = fmax(worst, max_rotation_error(m->frames[k].pos, pdb, 392, k));
+        double want[6] = {30.0 + k, 32, 34 + 0.5 * k, 80, 95, 100.0 + k};
+        cells &= cell_near(m->frames[k].cell, want, 1e-4);
+    }
+    t_ok(m->nframes == 10 && worst < 2e-5, "10 frames as make_helix.py rotated them (worst %g)",
+         worst);
+    t_ok(cells, "cells in degrees as MDAnalysis wrote them");
+
+    /* first/last/step: file frames 2, 5, 8. */
+    ms_molecule *s = load(data_path("helix.psf"), &err);
+    if (s && !add(s, data_path("helix.dcd"), 2, 8, 3, &err))
+        t_ok(s->nframes == 3 && max_rotation_error(s->frames[1].pos, pdb, 392, 5) < 2e-5,
+             "first 2 last 8 step 3 keeps frames 2 5 8");
+    else
+        t_ok(0, "first/last/step load (%s)", err.msg);
+    ms_mol_free(s);
+
+    test_dcd_round_trip(m);
     ms_mol_free(m);
+}
+
+/* Copy the first `keep` bytes of a file (all but -keep bytes when keep < 0) to dst. */
+static void copy_prefix(const char *src, const char *dst, long keep)
+{
+    static unsigned char buf[1 << 16];
+    FILE *in = fopen(src, "rb");
+    size_t n = in ? fread(buf, 1, sizeof buf, in) : 0;
+    if (in) fclose(in);
+    size_t k = keep < 0 ? n - (size_t)-keep : (size_t)keep;
+    FILE *out = fopen(dst, "wb");
+    if (out) {
+        fwrite(buf, 1, k < n ? k : n, out);
+        fclose(out);
+    }
 }
 
 static void test_dcd_errors(void)
@@ -340,19 +361,10 @@ static void test_dcd_errors(void)
         t_ok(m->nframes == 1, "the molecule keeps its frame");
     }
     ms_mol_free(m);
-    /* A copy of helix.dcd missing its last 100 bytes. */
-    FILE *in = fopen(data_path("helix.dcd"), "rb");
-    static unsigned char buf[1 << 16];
-    size_t n = in ? fread(buf, 1, sizeof buf, in) : 0;
-    if (in) fclose(in);
     const char *dir = getenv("MS_TEST_OUT");
     char path[4096];
     snprintf(path, sizeof path, "%s/trunc_%ld.dcd", dir ? dir : "/tmp", (long)getpid());
-    FILE *out = fopen(path, "wb");
-    if (out) {
-        fwrite(buf, 1, n - 100, out);
-        fclose(out);
-    }
+    copy_prefix(data_path("helix.dcd"), path, -100);
     m = load(data_path("helix.psf"), &err);
     if (m) {
         int rc = add(m, path, 0, -1, 1, &err);
@@ -361,19 +373,11 @@ static void test_dcd_errors(void)
         t_ok(m->nframes == 0, "a failed addfile leaves no frames (%zu)", m->nframes);
     }
     ms_mol_free(m);
-    out = fopen(path, "wb");
-    if (out) {
-        fwrite(buf, 1, 356 + 200, out); /* helix.dcd: a 356-byte header, 4784-byte frames */
-        fclose(out);
-    }
+    copy_prefix(data_path("helix.dcd"), path, 356 + 200); /* 356-byte header, 4784-byte frames */
     m = load(path, &err);
     t_ok(!m && strstr(err.msg, "frame 0: truncated"), "truncated first frame (%s)", err.msg);
     ms_mol_free(m);
-    out = fopen(path, "wb");
-    if (out) {
-        fwrite(buf, 1, 50, out);
-        fclose(out);
-    }
+    copy_prefix(data_path("helix.dcd"), path, 50);
     m = load(path, &err);
     t_ok(!m && strstr(err.msg, "header"), "truncated header (%s)", err.msg);
     ms_mol_free(m);
