@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #define DCD_PI 3.14159265358979323846
+#define DCD_MAX_UNCHECKED_ATOMS (1L << 24)
 
 typedef struct dcd_reader {
     int fd;
@@ -194,6 +195,10 @@ static int count_frames(dcd_reader *r, ms_perr *err)
     r->first_bytes = frame_size(r, r->natoms);
     r->frame_bytes = frame_size(r, r->nfree);
     long long rest = r->size - r->data_start;
+    /* No frame vouches for the atom count: refuse one that would make a huge empty
+     * molecule out of a few hundred bytes (a structure file never needs it). */
+    if (rest <= 0 && r->natoms > DCD_MAX_UNCHECKED_ATOMS)
+        return ms_perr_set(err, "header: %ld atoms, but the file holds no frame", r->natoms);
     if (rest <= 0) return MS_PLUGIN_OK;
     if (rest < r->first_bytes)
         return ms_perr_set(err, "frame 0: truncated: the file ends %lld bytes into it (a frame "

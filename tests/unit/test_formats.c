@@ -377,6 +377,11 @@ static void test_dcd_errors(void)
     m = load(path, &err);
     t_ok(!m && strstr(err.msg, "frame 0: truncated"), "truncated first frame (%s)", err.msg);
     ms_mol_free(m);
+    copy_prefix(data_path("helix.dcd"), path, 356);
+    m = load(path, &err);
+    t_ok(m && m->atoms.n == 392 && m->nframes == 0, "a header without frames: 392 atoms, no "
+         "frames (%s)", m ? "" : err.msg);
+    ms_mol_free(m);
     copy_prefix(data_path("helix.dcd"), path, 50);
     m = load(path, &err);
     t_ok(!m && strstr(err.msg, "header"), "truncated header (%s)", err.msg);
