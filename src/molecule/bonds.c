@@ -36,8 +36,8 @@ static int finite3(const float *p)
 
 static int cell_coord(const slab_grid *g, const float *p, int k)
 {
-    int v = (int)((p[k] - g->origin[k]) / g->cell);
-    return v < 0 ? 0 : v >= g->dim[k] ? g->dim[k] - 1 : v;
+    double v = ((double)p[k] - (double)g->origin[k]) / (double)g->cell;
+    return v < 0.0 ? 0 : v >= (double)g->dim[k] ? g->dim[k] - 1 : (int)v;
 }
 
 static size_t cell2d(const slab_grid *g, const float *p)
@@ -63,17 +63,20 @@ static size_t grid_size(slab_grid *g, const float *pos, size_t n, float cutoff)
         nvalid++;
     }
     if (nvalid == 0) return 0;
+    /* Spans and cell counts in double: a huge coordinate range must not overflow. */
+    double span[3];
+    for (int k = 0; k < 3; k++) span[k] = (double)hi[k] - (double)lo[k];
     double cell = cutoff, limit = 8.0 * (double)nvalid + 1e6;
     for (;;) {
         double cells = 1.0;
-        for (int k = 0; k < 3; k++) cells *= floor((hi[k] - lo[k]) / cell) + 1.0;
+        for (int k = 0; k < 3; k++) cells *= floor(span[k] / cell) + 1.0;
         if (cells <= limit) break;
         cell *= 1.1;
     }
     g->cell = (float)cell;
     for (int k = 0; k < 3; k++) {
         g->origin[k] = lo[k];
-        g->dim[k] = (int)((hi[k] - lo[k]) / cell) + 1;
+        g->dim[k] = (int)floor(span[k] / cell) + 1;
     }
     return nvalid;
 }
