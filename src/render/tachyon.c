@@ -285,8 +285,12 @@ static void camera(FILE *f, const ms_scene *s)
         fputs("  Projection Orthographic\n", f);
         fprintf(f, "  Zoom %g\n", 1.0 / (c->height / 2.0));
     } else {
-        /* Tachyon 0.99b6 has no depth-of-field camera keywords VMD's writer could use */
-        if (c->dof) fputs("# depth of field is not supported by this Tachyon format\n", f);
+        /* Tachyon 0.99b6 (Debian's) takes the focal distance as FocalLength (newer versions
+         * say FocalDist) and the aperture as a radius in world units, not VMD's f-number:
+         * radius = focal distance / (2 f-number), the thin-lens aperture */
+        if (c->dof)
+            fprintf(f, "  Projection Perspective_DoF\n  FocalLength %g\n  Aperture %g\n",
+                    c->dof_focaldist, c->dof_focaldist / (2.0f * c->dof_fnumber));
         fprintf(f, "  Zoom %g\n", (c->eye[2] - c->distance) / c->height);
     }
     fprintf(f, "  Aspectratio %g\n  Antialiasing %d\n  Raydepth %d\n", 1.0, s->aa_samples, 50);
