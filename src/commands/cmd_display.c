@@ -394,10 +394,7 @@ static int light_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     if (objc == 4 && ms_word_eq(w, "pos")) {
         if (!strcasecmp(Tcl_GetString(objv[3]), "default")) {
             /* as VMD: reports the default position (the caller sets it if it wants) */
-            ms_view *def = ms_view_new();
-            if (!def) return ms_cmd_error(interp, "light: out of memory");
-            Tcl_SetObjResult(interp, vec_obj(def->lights[n].pos));
-            ms_view_free(def);
+            Tcl_SetObjResult(interp, vec_obj(ms_view_default_light(n)));
             return TCL_OK;
         }
         return ms_cmd_get_vec3(interp, objv[3], l->pos, "light pos");

@@ -40,10 +40,16 @@ int ms_projection_from_name(const char *s)
     return i;
 }
 
+static const float light_pos[MS_SCENE_LIGHTS][3] = {
+    {-0.1f, 0.1f, 1.0f}, {1.0f, 2.0f, 0.5f}, {-1.0f, 2.0f, -1.0f}, {-1.0f, -1.0f, 0.0f}};
+
+const float *ms_view_default_light(int n)
+{
+    return light_pos[n < 0 ? 0 : n >= MS_SCENE_LIGHTS ? MS_SCENE_LIGHTS - 1 : n];
+}
+
 ms_view *ms_view_new(void)
 {
-    static const float light_pos[MS_SCENE_LIGHTS][3] = {
-        {-0.1f, 0.1f, 1.0f}, {1.0f, 2.0f, 0.5f}, {-1.0f, 2.0f, -1.0f}, {-1.0f, -1.0f, 0.0f}};
     ms_view *v = calloc(1, sizeof *v);
     if (!v) return NULL;
     ms_camera *c = &v->cam;

@@ -50,6 +50,8 @@ typedef struct ms_view {
 
 ms_view *ms_view_new(void);
 void ms_view_free(ms_view *v);
+/* VMD's default direction of light n (0..3). */
+const float *ms_view_default_light(int n);
 
 const char *ms_axes_loc_name(ms_axes_loc l);
 int ms_axes_loc_from_name(const char *s);         /* -1 when unknown */
