@@ -229,6 +229,36 @@ static void test_ugraphics(void)
     ms_ugraphics_add(g, &it);
     float ctr[3], scale;
     t_ok(ms_ugraphics_cov(g, ctr, &scale) && ctr[0] == 5 && scale == 2.0f / 10, "centre and scale of the graphics");
+
+    /* display lists: built once, rebuilt when the items or the colours change */
+    ms_error err = {{0}};
+    ms_colors *colors = ms_colors_new(&err);
+    ms_ugraphics_delete_all(g);
+    memset(&it, 0, sizeof it);
+    it.kind = MS_UG_COLOR;
+    it.iv[0] = 1;                                   /* red */
+    ms_ugraphics_add(g, &it);
+    it.kind = MS_UG_SPHERE;
+    it.radius = 2;
+    ms_ugraphics_add(g, &it);
+    it.kind = MS_UG_MATERIAL;
+    it.iv[0] = 7;
+    ms_ugraphics_add(g, &it);
+    it.kind = MS_UG_POINT;
+    ms_ugraphics_add(g, &it);
+    t_ok(ms_ugraphics_update(g, colors, &err) == 0 && g->nlists == 2 && g->lists[0].spheres.n == 1 &&
+         g->lists[0].spheres.color[0].r == 255 && g->lists[0].spheres.color[0].g == 0 &&
+         g->lists[1].material == 7 && g->lists[1].points.n == 1,
+         "a new list where the material changes; colours resolved at build");
+    g->lists[0].spheres.radius[0] = -1;             /* marks the built list */
+    ms_ugraphics_update(g, colors, &err);
+    t_ok(g->lists[0].spheres.radius[0] == -1, "no change, no rebuild");
+    float green[3] = {0, 1, 0};
+    ms_color_set_rgb(colors, 1, green);
+    ms_ugraphics_update(g, colors, &err);
+    t_ok(g->lists[0].spheres.radius[0] == 2 && g->lists[0].spheres.color[0].g == 255,
+         "a colour change rebuilds with the new RGB");
+    ms_colors_free(colors);
     ms_ugraphics_free(g);
 }
 
