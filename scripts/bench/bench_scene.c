@@ -163,89 +163,88 @@ static void fill_tube(void *ctx, size_t b, size_t e, int t)
 
 static double now(void) { return ms_now(); }
 
-int main(int argc, char **argv)
+static void bench_vdw(const sys *s, ms_error *err)
 {
-    const char *data = argc > 1 ? argv[1] : "tests/data";
-    int copies = argc > 2 ? atoi(argv[2]) : 176;
-    sys s;
-    memset(&s, 0, sizeof s);
-    if (make_system(data, copies, &s)) return 1;
-    size_t nbonds = s.bstart[s.n] / 2;
-    printf("system: %zu atoms, %zu bonds (1tii x %d), %d threads\n", s.n, nbonds, copies,
-           ms_threads_count());
-    ms_error err = {{0}};
-
-    /* VDW, single appends */
     ms_displaylist dl;
     ms_dl_init(&dl);
     double t = now();
-    for (size_t i = 0; i < s.n; i++) ms_dl_sphere(&dl, s.pos + 3 * i, s.radius[i], s.color[i], 12);
+    for (size_t i = 0; i < s->n; i++) ms_dl_sphere(&dl, s->pos + 3 * i, s->radius[i], s->color[i], 12);
     double t_single = now() - t;
+    /* reserve + parallel fill, into the memory of the last build (a rebuild) and fresh */
     ms_dl_clear(&dl);
-    /* VDW, reserve + parallel fill into reused memory (a rebuild) and into a fresh list */
+    job j = {s, &dl, 0, 0};
     t = now();
-    job j = {&s, &dl, 0, 0};
-    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s.n, &err);
-    ms_parallel_for(s.n, 16384, fill_spheres, &j);
+    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s->n, err);
+    ms_parallel_for(s->n, 16384, fill_spheres, &j);
     double t_rebuild = now() - t;
     ms_dl_free(&dl);
     t = now();
-    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s.n, &err);
-    ms_parallel_for(s.n, 16384, fill_spheres, &j);
+    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s->n, err);
+    ms_parallel_for(s->n, 16384, fill_spheres, &j);
     double t_fresh = now() - t;
     printf("VDW       %8zu spheres: single appends %.3f s, block fill %.3f s fresh, %.3f s rebuild\n",
-           s.n, t_single, t_fresh, t_rebuild);
+           s->n, t_single, t_fresh, t_rebuild);
+    ms_dl_free(&dl);
+}
 
-    /* Licorice */
-    ms_dl_clear(&dl);
-    t = now();
-    uint32_t *first = malloc((s.n + 1) * sizeof *first);
+static void bench_licorice(const sys *s, ms_error *err)
+{
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    double t = now();
+    uint32_t *first = malloc((s->n + 1) * sizeof *first);
+    if (!first) return;
     uint32_t acc = 0;
-    for (size_t i = 0; i < s.n; i++) {
+    for (size_t i = 0; i < s->n; i++) {
         first[i] = acc;
-        for (uint32_t k = s.bstart[i]; k < s.bstart[i + 1]; k++) acc += s.bto[k] > i;
+        for (uint32_t k = s->bstart[i]; k < s->bstart[i + 1]; k++) acc += s->bto[k] > i;
     }
-    lic l = {{&s, &dl, 0, 0}, first};
-    l.j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s.n, &err);
-    l.j.c0 = (size_t)ms_dl_extend(&dl, MS_DL_CYLINDERS, 2 * (size_t)acc, &err);
-    ms_parallel_for(s.n, 16384, fill_spheres, &l.j);
-    ms_parallel_for(s.n, 16384, fill_bonds, &l);
-    double t_lic = now() - t;
-    printf("Licorice  %8zu spheres + %zu cylinders: %.3f s (spheres' memory reused)\n",
-           s.n, dl.cylinders.n, t_lic);
+    lic l = {{s, &dl, 0, 0}, first};
+    l.j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s->n, err);
+    l.j.c0 = (size_t)ms_dl_extend(&dl, MS_DL_CYLINDERS, 2 * (size_t)acc, err);
+    ms_parallel_for(s->n, 16384, fill_spheres, &l.j);
+    ms_parallel_for(s->n, 16384, fill_bonds, &l);
+    printf("Licorice  %8zu spheres + %zu cylinders: %.3f s fresh\n", s->n, dl.cylinders.n, now() - t);
     free(first);
+    ms_dl_free(&dl);
+}
 
-    /* NewCartoon-like mesh: 10 spline points per residue, a ring of 12 (VMD's defaults),
-     * for the ~1/8 of atoms that are residues */
-    size_t npts = s.n / 8 * 10 / 10 * 10, ring = 12;
+/* NewCartoon-like: 10 spline points per residue (1/8 of the atoms), a ring of 12. */
+static void bench_cartoon(const sys *s, ms_error *err)
+{
+    size_t npts = s->n / 8 * 10, ring = 12;
     float *path = malloc(3 * npts * sizeof(float));
+    if (!path) return;
     for (size_t p = 0; p < npts; p++) {
         path[3 * p] = 0.38f * (float)p;
-        path[3 * p + 1] = 0;
-        path[3 * p + 2] = 0;
+        path[3 * p + 1] = path[3 * p + 2] = 0;
     }
-    ms_displaylist cart;
-    ms_dl_init(&cart);
-    t = now();
-    tube u = {&cart, 0, 0, ring, path};
-    ms_dl_mesh_extend(&cart, npts * ring, 2 * (npts - 1) * ring, &u.v0, &u.t0, &err);
-    ms_parallel_for(npts, 4096, fill_tube, &u);
-    double t_cart = now() - t;
-    ms_dl_clear(&cart);
-    t = now();
-    ms_dl_mesh_extend(&cart, npts * ring, 2 * (npts - 1) * ring, &u.v0, &u.t0, &err);
-    ms_parallel_for(npts, 4096, fill_tube, &u);
-    double t_cart2 = now() - t;
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    double t[2];
+    for (int pass = 0; pass < 2; pass++) {
+        ms_dl_clear(&dl);
+        double t0 = now();
+        tube u = {&dl, 0, 0, ring, path};
+        ms_dl_mesh_extend(&dl, npts * ring, 2 * (npts - 1) * ring, &u.v0, &u.t0, err);
+        ms_parallel_for(npts, 4096, fill_tube, &u);
+        t[pass] = now() - t0;
+    }
     printf("NewCartoon-like mesh %zu vertices %zu triangles: %.3f s fresh, %.3f s rebuild\n",
-           cart.mesh.nverts, cart.mesh.ntris, t_cart, t_cart2);
+           dl.mesh.nverts, dl.mesh.ntris, t[0], t[1]);
     free(path);
-    ms_dl_free(&cart);
-
-    /* Tachyon export of the VDW list (first 200k spheres) */
     ms_dl_free(&dl);
-    size_t nexp = MS_MIN(s.n, (size_t)200000);
-    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, nexp, &err);
-    ms_parallel_for(nexp, 16384, fill_spheres, &j);
+}
+
+/* The Tachyon exporter on the first 200k spheres. */
+static void bench_export(const sys *s, ms_error *err)
+{
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    size_t n = MS_MIN(s->n, (size_t)200000);
+    job j = {s, &dl, 0, 0};
+    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, n, err);
+    ms_parallel_for(n, 16384, fill_spheres, &j);
     ms_scene sc;
     ms_scene_init(&sc);
     sc.width = sc.height = 512;
@@ -256,18 +255,33 @@ int main(int argc, char **argv)
     sc.cam.distance = -2;
     ms_material mat = {"Opaque", 0, 0, .5f, .65f, 40, 0, 1, 0, 0, 0};
     ms_materials mats = {&mat, 1, 1, 1, 0};
-    float id[16];
-    ms_mat4_scaling(id, 0.01f);
-    ms_scene_add(&sc, &dl, id, &mats, &err);
+    float xform[16];
+    ms_mat4_scaling(xform, 0.01f);
+    ms_scene_add(&sc, &dl, xform, &mats, err);
     ms_render_register_builtin();
     const char *tmp = "bench_scene_out.dat";
-    t = now();
-    int rc = ms_render_find("Tachyon")->write(&sc, tmp, &err);
-    double t_tach = now() - t;
-    printf("Tachyon export %zu spheres: %.3f s (%s)\n", nexp, t_tach, rc ? err.msg : "ok");
+    double t = now();
+    int rc = ms_render_find("Tachyon")->write(&sc, tmp, err);
+    printf("Tachyon export %zu spheres: %.3f s (%s)\n", n, now() - t, rc ? err->msg : "ok");
     remove(tmp);
     ms_scene_free(&sc);
     ms_dl_free(&dl);
+}
+
+int main(int argc, char **argv)
+{
+    const char *data = argc > 1 ? argv[1] : "tests/data";
+    int copies = argc > 2 ? atoi(argv[2]) : 176;
+    sys s;
+    memset(&s, 0, sizeof s);
+    if (copies < 1 || make_system(data, copies, &s)) return 1;
+    printf("system: %zu atoms, %u bonds (1tii x %d), %d threads\n", s.n, s.bstart[s.n] / 2,
+           copies, ms_threads_count());
+    ms_error err = {{0}};
+    bench_vdw(&s, &err);
+    bench_licorice(&s, &err);
+    bench_cartoon(&s, &err);
+    bench_export(&s, &err);
     free(s.pos);
     free(s.radius);
     free(s.color);

@@ -139,7 +139,7 @@ static void thin(pov *w, const ms_displaylist *dl)
 static void mesh(pov *w, const ms_displaylist *dl)
 {
     const ms_dl_mesh *ms = &dl->mesh;
-    if (!ms->ntris) return;
+    if (!ms->ntris || !ms->nverts) return;
     FILE *f = w->f;
     const float *m = w->it->xform;
     fprintf(f, "mesh2 {\n  vertex_vectors { %zu", ms->nverts);

@@ -173,7 +173,7 @@ static void vertex_array_header(writer *w, size_t nverts)
 static void mesh(writer *w, const ms_displaylist *dl)
 {
     const ms_dl_mesh *m = &dl->mesh;
-    if (!m->ntris) return;
+    if (!m->ntris || !m->nverts) return;
     FILE *f = w->f;
     vertex_array_header(w, m->nverts);
     for (size_t i = 0; i < m->nverts; i++) {

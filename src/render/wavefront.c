@@ -158,7 +158,7 @@ static ms_rgba8 average(const ms_rgba8 *c, const uint32_t *v)
 static void mesh(obj *o, const ms_displaylist *dl)
 {
     const ms_dl_mesh *ms = &dl->mesh;
-    if (!ms->ntris) return;
+    if (!ms->ntris || !ms->nverts) return;
     const float *m = o->it->xform;
     for (size_t i = 0; i < ms->nverts; i++) {
         float p[3], n[3], q[3];
