@@ -29,6 +29,11 @@ void ms_export_dashes(const float a[3], const float b[3], ms_seg_cb cb, void *ud
  * default view), capital height size * MS_EXPORT_TEXT_HEIGHT. */
 void ms_export_text(const char *s, const float anchor[3], float size, ms_seg_cb cb, void *ud);
 
+/* Number text as printf's "%g" and "%.3f" give it, written faster (numfmt.c). out needs 32
+ * bytes; the length is returned. */
+int ms_fmt_g(char *out, float v);
+int ms_fmt_f3(char *out, float v);
+
 /* World-space helpers for scene items. */
 static inline float ms_item_scale(const ms_scene_item *it)
 {

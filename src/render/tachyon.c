@@ -22,23 +22,59 @@ typedef struct writer {
     float *p, *n, *c;
     size_t ntri, cap;
     int oom;
+    char cached[2][512];         /* texture text of the current list: unlit, lit */
+    const ms_scene_item *cached_for[2];
 } writer;
+
+static void put_g(FILE *f, float v)
+{
+    char b[32];
+    fwrite(b, 1, (size_t)ms_fmt_g(b, v), f);
+}
+
+/* pre x y z post, with z negated when flip (Tachyon is left-handed) */
+static void put_vec(FILE *f, const char *pre, const float v[3], int flip, const char *post)
+{
+    fputs(pre, f);
+    put_g(f, v[0]);
+    fputc(' ', f);
+    put_g(f, v[1]);
+    fputc(' ', f);
+    put_g(f, flip ? 0.0f - v[2] : v[2]);
+    fputs(post, f);
+}
+
+/* The material part of a texture block, as VMD writes it. */
+static void material_text(const ms_material *m, int lit, float op, char *buf, size_t size)
+{
+    int n = lit ? snprintf(buf, size, "Texture\n  Ambient %g Diffuse %g Specular %g Opacity %g\n",
+                           m->ambient, m->diffuse, m->mirror, op)
+                : snprintf(buf, size, "Texture\n  Ambient %g Diffuse %g Specular %g Opacity %g\n",
+                           1.0, 0.0, 0.0, op);
+    if (m->transmode != 0) n += snprintf(buf + n, size - (size_t)n, "  TransMode R3D ");
+    if (m->outline > 0)
+        n += snprintf(buf + n, size - (size_t)n, "  Outline %g Outline_Width %g ", m->outline,
+                      m->outlinewidth);
+    snprintf(buf + n, size - (size_t)n, "  Phong Plastic %g Phong_size %g ", m->specular,
+             m->shininess);
+}
 
 static void texture(writer *w, int lit, const float rgb[3], float alpha)
 {
     const ms_material *m = &w->it->mat;
-    float op = m->opacity * alpha;
-    FILE *f = w->f;
-    fputs("Texture\n", f);
-    if (lit)
-        fprintf(f, "  Ambient %g Diffuse %g Specular %g Opacity %g\n", m->ambient, m->diffuse,
-                m->mirror, op);
-    else
-        fprintf(f, "  Ambient %g Diffuse %g Specular %g Opacity %g\n", 1.0, 0.0, 0.0, op);
-    if (m->transmode != 0) fputs("  TransMode R3D ", f);
-    if (m->outline > 0) fprintf(f, "  Outline %g Outline_Width %g ", m->outline, m->outlinewidth);
-    fprintf(f, "  Phong Plastic %g Phong_size %g ", m->specular, m->shininess);
-    fprintf(f, "Color %g %g %g TexFunc 0\n\n", rgb[0], rgb[1], rgb[2]);
+    char buf[512];
+    if (alpha == 1.0f) {
+        /* the same for every opaque primitive of the list: made once per list */
+        if (w->cached_for[lit] != w->it) {
+            material_text(m, lit, m->opacity, w->cached[lit], sizeof w->cached[lit]);
+            w->cached_for[lit] = w->it;
+        }
+        fputs(w->cached[lit], w->f);
+    } else {
+        material_text(m, lit, m->opacity * alpha, buf, sizeof buf);
+        fputs(buf, w->f);
+    }
+    put_vec(w->f, "Color ", rgb, 0, " TexFunc 0\n\n");
 }
 
 static void texture8(writer *w, int lit, ms_rgba8 c)
@@ -50,13 +86,17 @@ static void texture8(writer *w, int lit, ms_rgba8 c)
 
 static void sphere(writer *w, const float c[3], float r)
 {
-    fprintf(w->f, "Sphere \n  Center %g %g %g \n  Rad %g \n", c[0], c[1], 0.0f - c[2], r);
+    put_vec(w->f, "Sphere \n  Center ", c, 1, " \n  Rad ");
+    put_g(w->f, r);
+    fputs(" \n", w->f);
 }
 
 static void fcylinder(writer *w, const float a[3], const float b[3], float r)
 {
-    fprintf(w->f, "FCylinder\n  Base %g %g %g\n  Apex %g %g %g\n  Rad %g\n", a[0], a[1], 0.0f - a[2],
-            b[0], b[1], 0.0f - b[2], r);
+    put_vec(w->f, "FCylinder\n  Base ", a, 1, "\n");
+    put_vec(w->f, "  Apex ", b, 1, "\n  Rad ");
+    put_g(w->f, r);
+    fputc('\n', w->f);
 }
 
 static void ring(writer *w, const float c[3], const float n[3], float r, int lit, ms_rgba8 col)
@@ -165,6 +205,18 @@ static void texts(writer *w, const ms_displaylist *dl)
 
 /* ---------------------------------------------------------------- meshes */
 
+/* "%.3f %.3f %.3f\n" */
+static void put_f3(FILE *f, const float v[3])
+{
+    char b[100];
+    int n = 0;
+    for (int k = 0; k < 3; k++) {
+        n += ms_fmt_f3(b + n, v[k]);
+        b[n++] = k < 2 ? ' ' : '\n';
+    }
+    fwrite(b, 1, (size_t)n, f);
+}
+
 static void vertex_array_header(writer *w, size_t nverts)
 {
     fprintf(w->f, "VertexArray  Numverts %zu\n\nCoords\n", nverts);
@@ -179,7 +231,7 @@ static void mesh(writer *w, const ms_displaylist *dl)
     for (size_t i = 0; i < m->nverts; i++) {
         float p[3];
         ms_mat4_point(w->it->xform, m->xyz + 3 * i, p);
-        fprintf(f, "%g %g %g\n", p[0], p[1], 0.0f - p[2]);
+        put_vec(f, "", p, 1, "\n");
     }
     fputs("\nNormals\n", f);
     for (size_t i = 0; i < m->nverts; i++) {
@@ -187,19 +239,27 @@ static void mesh(writer *w, const ms_displaylist *dl)
         for (int k = 0; k < 3; k++) n[k] = ms_normal_dequantize(m->normal[3 * i + k]);
         ms_mat4_normal(w->it->xform, n, q);
         /* VMD's sign convention for Tachyon normals; Tachyon faces them to the viewer */
-        fprintf(f, "%.3f %.3f %.3f\n", 0.0f - q[0], 0.0f - q[1], q[2]);
+        float v[3] = {0.0f - q[0], 0.0f - q[1], q[2]};
+        put_f3(f, v);
     }
     fputs("\nColors\n", f);
     for (size_t i = 0; i < m->nverts; i++) {
         float c[3];
         ms_rgba8_to_float(m->color[i], c);
-        fprintf(f, "%.3f %.3f %.3f\n", c[0], c[1], c[2]);
+        put_f3(f, c);
     }
     fputs("\n", f);
     texture8(w, dl->lit, m->color[0]);
     fprintf(f, "TriMesh %zu\n", m->ntris);
-    for (size_t t = 0; t < m->ntris; t++)
-        fprintf(f, "%u %u %u\n", m->tri[3 * t], m->tri[3 * t + 1], m->tri[3 * t + 2]);
+    for (size_t t = 0; t < m->ntris; t++) {
+        char b[48];
+        int n = 0;
+        for (int k = 0; k < 3; k++) {
+            n += snprintf(b + n, sizeof b - (size_t)n, "%u", m->tri[3 * t + k]);
+            b[n++] = k < 2 ? ' ' : '\n';
+        }
+        fwrite(b, 1, (size_t)n, f);
+    }
     fputs("\nEnd_VertexArray\n", f);
 }
 

@@ -14,6 +14,7 @@
 #include "scene/scene.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static int near(float a, float b, float tol) { return fabsf(a - b) <= tol; }
@@ -208,6 +209,33 @@ static void test_tessellation(void)
     t_ok(segs == 3, "a 0.1 dashed line is 3 dashes of 0.02");
 }
 
+/* The fast number text must read back as printf's does. */
+static void test_numfmt(void)
+{
+    t_suite = "numfmt";
+    char a[32], b[32];
+    int same = 0, close = 0, n = 0;
+    unsigned x = 12345;
+    for (int i = 0; i < 200000; i++) {
+        x = x * 1103515245u + 12345u;
+        float v = ((float)(x >> 8) / (float)(1u << 24) - 0.5f) * powf(10.0f, (float)(i % 14) - 6.0f);
+        ms_fmt_g(a, v);
+        snprintf(b, sizeof b, "%g", v);
+        n++;
+        same += !strcmp(a, b);
+        double da = strtod(a, NULL), db = strtod(b, NULL);
+        close += fabs(da - db) <= 1.0000001e-6 * fabs(db) * 10;   /* one unit in the 6th digit */
+    }
+    t_ok(close == n, "every value reads back within one unit of the 6th digit (%d of %d)", close, n);
+    t_ok(same >= n - n / 10000, "the text is printf's %%g, ties to even included (%d of %d)", same, n);
+    ms_fmt_g(a, 0.25098f);
+    ms_fmt_g(b, -1234.5678f);
+    t_ok(!strcmp(a, "0.25098") && !strcmp(b, "-1234.57"), "examples: %s %s", a, b);
+    ms_fmt_f3(a, -0.25f);
+    ms_fmt_f3(b, 1.0f);
+    t_ok(!strcmp(a, "-0.250") && !strcmp(b, "1.000"), "%%.3f examples: %s %s", a, b);
+}
+
 static void test_ugraphics(void)
 {
     t_suite = "graphics";
@@ -270,6 +298,7 @@ int main(void)
     test_materials();
     test_matrices_and_camera();
     test_tessellation();
+    test_numfmt();
     test_ugraphics();
     return t_done();
 }
