@@ -18,9 +18,19 @@ typedef struct pov {
     float radius, rgb[3];    /* current stroke */
 } pov;
 
+/* <x,y,-z>: POV-Ray is left-handed */
 static void vec(FILE *f, const float p[3])
 {
-    fprintf(f, "<%g,%g,%g>", p[0], p[1], 0.0f - p[2]);
+    char b[100];
+    int n = 0;
+    b[n++] = '<';
+    n += ms_fmt_g(b + n, p[0]);
+    b[n++] = ',';
+    n += ms_fmt_g(b + n, p[1]);
+    b[n++] = ',';
+    n += ms_fmt_g(b + n, 0.0f - p[2]);
+    b[n++] = '>';
+    fwrite(b, 1, (size_t)n, f);
 }
 
 /* texture { pigment { rgbt } finish { MS_F<i> or MS_Unlit } } */

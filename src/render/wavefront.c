@@ -94,10 +94,24 @@ static void use(obj *o, ms_rgba8 c, int lit)
     fputc('\n', o->f);
 }
 
+/* "v x y z\n" */
+static void vertex(FILE *f, const float *p)
+{
+    char b[100];
+    int n = 2;
+    b[0] = 'v';
+    b[1] = ' ';
+    for (int k = 0; k < 3; k++) {
+        n += ms_fmt_g(b + n, p[k]);
+        b[n++] = k < 2 ? ' ' : '\n';
+    }
+    fwrite(b, 1, (size_t)n, f);
+}
+
 static void tri(void *ud, const float p[9], const float n[9])
 {
     obj *o = ud;
-    for (int k = 0; k < 3; k++) fprintf(o->f, "v %g %g %g\n", p[3 * k], p[3 * k + 1], p[3 * k + 2]);
+    for (int k = 0; k < 3; k++) vertex(o->f, p + 3 * k);
     for (int k = 0; k < 3; k++)
         fprintf(o->f, "vn %.4f %.4f %.4f\n", n[3 * k], n[3 * k + 1], n[3 * k + 2]);
     fprintf(o->f, "f %zu//%zu %zu//%zu %zu//%zu\n", o->nv + 1, o->nn + 1, o->nv + 2, o->nn + 2,
@@ -165,7 +179,8 @@ static void mesh(obj *o, const ms_displaylist *dl)
         ms_mat4_point(m, ms->xyz + 3 * i, p);
         for (int k = 0; k < 3; k++) n[k] = ms_normal_dequantize(ms->normal[3 * i + k]);
         ms_mat4_normal(m, n, q);
-        fprintf(o->f, "v %g %g %g\nvn %.4f %.4f %.4f\n", p[0], p[1], p[2], q[0], q[1], q[2]);
+        vertex(o->f, p);
+        fprintf(o->f, "vn %.4f %.4f %.4f\n", q[0], q[1], q[2]);
     }
     for (size_t t = 0; t < ms->ntris; t++) {
         const uint32_t *v = ms->tri + 3 * t;
