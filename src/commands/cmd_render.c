@@ -41,41 +41,6 @@ static ms_render_setting *setting(ms_app *app, Tcl_Interp *interp, const ms_rend
     return s;
 }
 
-/* Tachyon's image formats: the post-render command follows the chosen format, as VMD's. */
-static const char *const tachyon_formats[][2] = {
-    {"BMP", "bmp"}, {"PPM", "ppm"}, {"PPM48", "ppm"}, {"PSD48", "psd"}, {"RGB", "rgb"},
-    {"TARGA", "tga"}};
-
-static void tachyon_cmd_text(const ms_render_setting *s, int format, char *buf, size_t size)
-{
-    const char *bin = getenv("TACHYON_BIN");
-    snprintf(buf, size, "%s -aasamples %d %%s -format %s -o %%s.%s",
-             bin && *bin ? bin : "tachyon", s->aasamples, tachyon_formats[format][0],
-             tachyon_formats[format][1]);
-}
-
-static int tachyon_cmd(ms_render_setting *s, int format)
-{
-    char buf[1024];
-    tachyon_cmd_text(s, format, buf, sizeof buf);
-    return ms_render_set_cmd(s, buf);
-}
-
-static int tachyon_format_of(const ms_render_setting *s)
-{
-    for (int i = 0; i < (int)MS_COUNTOF(tachyon_formats); i++) {
-        char key[32];
-        snprintf(key, sizeof key, "-format %s ", tachyon_formats[i][0]);
-        if (strstr(s->cmd, key)) return i;
-    }
-    return 5;
-}
-
-static int is_tachyon(const ms_render_device *d)
-{
-    return !strcmp(d->name, "Tachyon");
-}
-
 static int r_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     Tcl_Obj *l = Tcl_NewListObj(0, NULL);
@@ -118,19 +83,11 @@ static int r_samples(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     if (!s) return TCL_ERROR;
     if (objc == 4) {
         long n;
-        char what[32], gen[1024];
+        char what[32];
         snprintf(what, sizeof what, "render %s", ao ? "aosamples" : "aasamples");
         if (ms_cmd_get_count(interp, objv[3], 65536, what, &n)) return TCL_ERROR;
-        /* Tachyon's post-render command names the samples: keep it in step, unless the
-         * user has replaced it */
-        int fmt = is_tachyon(d) ? tachyon_format_of(s) : 0, follow = 0;
-        if (is_tachyon(d) && !ao) {
-            tachyon_cmd_text(s, fmt, gen, sizeof gen);
-            follow = !strcmp(gen, s->cmd);
-        }
-        if (ao) s->aosamples = (int)n;
-        else s->aasamples = (int)n;
-        if (follow && tachyon_cmd(s, fmt)) return ms_cmd_error(interp, "render: out of memory");
+        if (ms_render_set_samples(s, ao ? -1 : (int)n, ao ? (int)n : -1))
+            return ms_cmd_error(interp, "render: out of memory");
     }
     Tcl_SetObjResult(interp, Tcl_NewIntObj(ao ? s->aosamples : s->aasamples));
     return TCL_OK;
@@ -150,8 +107,8 @@ static int r_info(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
         Tcl_SetObjResult(interp, Tcl_NewDoubleObj((double)app->width / app->height));
     } else {   /* formats */
         Tcl_Obj *l = Tcl_NewListObj(0, NULL);
-        for (size_t i = 0; is_tachyon(d) && i < MS_COUNTOF(tachyon_formats); i++)
-            Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(tachyon_formats[i][0], -1));
+        for (const char *const *f = d->formats; f && *f; f++)
+            Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(*f, -1));
         Tcl_SetObjResult(interp, l);
     }
     return TCL_OK;
@@ -163,19 +120,13 @@ static int r_format(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     const ms_render_device *d = get_device(interp, objv[2], "render format");
     ms_render_setting *s = d ? setting(app, interp, d) : NULL;
     if (!s) return TCL_ERROR;
-    if (!is_tachyon(d)) {
-        if (objc == 3) return TCL_OK;
-        return ms_cmd_error(interp, "render format: %s has no output formats", d->name);
-    }
     if (objc == 3) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(tachyon_formats[tachyon_format_of(s)][0], -1));
+        if (d->formats) Tcl_SetObjResult(interp, Tcl_NewStringObj(d->formats[s->format], -1));
         return TCL_OK;
     }
-    const char *f = Tcl_GetString(objv[3]);
-    for (int i = 0; i < (int)MS_COUNTOF(tachyon_formats); i++)
-        if (!strcasecmp(f, tachyon_formats[i][0]) || (i == 5 && !strcasecmp(f, "TGA")))
-            return tachyon_cmd(s, i) ? ms_cmd_error(interp, "render format: out of memory") : TCL_OK;
-    return ms_cmd_error(interp, "render format: unknown format '%s' for %s", f, d->name);
+    if (ms_render_set_format(s, Tcl_GetString(objv[3])))
+        return ms_cmd_error(interp, "render format: unknown format '%s' for %s", Tcl_GetString(objv[3]), d->name);
+    return TCL_OK;
 }
 
 /* render <method> <file> ?cmd...? */

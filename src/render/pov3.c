@@ -266,5 +266,8 @@ static int write_pov(const ms_scene *s, const char *path, ms_error *err)
 }
 
 const ms_render_device ms_render_pov3 = {
-    "POV3", "POV-Ray 3.7 scene file (.pov)",
-    "povray +W%w +H%h -I%s -O%s.tga +D +X +A +FT", 1, 12, 12, write_pov};
+    .name = "POV3",
+    .description = "POV-Ray 3.7 scene file (.pov)",
+    .default_cmd = "povray +W%w +H%h -I%s -O%s.tga +D +X +A +FT",
+    .has_aa = 1, .aasamples = 12, .aosamples = 12,
+    .write = write_pov};

@@ -78,7 +78,39 @@ ms_render_setting *ms_render_setting_of(ms_renderers *r, const ms_render_device 
     s->cmd = cmd;
     s->aasamples = dev->aasamples;
     s->aosamples = dev->aosamples;
+    s->format = dev->default_format;
     return s;
+}
+
+/* The command the device makes for the current settings; 0 when it has none. */
+static int generated_cmd(const ms_render_setting *s, char *buf, size_t size)
+{
+    if (!s->dev->cmd_for) return 0;
+    s->dev->cmd_for(s->format, s->aasamples, buf, size);
+    return 1;
+}
+
+int ms_render_set_samples(ms_render_setting *set, int aasamples, int aosamples)
+{
+    char gen[1024];
+    int follow = generated_cmd(set, gen, sizeof gen) && !strcmp(gen, set->cmd);
+    if (aasamples >= 0) set->aasamples = aasamples;
+    if (aosamples >= 0) set->aosamples = aosamples;
+    if (!follow) return 0;
+    generated_cmd(set, gen, sizeof gen);
+    return ms_render_set_cmd(set, gen);
+}
+
+int ms_render_set_format(ms_render_setting *set, const char *name)
+{
+    const char *const *f = set->dev->formats;
+    for (int i = 0; f && f[i]; i++) {
+        if (strcasecmp(f[i], name)) continue;
+        char gen[1024];
+        set->format = i;
+        return generated_cmd(set, gen, sizeof gen) ? ms_render_set_cmd(set, gen) : 0;
+    }
+    return -1;
 }
 
 int ms_render_set_cmd(ms_render_setting *set, const char *cmd)

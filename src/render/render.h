@@ -23,6 +23,11 @@ typedef struct ms_render_device {
     int aasamples, aosamples;      /* defaults */
     /* Write the scene to path; 0, or -1 with err set and no file left behind. */
     int (*write)(const ms_scene *s, const char *path, ms_error *err);
+    /* Image formats of the post-render command (NULL-terminated; NULL: none), the default
+     * one, and the command a format and a sample count give (NULL: the command is fixed). */
+    const char *const *formats;
+    int default_format;
+    void (*cmd_for)(int format, int aasamples, char *buf, size_t size);
 } ms_render_device;
 
 /* Register a device (kept by pointer; first registration of a name wins). */
@@ -40,6 +45,7 @@ typedef struct ms_render_setting {
     const ms_render_device *dev;
     char *cmd;                     /* current post-render command (render options) */
     int aasamples, aosamples;
+    int format;                    /* index in dev->formats */
 } ms_render_setting;
 
 typedef struct ms_renderers {
@@ -52,6 +58,12 @@ void ms_renderers_free(ms_renderers *r);
 /* The settings of a device (created with its defaults on first use); NULL on no memory. */
 ms_render_setting *ms_render_setting_of(ms_renderers *r, const ms_render_device *dev);
 int ms_render_set_cmd(ms_render_setting *set, const char *cmd);
+/* Change the samples (a negative count leaves one as it is); a post-render command the device
+ * generated follows them, one the user set is kept. 0, or -1 when memory runs out. */
+int ms_render_set_samples(ms_render_setting *set, int aasamples, int aosamples);
+/* Choose an image format by name (case-insensitive); the post-render command is remade for
+ * it, as VMD does. -1 when the device has no such format (or no memory). */
+int ms_render_set_format(ms_render_setting *set, const char *name);
 
 /* Render the current scene with a device to a file, then run post_cmd (may be NULL). */
 int ms_render(ms_app *app, const ms_render_device *dev, const char *path, const char *post_cmd,

@@ -419,6 +419,22 @@ static int write_tachyon(const ms_scene *s, const char *path, ms_error *err)
     return ms_render_commit(f, tmp, path, !w.oom, err);
 }
 
+/* VMD's image formats for the tachyon command, and tachyon's names and file extensions. */
+static const char *const formats[] = {"BMP", "PPM", "PPM48", "PSD48", "RGB", "TGA", NULL};
+
+static void tachyon_cmd(int format, int aasamples, char *buf, size_t size)
+{
+    static const char *const flag[] = {"BMP", "PPM", "PPM48", "PSD48", "RGB", "TARGA"};
+    static const char *const ext[] = {"bmp", "ppm", "ppm", "psd", "rgb", "tga"};
+    const char *bin = getenv("TACHYON_BIN");
+    snprintf(buf, size, "%s -aasamples %d %%s -format %s -o %%s.%s", bin && *bin ? bin : "tachyon",
+             aasamples, flag[format], ext[format]);
+}
+
 const ms_render_device ms_render_tachyon = {
-    "Tachyon", "Tachyon scene file (.dat)",
-    "tachyon -aasamples 12 %s -format TARGA -o %s.tga", 1, 12, 12, write_tachyon};
+    .name = "Tachyon",
+    .description = "Tachyon scene file (.dat)",
+    .default_cmd = "tachyon -aasamples 12 %s -format TARGA -o %s.tga",
+    .has_aa = 1, .aasamples = 12, .aosamples = 12,
+    .write = write_tachyon,
+    .formats = formats, .default_format = 5, .cmd_for = tachyon_cmd};

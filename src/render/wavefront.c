@@ -295,4 +295,7 @@ static int write_obj(const ms_scene *s, const char *path, ms_error *err)
 }
 
 const ms_render_device ms_render_wavefront = {
-    "Wavefront", "Wavefront OBJ and MTL files", "true", 0, 0, 0, write_obj};
+    .name = "Wavefront",
+    .description = "Wavefront OBJ and MTL files",
+    .default_cmd = "true",
+    .write = write_obj};
