@@ -9,6 +9,9 @@ tests_unit_test_base_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_molecule_LDADD = $(TEST_CORE_LIBS)
+check_PROGRAMS += tests/unit/test_scene
+tests_unit_test_scene_SOURCES = tests/unit/test_scene.c tests/unit/ms_test.h
+tests_unit_test_scene_LDADD = $(TEST_CORE_LIBS)
 
 # Every plugin linked into one program (tests/tools/plugin_*.c rename their entry points).
 BUILTIN_PLUGINS = tests/tools/builtin.h tests/tools/plugin_pdb.c tests/tools/plugin_psf.c \

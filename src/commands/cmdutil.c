@@ -347,4 +347,5 @@ void ms_commands_register(ms_app *app)
     ms_cmd_molinfo_register(app);
     ms_cmd_animate_register(app);
     ms_cmd_vmdinfo_register(app);
+    ms_cmd_scene_register(app);
 }

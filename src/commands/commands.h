@@ -62,6 +62,8 @@ void ms_cmd_mol_register(ms_app *app);
 void ms_cmd_molinfo_register(ms_app *app);
 void ms_cmd_animate_register(ms_app *app);
 void ms_cmd_vmdinfo_register(ms_app *app);
+/* The scene-side commands (color, material, display, render, graphics ...): scenecmds.h */
+void ms_cmd_scene_register(ms_app *app);
 
 /* Shared by mol and animate: load a file as `mol new` (new molecule) or into mol. */
 typedef struct ms_load_opts ms_load_opts;

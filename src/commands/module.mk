@@ -3,3 +3,8 @@ src_libmscore_la_SOURCES += \
 	src/commands/commands.h src/commands/cmdutil.c \
 	src/commands/molinfo.h src/commands/cmd_molinfo.c \
 	src/commands/cmd_mol.c src/commands/cmd_animate.c src/commands/cmd_vmdinfo.c
+# the scene-side commands (scenecmds.h)
+src_libmscore_la_SOURCES += \
+	src/commands/scenecmds.h src/commands/cmd_scene.c src/commands/cmd_color.c \
+	src/commands/cmd_material.c src/commands/cmd_display.c src/commands/cmd_trans.c \
+	src/commands/cmd_graphics.c src/commands/cmd_render.c
