@@ -92,6 +92,7 @@ void ms_app_free(ms_app *app)
 {
     if (!app) return;
     if (app->idle_scheduled) Tcl_CancelIdleCall(idle_load, app);
+    for (size_t i = 0; i < app->mols.n; i++) ms_loader_cancel(app->mols.mols[i]);
     if (app->interp) {
         Tcl_SetVar(app->interp, "vmd_quit", "1", TCL_GLOBAL_ONLY);
         ms_molset_free(&app->mols);
