@@ -3,7 +3,9 @@
 # is "N passed, N failed" (", N skipped" when a backend or peer is missing).
 TEST_CORE_LIBS = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS)
 
-check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule
+check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_image
+tests_unit_test_image_SOURCES = tests/unit/test_image.c tests/unit/ms_test.h
+tests_unit_test_image_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h $(PLUGIN_UTIL)
 tests_unit_test_base_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h \
