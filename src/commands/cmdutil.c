@@ -347,4 +347,7 @@ void ms_commands_register(ms_app *app)
     ms_cmd_molinfo_register(app);
     ms_cmd_animate_register(app);
     ms_cmd_vmdinfo_register(app);
+    ms_cmd_vector_register(app);
+    ms_cmd_measure_register(app);
+    ms_cmd_measure_geom_register(app);
 }
