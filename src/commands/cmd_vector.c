@@ -8,9 +8,9 @@
  *   transidentity   transtranspose m   vectrans m v   coordtrans m v
  *
  * Each returns a number, a list of numbers or a 4x4 matrix. The ones VMD writes in Tcl
- * (vecdot veccross veclength2 vecinvert vecmul) keep integer input integer, as Tcl's expr
- * does; the others answer with doubles, as VMD's C versions do. Nothing here changes any
- * state. */
+ * (vecdot veccross veclength2 vecinvert vecmul) compute as Tcl's expr would, integers
+ * staying integers; the others answer with doubles, as VMD's C versions do. Nothing here
+ * changes any state. */
 #include "config.h"
 #include "commands/commands.h"
 #include "commands/tclvec.h"
@@ -50,49 +50,93 @@ static int two_vectors(Tcl_Interp *interp, Tcl_Obj *const objv[], const char *cm
     return ms_cmd_error(interp, "%s: two vectors don't have the same size", cmd);
 }
 
-/* ---------------------------------------------------------------- integer-preserving */
+/* ---------------------------------------------------------------- Tcl's expr arithmetic */
 
-/* All elements of a list integers (not 1.0 or 1e3)? Then *out gets them, malloc'd. */
-static int int_list(Tcl_Obj *obj, Tcl_WideInt **out, int *n)
+/* A number as Tcl's expr sees it, for the commands VMD writes in Tcl: an integer stays an
+ * integer until a real joins in (or a result would overflow 64 bits, where Tcl would go on
+ * with big integers and this goes on with reals). */
+typedef struct tnum {
+    int is_int;
+    Tcl_WideInt i;
+    double d;
+} tnum;
+
+static tnum tn_int(Tcl_WideInt i) { return (tnum){1, i, (double)i}; }
+static tnum tn_real(double d) { return (tnum){0, 0, d}; }
+
+static tnum tn_mul(tnum a, tnum b)
+{
+    long long r;
+    if (a.is_int && b.is_int && !__builtin_mul_overflow((long long)a.i, (long long)b.i, &r))
+        return tn_int(r);
+    return tn_real(a.d * b.d);
+}
+
+static tnum tn_add(tnum a, tnum b)
+{
+    long long r;
+    if (a.is_int && b.is_int && !__builtin_add_overflow((long long)a.i, (long long)b.i, &r))
+        return tn_int(r);
+    return tn_real(a.d + b.d);
+}
+
+static tnum tn_neg(tnum a) { return a.is_int && a.i != LLONG_MIN ? tn_int(-a.i) : tn_real(-a.d); }
+static tnum tn_sub(tnum a, tnum b) { return tn_add(a, tn_neg(b)); }
+static Tcl_Obj *tn_obj(tnum a) { return a.is_int ? Tcl_NewWideIntObj(a.i) : Tcl_NewDoubleObj(a.d); }
+
+typedef struct tn_list {
+    tnum *v;
+    int n;
+} tn_list;
+
+static int get_tnums(Tcl_Interp *interp, Tcl_Obj *obj, const char *cmd, const char *what,
+                     tn_list *out)
 {
     Tcl_Obj **e;
-    *out = NULL;
-    if (Tcl_ListObjGetElements(NULL, obj, n, &e) != TCL_OK) return 0;
-    Tcl_WideInt *v = ms_alloc_array((size_t)*n, sizeof *v);
-    for (int i = 0; v && i < *n; i++)
-        if (Tcl_GetWideIntFromObj(NULL, e[i], &v[i]) != TCL_OK) {
-            free(v);
-            return 0;
+    out->v = NULL;
+    if (Tcl_ListObjGetElements(NULL, obj, &out->n, &e) != TCL_OK)
+        return ms_cmd_error(interp, "%s: %s is not a list: '%s'", cmd, what, Tcl_GetString(obj));
+    if (!(out->v = ms_alloc_array((size_t)out->n, sizeof *out->v)))
+        return ms_cmd_error(interp, "%s: out of memory", cmd);
+    for (int k = 0; k < out->n; k++) {
+        Tcl_WideInt i;
+        double d;
+        if (Tcl_GetWideIntFromObj(NULL, e[k], &i) == TCL_OK) out->v[k] = tn_int(i);
+        else if (Tcl_GetDoubleFromObj(NULL, e[k], &d) == TCL_OK) out->v[k] = tn_real(d);
+        else {
+            free(out->v);
+            out->v = NULL;
+            return ms_cmd_error(interp, "%s: non-numeric in %s: '%s'", cmd, what, Tcl_GetString(e[k]));
         }
-    *out = v;
-    return v != NULL;
+    }
+    return TCL_OK;
 }
 
-/* Integer sum of x*y (y = x for squares); 0 on overflow, then the caller uses doubles. */
-static int int_dot(const Tcl_WideInt *x, const Tcl_WideInt *y, int n, Tcl_WideInt *out)
+/* Two expr-style lists; with same_size they must be equally long. */
+static int get_tnum_pair(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], const char *cmd,
+                         int same_size, tn_list *a, tn_list *b)
 {
-    long long s = 0, p;
-    for (int i = 0; i < n; i++) {
-        if (__builtin_mul_overflow((long long)x[i], (long long)y[i], &p) ||
-            __builtin_add_overflow(s, p, &s))
-            return 0;
+    if (objc != 3) {
+        Tcl_WrongNumArgs(interp, 1, objv, "vec1 vec2");
+        return TCL_ERROR;
     }
-    *out = s;
-    return 1;
+    if (get_tnums(interp, objv[1], cmd, "first vector", a) != TCL_OK) return TCL_ERROR;
+    if (get_tnums(interp, objv[2], cmd, "second vector", b) != TCL_OK) {
+        free(a->v);
+        return TCL_ERROR;
+    }
+    if (!same_size || a->n == b->n) return TCL_OK;
+    free(a->v);
+    free(b->v);
+    return ms_cmd_error(interp, "%s: two vectors don't have the same size", cmd);
 }
 
-/* Both arguments integer lists of one length? Then *x and *y hold them (malloc'd). */
-static int int_pair(Tcl_Obj *const objv[], Tcl_WideInt **x, Tcl_WideInt **y, int *n)
+static int set_tnums(Tcl_Interp *interp, const tnum *v, int n)
 {
-    int n2;
-    if (!int_list(objv[1], x, n)) return 0;
-    if (!int_list(objv[2], y, &n2) || n2 != *n) {
-        free(*x);
-        free(*y);
-        *x = *y = NULL;
-        return 0;
-    }
-    return 1;
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (int k = 0; k < n; k++) Tcl_ListObjAppendElement(NULL, l, tn_obj(v[k]));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
 }
 
 /* ---------------------------------------------------------------- vectors */
@@ -168,72 +212,30 @@ VEC_CMD(cmd_vecscale)
 
 VEC_CMD(cmd_vecdot)
 {
-    ms_numlist a, b;
-    Tcl_WideInt *x, *y, s;
-    int n;
-    if (objc != 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vec1 vec2");
-        return TCL_ERROR;
-    }
-    if (int_pair(objv, &x, &y, &n)) {
-        int ok = int_dot(x, y, n, &s);
-        free(x);
-        free(y);
-        if (ok) {
-            Tcl_SetObjResult(interp, Tcl_NewWideIntObj(s));
-            return TCL_OK;
-        }
-    }
-    if (two_vectors(interp, objv, "vecdot", &a, &b) != TCL_OK) return TCL_ERROR;
-    double d = 0.0;
-    for (int i = 0; i < a.n; i++) d += a.v[i] * b.v[i];
-    ms_numlist_free(&a);
-    ms_numlist_free(&b);
-    return set_double(interp, d);
-}
-
-/* The integer cross product; 0 on overflow. */
-static int int_cross(const Tcl_WideInt *x, const Tcl_WideInt *y, Tcl_WideInt out[3])
-{
-    for (int k = 0; k < 3; k++) {
-        long long p, q;
-        int i = (k + 1) % 3, j = (k + 2) % 3;
-        if (__builtin_mul_overflow((long long)x[i], (long long)y[j], &p) ||
-            __builtin_mul_overflow((long long)x[j], (long long)y[i], &q) ||
-            __builtin_sub_overflow(p, q, &p))
-            return 0;
-        out[k] = p;
-    }
-    return 1;
+    tn_list a, b;
+    if (get_tnum_pair(interp, objc, objv, "vecdot", 1, &a, &b) != TCL_OK) return TCL_ERROR;
+    tnum sum = tn_int(0);
+    for (int k = 0; k < a.n; k++) sum = tn_add(sum, tn_mul(a.v[k], b.v[k]));
+    free(a.v);
+    free(b.v);
+    Tcl_SetObjResult(interp, tn_obj(sum));
+    return TCL_OK;
 }
 
 VEC_CMD(cmd_veccross)
 {
-    ms_numlist a, b;
-    Tcl_WideInt *x, *y, c[3];
-    int n;
-    if (objc != 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vec1 vec2");
-        return TCL_ERROR;
+    tn_list a, b;
+    if (get_tnum_pair(interp, objc, objv, "veccross", 0, &a, &b) != TCL_OK) return TCL_ERROR;
+    int ok = a.n >= 3 && b.n >= 3;
+    tnum c[3];
+    for (int k = 0; ok && k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        c[k] = tn_sub(tn_mul(a.v[i], b.v[j]), tn_mul(a.v[j], b.v[i]));
     }
-    if (int_pair(objv, &x, &y, &n)) {
-        int ok = n >= 3 && int_cross(x, y, c);
-        free(x);
-        free(y);
-        if (ok) {
-            Tcl_Obj *e[3] = {Tcl_NewWideIntObj(c[0]), Tcl_NewWideIntObj(c[1]), Tcl_NewWideIntObj(c[2])};
-            Tcl_SetObjResult(interp, Tcl_NewListObj(3, e));
-            return TCL_OK;
-        }
-    }
-    if (two_vectors(interp, objv, "veccross", &a, &b) != TCL_OK) return TCL_ERROR;
-    int ok = a.n >= 3;
-    double d[3];
-    if (ok) ms_v3_cross(a.v, b.v, d);
-    ms_numlist_free(&a);
-    ms_numlist_free(&b);
+    free(a.v);
+    free(b.v);
     if (!ok) return ms_cmd_error(interp, "veccross: vectors must have three elements");
-    return set_doubles(interp, d, 3);
+    return set_tnums(interp, c, 3);
 }
 
 /* One list of numbers as the only argument. */
@@ -265,21 +267,17 @@ VEC_CMD(cmd_veclength)
 
 VEC_CMD(cmd_veclength2)
 {
-    ms_numlist l;
-    Tcl_WideInt *x, s;
-    int n;
-    if (objc == 2 && int_list(objv[1], &x, &n)) {
-        int ok = int_dot(x, x, n, &s);
-        free(x);
-        if (ok) {
-            Tcl_SetObjResult(interp, Tcl_NewWideIntObj(s));
-            return TCL_OK;
-        }
+    tn_list l;
+    if (objc != 2) {
+        Tcl_WrongNumArgs(interp, 1, objv, "vector");
+        return TCL_ERROR;
     }
-    if (one_vector(interp, objc, objv, "veclength2", &l) != TCL_OK) return TCL_ERROR;
-    double d = sum_squares(&l);
-    ms_numlist_free(&l);
-    return set_double(interp, d);
+    if (get_tnums(interp, objv[1], "veclength2", "vector", &l) != TCL_OK) return TCL_ERROR;
+    tnum sum = tn_int(0);
+    for (int k = 0; k < l.n; k++) sum = tn_add(sum, tn_mul(l.v[k], l.v[k]));
+    free(l.v);
+    Tcl_SetObjResult(interp, tn_obj(sum));
+    return TCL_OK;
 }
 
 VEC_CMD(cmd_vecnorm)
@@ -314,54 +312,26 @@ VEC_CMD(cmd_vecdist)
 
 VEC_CMD(cmd_vecinvert)
 {
-    ms_numlist l;
-    Tcl_WideInt *x;
-    int n, ok = 1;
-    if (objc == 2 && int_list(objv[1], &x, &n)) {
-        Tcl_Obj *r = Tcl_NewListObj(0, NULL);
-        for (int i = 0; i < n && (ok = x[i] != LLONG_MIN); i++)
-            Tcl_ListObjAppendElement(NULL, r, Tcl_NewWideIntObj(-x[i]));
-        free(x);
-        if (ok) {
-            Tcl_SetObjResult(interp, r);
-            return TCL_OK;
-        }
-        Tcl_DecrRefCount(r);
+    tn_list l;
+    if (objc != 2) {
+        Tcl_WrongNumArgs(interp, 1, objv, "vector");
+        return TCL_ERROR;
     }
-    if (one_vector(interp, objc, objv, "vecinvert", &l) != TCL_OK) return TCL_ERROR;
-    for (int i = 0; i < l.n; i++) l.v[i] = -l.v[i];
-    set_doubles(interp, l.v, l.n);
-    ms_numlist_free(&l);
+    if (get_tnums(interp, objv[1], "vecinvert", "vector", &l) != TCL_OK) return TCL_ERROR;
+    for (int k = 0; k < l.n; k++) l.v[k] = tn_neg(l.v[k]);
+    set_tnums(interp, l.v, l.n);
+    free(l.v);
     return TCL_OK;
 }
 
 VEC_CMD(cmd_vecmul)
 {
-    ms_numlist a, b;
-    Tcl_WideInt *x, *y;
-    int n, ok = 1;
-    if (objc != 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vec1 vec2");
-        return TCL_ERROR;
-    }
-    if (int_pair(objv, &x, &y, &n)) {
-        Tcl_Obj *r = Tcl_NewListObj(0, NULL);
-        long long p;
-        for (int i = 0; i < n && (ok = !__builtin_mul_overflow((long long)x[i], (long long)y[i], &p)); i++)
-            Tcl_ListObjAppendElement(NULL, r, Tcl_NewWideIntObj(p));
-        free(x);
-        free(y);
-        if (ok) {
-            Tcl_SetObjResult(interp, r);
-            return TCL_OK;
-        }
-        Tcl_DecrRefCount(r);
-    }
-    if (two_vectors(interp, objv, "vecmul", &a, &b) != TCL_OK) return TCL_ERROR;
-    for (int i = 0; i < a.n; i++) a.v[i] *= b.v[i];
-    set_doubles(interp, a.v, a.n);
-    ms_numlist_free(&a);
-    ms_numlist_free(&b);
+    tn_list a, b;
+    if (get_tnum_pair(interp, objc, objv, "vecmul", 1, &a, &b) != TCL_OK) return TCL_ERROR;
+    for (int k = 0; k < a.n; k++) a.v[k] = tn_mul(a.v[k], b.v[k]);
+    set_tnums(interp, a.v, a.n);
+    free(a.v);
+    free(b.v);
     return TCL_OK;
 }
 
