@@ -74,7 +74,7 @@ static int weights_from_list(Tcl_Interp *interp, const char *cmd, const msel *s,
                              double *w)
 {
     ms_numlist l;
-    if (ms_tcl_get_numlist(NULL, obj, cmd, "weight", &l) != TCL_OK)
+    if (ms_tcl_get_numlist(interp, obj, cmd, "weight", &l) != TCL_OK)
         return ms_cmd_error(interp, "%s: weight: expected none, a floating-point atom keyword "
                             "(mass, charge, beta, occupancy, radius, user...) or a list of "
                             "numbers, got '%s'", cmd, Tcl_GetString(obj));

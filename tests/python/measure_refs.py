@@ -65,6 +65,21 @@ def tii():
     first_d = u.select_atoms("chainID D").indices
     first_e = u.select_atoms("chainID E").indices
     print("1tii D/E first contact pair", first_d[ind[0][0]], first_e[ind[0][1]])
+    # contacts inside chain D: pairs within 3.0 A, not at the same place, not bonded (VMD's
+    # distance rule d < 0.6 (r1 + r2) with the Bondi radii, plus the CONECT records)
+    rd = np.array([RADIUS[e] for e in u.select_atoms("chainID D").elements])
+    dd2 = np.sqrt(((dd[:, None, :] - dd[None, :, :]) ** 2).sum(2))
+    bonded = dd2 < 0.6 * (rd[:, None] + rd[None, :])
+    for line in open(os.path.join(DATA, "1tii.pdb")):
+        if line.startswith("CONECT"):
+            ser = [int(line[k:k + 5]) - 1 for k in range(6, 31, 5) if line[k:k + 5].strip()]
+            for j in ser[1:]:
+                if ser[0] < len(dd) and j < len(dd):
+                    bonded[ser[0], j] = bonded[j, ser[0]] = True
+    iu = np.triu_indices(len(dd), 1)
+    dist, bond = dd2[iu], bonded[iu]
+    print("1tii chain D contacts <= 3.0", ((dist <= 3.0) & (dist ** 2 >= 0.001) & ~bond).sum(),
+          "bonded", bond.sum())
 
 
 def sasa():

@@ -844,6 +844,14 @@ static void test_1tii_pairs(void)
     t_ok(rc == 0 && p.n == 36 && p.a[0] == 3 &&
              p.b[0] == 927, "36 contacts within 3.5 between chains D and E (%zu)", p.n);
     ms_pairs_free(&p);
+    /* chain D alone: 1432 unbonded pairs within 3.0 (numpy with VMD's bond rule), and every
+     * pair within 1.7 is bonded */
+    rc = ms_measure_contacts(&a, NULL, 3.0, &p, &err);
+    t_ok(rc == 0 && p.n == 1432, "1432 contacts within chain D at 3.0 (%zu)", p.n);
+    ms_pairs_free(&p);
+    rc = ms_measure_contacts(&a, NULL, 1.7, &p, &err);
+    t_ok(rc == 0 && p.n == 0, "bonded pairs are no contacts (%zu)", p.n);
+    ms_pairs_free(&p);
     rc = ms_measure_contacts(&a, &b, 4.0, &p, &err);
     t_ok(rc == 0 && p.n == 174, "174 within 4.0 (%zu)", p.n);
     ms_pairs_free(&p);
