@@ -4,7 +4,9 @@
  *   base/       utilities: errors, interned strings, worker threads
  *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set
  *   fileio/     the plugin registry, loading files into molecules, writing them out
- *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
+ *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
+ *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
+ *   commands/   the Tcl command bindings (mol, molinfo, animate, measure, vecadd ...)
  *   app/        the program: command line, startup order, shell
  *   ../plugins  file formats, each a module loaded at run time (ms_plugin.h)
  */
@@ -21,6 +23,8 @@
 #include "fileio/registry.h"
 #include "fileio/load.h"
 #include "fileio/write.h"
+#include "vecmath/vecmath.h"
+#include "measure/measure.h"
 #include "app/app.h"
 #include "commands/commands.h"
 
