@@ -578,14 +578,15 @@ static int gofr_options(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], con
         const char *o = Tcl_GetString(objv[i]);
         Tcl_Obj *v = i + 1 < objc ? objv[i + 1] : NULL;
         Tcl_WideInt n = 0;
-        int ok = v != NULL;
-        if (ok && (ms_word_eq(o, "delta") || ms_word_eq(o, "rmax"))) {
+        int ok = 1;
+        if (!v) return ms_cmd_error(interp, "%s: option '%s' has no value", cmd, o);
+        if (ms_word_eq(o, "delta") || ms_word_eq(o, "rmax")) {
             double *d = ms_word_eq(o, "delta") ? &g->delta : &g->rmax;
             ok = Tcl_GetDoubleFromObj(NULL, v, d) == TCL_OK && *d > 0 && isfinite(*d);
-        } else if (ok && (ms_word_eq(o, "usepbc") || ms_word_eq(o, "selupdate"))) {
+        } else if (ms_word_eq(o, "usepbc") || ms_word_eq(o, "selupdate")) {
             ok = Tcl_GetBooleanFromObj(NULL, v, ms_word_eq(o, "usepbc") ? &g->usepbc
                                                                         : &g->selupdate) == TCL_OK;
-        } else if (ok && (ms_word_eq(o, "first") || ms_word_eq(o, "last") || ms_word_eq(o, "step"))) {
+        } else if (ms_word_eq(o, "first") || ms_word_eq(o, "last") || ms_word_eq(o, "step")) {
             ok = Tcl_GetWideIntFromObj(NULL, v, &n) == TCL_OK && n >= -1 && n <= 2147483647;
             *(ms_word_eq(o, "first") ? &g->first : ms_word_eq(o, "last") ? &g->last : &g->step) = (long)n;
         } else {
@@ -593,8 +594,7 @@ static int gofr_options(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], con
                                 "<d>? ?rmax <r>? ?usepbc <bool>? ?selupdate <bool>? ?first <f>? "
                                 "?last <l>? ?step <s>?", cmd, o, cmd);
         }
-        if (!ok) return ms_cmd_error(interp, "%s: bad value for %s: '%s'", cmd, o,
-                                     v ? Tcl_GetString(v) : "");
+        if (!ok) return ms_cmd_error(interp, "%s: bad value for %s: '%s'", cmd, o, Tcl_GetString(v));
     }
     return TCL_OK;
 }
