@@ -8,6 +8,9 @@
  *   view/       camera and display settings, lights, axes, stage, rotate/translate/scale
  *   render/     the render devices by VMD name and the file exporters (Tachyon, POV3, OBJ)
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
+ *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
+ *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
+ *   commands/   the Tcl command bindings (mol, molinfo, animate, measure, vecadd ...)
  *   app/        the program: command line, startup order, shell
  *   ../plugins  file formats, each a module loaded at run time (ms_plugin.h)
  */
@@ -32,6 +35,8 @@
 #include "scene/scene.h"
 #include "view/view.h"
 #include "render/render.h"
+#include "vecmath/vecmath.h"
+#include "measure/measure.h"
 #include "app/app.h"
 #include "commands/commands.h"
 

@@ -10,7 +10,7 @@ if {[lsearch -exact $::auto_path $::molscope::libdir] < 0} {
 }
 
 # Library scripts, in order; each defines procs only.
-foreach ::molscope::script {} {
+foreach ::molscope::script {vectors.tcl} {
     source [file join $::molscope::libdir $::molscope::script]
 }
 unset -nocomplain ::molscope::script

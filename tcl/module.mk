@@ -1,2 +1,2 @@
 # tcl: the Tcl library shipped with molscope.
-tcllib_DATA += tcl/init.tcl
+tcllib_DATA += tcl/init.tcl tcl/vectors.tcl

@@ -6,6 +6,7 @@ TEST_CORE_LIBS = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS)
 check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_image
 tests_unit_test_image_SOURCES = tests/unit/test_image.c tests/unit/ms_test.h
 tests_unit_test_image_LDADD = $(TEST_CORE_LIBS)
+check_PROGRAMS += tests/unit/test_measure
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h $(PLUGIN_UTIL)
 tests_unit_test_base_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h \
@@ -14,6 +15,9 @@ tests_unit_test_molecule_LDADD = $(TEST_CORE_LIBS)
 check_PROGRAMS += tests/unit/test_scene
 tests_unit_test_scene_SOURCES = tests/unit/test_scene.c tests/unit/ms_test.h
 tests_unit_test_scene_LDADD = $(TEST_CORE_LIBS)
+tests_unit_test_measure_SOURCES = tests/unit/test_measure.c tests/unit/ms_test.h \
+	plugins/pdb.c $(PLUGIN_UTIL)
+tests_unit_test_measure_LDADD = $(TEST_CORE_LIBS)
 
 # Every plugin linked into one program (tests/tools/plugin_*.c rename their entry points).
 BUILTIN_PLUGINS = tests/tools/builtin.h tests/tools/plugin_pdb.c tests/tools/plugin_psf.c \
@@ -90,7 +94,10 @@ CLEANFILES += $(FUZZ_FORMATS:%=tests/fuzz/lf_%)
 
 EXTRA_DIST += tests/run-tests tests/tcl tests/data tests/python tests/fuzz/corpus
 
-check-build: all $(check_LTLIBRARIES) $(check_PROGRAMS)
+# The test programs are linked in a second step, after `all` has rebuilt the core library
+# (listing both as prerequisites let a parallel make relink them against the old one).
+check-build: all
+	$(MAKE) $(AM_MAKEFLAGS) $(check_LTLIBRARIES) $(check_PROGRAMS)
 
 check-local: check-build
 	$(top_srcdir)/tests/run-tests $(abs_top_builddir)
@@ -100,3 +107,4 @@ check-local: check-build
 # Per-target flags give the test programs their own objects of the shared plugin sources.
 tests_unit_test_base_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_molecule_CFLAGS = $(AM_CFLAGS)
+tests_unit_test_measure_CFLAGS = $(AM_CFLAGS)

@@ -348,4 +348,7 @@ void ms_commands_register(ms_app *app)
     ms_cmd_animate_register(app);
     ms_cmd_vmdinfo_register(app);
     ms_cmd_scene_register(app);
+    ms_cmd_vector_register(app);
+    ms_cmd_measure_register(app);
+    ms_cmd_measure_geom_register(app);
 }

@@ -64,6 +64,11 @@ void ms_cmd_animate_register(ms_app *app);
 void ms_cmd_vmdinfo_register(ms_app *app);
 /* The scene-side commands (color, material, display, render, graphics ...): scenecmds.h */
 void ms_cmd_scene_register(ms_app *app);
+/* measure (cmd_measure.c, with bond/angle/dihed/imprp/inverse from cmd_measure_geom.c) and
+ * VMD's vector and matrix commands (cmd_vector.c). */
+void ms_cmd_measure_register(ms_app *app);
+void ms_cmd_measure_geom_register(ms_app *app);
+void ms_cmd_vector_register(ms_app *app);
 
 /* Shared by mol and animate: load a file as `mol new` (new molecule) or into mol. */
 typedef struct ms_load_opts ms_load_opts;
