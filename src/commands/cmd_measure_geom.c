@@ -174,7 +174,7 @@ SUBCMD(m_inverse)
     double m[16], inv[16];
     if (objc != 3) return ms_cmd_error(interp, "measure inverse: usage: measure inverse <matrix>");
     if (ms_tcl_get_mat4(interp, objv[2], "measure inverse", m) != TCL_OK) return TCL_ERROR;
-    if (ms_mat4_inverse(m, inv))
+    if (ms_mat4d_inverse(m, inv))
         return ms_cmd_error(interp, "measure inverse: singular matrix, inverse not computed");
     Tcl_SetObjResult(interp, ms_tcl_new_mat4(inv));
     return TCL_OK;

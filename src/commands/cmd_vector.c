@@ -385,7 +385,7 @@ VEC_CMD(cmd_transmult)
     if (ms_tcl_get_mat4(interp, objv[1], "transmult", prod) != TCL_OK) return TCL_ERROR;
     for (int i = 2; i < objc; i++) {
         if (ms_tcl_get_mat4(interp, objv[i], "transmult", m) != TCL_OK) return TCL_ERROR;
-        ms_mat4_mul(prod, m, prod);
+        ms_mat4d_mul(prod, m, prod);
     }
     return set_mat4(interp, prod);
 }
@@ -400,8 +400,8 @@ static int transvec_cmd(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], con
         return TCL_ERROR;
     }
     if (ms_tcl_get_vec3(interp, objv[1], cmd, "vector", v) != TCL_OK) return TCL_ERROR;
-    if (inverse) ms_mat4_transvecinv(m, v);
-    else ms_mat4_transvec(m, v);
+    if (inverse) ms_mat4d_transvecinv(m, v);
+    else ms_mat4d_transvec(m, v);
     return set_mat4(interp, m);
 }
 
@@ -423,7 +423,7 @@ VEC_CMD(cmd_transabout)
     else if (!strcmp(unit, "pi")) amount *= M_PI;
     else if (strcmp(unit, "rad"))
         return ms_cmd_error(interp, "transabout: unit must be deg, rad or pi, not '%s'", unit);
-    ms_mat4_rotate_about(m, axis, amount);
+    ms_mat4d_rotate_about(m, axis, amount);
     return set_mat4(interp, m);
 }
 
@@ -434,7 +434,7 @@ VEC_CMD(cmd_transidentity)
         Tcl_WrongNumArgs(interp, 1, objv, "");
         return TCL_ERROR;
     }
-    ms_mat4_identity(m);
+    ms_mat4d_identity(m);
     return set_mat4(interp, m);
 }
 
@@ -479,7 +479,7 @@ static int transform_cmd(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], co
     for (int i = 0; i < n && i < 4; i++) v[i] = l.v[i];
     ms_numlist_free(&l);
     if (n != 3 && n != 4) return ms_cmd_error(interp, "%s: vector must be of size 3 or 4", cmd);
-    ms_mat4_apply(m, v, v);
+    ms_mat4d_apply(m, v, v);
     return set_doubles(interp, v, n);
 }
 

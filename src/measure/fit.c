@@ -52,7 +52,7 @@ static void quaternion_rotation(const double q[4], double m[16])
     double r[9] = {a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c),
                    2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b),
                    2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d};
-    ms_mat4_identity(m);
+    ms_mat4d_identity(m);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) m[4 * i + j] = r[3 * i + j];
 }
@@ -79,7 +79,7 @@ int ms_measure_fit_points(size_t n, const double *x, const double *y, const doub
     }
     quaternion_rotation(evecs, m);   /* eigenvector of the largest eigenvalue */
     double rc[3];
-    ms_mat4_apply_point(m, cx, rc);  /* translation: cy - R cx */
+    ms_mat4d_apply_point(m, cx, rc);  /* translation: cy - R cx */
     for (int k = 0; k < 3; k++) m[4 * k + 3] = cy[k] - rc[k];
     return 0;
 }

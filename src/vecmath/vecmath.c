@@ -47,13 +47,13 @@ double ms_v3_dihedral(const double a[3], const double b[3], const double c[3], c
 
 /* ---------------------------------------------------------------- 4x4 matrices */
 
-void ms_mat4_identity(double m[16])
+void ms_mat4d_identity(double m[16])
 {
     memset(m, 0, 16 * sizeof *m);
     m[0] = m[5] = m[10] = m[15] = 1.0;
 }
 
-void ms_mat4_mul(const double a[16], const double b[16], double out[16])
+void ms_mat4d_mul(const double a[16], const double b[16], double out[16])
 {
     double t[16];
     for (int r = 0; r < 4; r++)
@@ -65,7 +65,7 @@ void ms_mat4_mul(const double a[16], const double b[16], double out[16])
     memcpy(out, t, sizeof t);
 }
 
-void ms_mat4_transpose(const double a[16], double out[16])
+void ms_mat4d_transpose(const double a[16], double out[16])
 {
     double t[16];
     for (int r = 0; r < 4; r++)
@@ -86,11 +86,11 @@ static void swap_rows(double a[16], double b[16], int r, int s)
     }
 }
 
-int ms_mat4_inverse(const double in[16], double out[16])
+int ms_mat4d_inverse(const double in[16], double out[16])
 {
     double a[16], inv[16], scale = 0.0;
     memcpy(a, in, sizeof a);
-    ms_mat4_identity(inv);
+    ms_mat4d_identity(inv);
     for (int k = 0; k < 16; k++) {
         if (!isfinite(a[k])) return -1;
         if (fabs(a[k]) > scale) scale = fabs(a[k]);
@@ -119,7 +119,7 @@ int ms_mat4_inverse(const double in[16], double out[16])
     return 0;
 }
 
-void ms_mat4_apply(const double m[16], const double v[4], double out[4])
+void ms_mat4d_apply(const double m[16], const double v[4], double out[4])
 {
     double t[4];
     for (int r = 0; r < 4; r++)
@@ -127,29 +127,29 @@ void ms_mat4_apply(const double m[16], const double v[4], double out[4])
     memcpy(out, t, sizeof t);
 }
 
-void ms_mat4_apply_point(const double m[16], const double p[3], double out[3])
+void ms_mat4d_apply_point(const double m[16], const double p[3], double out[3])
 {
     double v[4] = {p[0], p[1], p[2], 1.0};
-    ms_mat4_apply(m, v, v);
+    ms_mat4d_apply(m, v, v);
     memcpy(out, v, 3 * sizeof *out);
 }
 
-void ms_mat4_translation(double m[16], const double t[3])
+void ms_mat4d_translation(double m[16], const double t[3])
 {
-    ms_mat4_identity(m);
+    ms_mat4d_identity(m);
     m[3] = t[0];
     m[7] = t[1];
     m[11] = t[2];
 }
 
-void ms_mat4_axis_rotation(double m[16], char axis, double rad)
+void ms_mat4d_axis_rotation(double m[16], char axis, double rad)
 {
     /* The two coordinates that turn, in right-handed order: y->z about x, z->x about y,
      * x->y about z. */
     int i = axis == 'x' ? 1 : axis == 'y' ? 2 : 0;
     int j = axis == 'x' ? 2 : axis == 'y' ? 0 : 1;
     double c = cos(rad), s = sin(rad);
-    ms_mat4_identity(m);
+    ms_mat4d_identity(m);
     m[4 * i + i] = c;
     m[4 * i + j] = -s;
     m[4 * j + i] = s;
@@ -163,25 +163,25 @@ static void direction_angles(const double v[3], double *theta, double *phi)
     *phi = atan2(v[2], sqrt(v[0] * v[0] + v[1] * v[1]));
 }
 
-void ms_mat4_transvec(double m[16], const double v[3])
+void ms_mat4d_transvec(double m[16], const double v[3])
 {
     double theta, phi, rz[16], ry[16];
     direction_angles(v, &theta, &phi);
-    ms_mat4_axis_rotation(rz, 'z', theta);
-    ms_mat4_axis_rotation(ry, 'y', -phi);
-    ms_mat4_mul(rz, ry, m);
+    ms_mat4d_axis_rotation(rz, 'z', theta);
+    ms_mat4d_axis_rotation(ry, 'y', -phi);
+    ms_mat4d_mul(rz, ry, m);
 }
 
-void ms_mat4_transvecinv(double m[16], const double v[3])
+void ms_mat4d_transvecinv(double m[16], const double v[3])
 {
     double theta, phi, rz[16], ry[16];
     direction_angles(v, &theta, &phi);
-    ms_mat4_axis_rotation(ry, 'y', phi);
-    ms_mat4_axis_rotation(rz, 'z', -theta);
-    ms_mat4_mul(ry, rz, m);
+    ms_mat4d_axis_rotation(ry, 'y', phi);
+    ms_mat4d_axis_rotation(rz, 'z', -theta);
+    ms_mat4d_mul(ry, rz, m);
 }
 
-void ms_mat4_rotate_about(double m[16], const double axis[3], double rad)
+void ms_mat4d_rotate_about(double m[16], const double axis[3], double rad)
 {
     /* Rodrigues: R = cos I + sin [k]x + (1 - cos) k k^T for the unit axis k. This equals
      * VMD's transvec * Rx * transvecinv, which turns about x for a zero axis. */
@@ -192,7 +192,7 @@ void ms_mat4_rotate_about(double m[16], const double axis[3], double rad)
     double r[9] = {c + t * k[0] * k[0],        t * k[0] * k[1] - s * k[2], t * k[0] * k[2] + s * k[1],
                    t * k[0] * k[1] + s * k[2], c + t * k[1] * k[1],        t * k[1] * k[2] - s * k[0],
                    t * k[0] * k[2] - s * k[1], t * k[1] * k[2] + s * k[0], c + t * k[2] * k[2]};
-    ms_mat4_identity(m);
+    ms_mat4d_identity(m);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) m[4 * i + j] = r[3 * i + j];
 }

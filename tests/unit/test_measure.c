@@ -94,32 +94,32 @@ static void test_matrices(void)
 {
     t_suite = "vecmath";
     double a[16] = {2, 1, 0, 3, 0, 1, 4, -1, 1, 0, 1, 2, 0, 0, 0, 1}, inv[16], prod[16], id[16];
-    ms_mat4_identity(id);
-    t_ok(ms_mat4_inverse(a, inv) == 0, "inverse of an invertible matrix");
-    ms_mat4_mul(a, inv, prod);
+    ms_mat4d_identity(id);
+    t_ok(ms_mat4d_inverse(a, inv) == 0, "inverse of an invertible matrix");
+    ms_mat4d_mul(a, inv, prod);
     t_ok(mat_diff(prod, id) < 1e-12, "a * inverse(a) = identity (%g)", mat_diff(prod, id));
     double sing[16] = {1, 2, 3, 4, 2, 4, 6, 8, 0, 1, 0, 1, 0, 0, 0, 1};
-    t_ok(ms_mat4_inverse(sing, inv) == -1, "a singular matrix is refused");
+    t_ok(ms_mat4d_inverse(sing, inv) == -1, "a singular matrix is refused");
 
     /* transabout = transvec * Rx * transvecinv, VMD's own construction, for any axis */
     double axis[3] = {0.3, -1.2, 2.0}, r[16], tv[16], rx[16], tvi[16], ref[16];
-    ms_mat4_rotate_about(r, axis, 0.7);
-    ms_mat4_transvec(tv, axis);
-    ms_mat4_axis_rotation(rx, 'x', 0.7);
-    ms_mat4_transvecinv(tvi, axis);
-    ms_mat4_mul(tv, rx, ref);
-    ms_mat4_mul(ref, tvi, ref);
+    ms_mat4d_rotate_about(r, axis, 0.7);
+    ms_mat4d_transvec(tv, axis);
+    ms_mat4d_axis_rotation(rx, 'x', 0.7);
+    ms_mat4d_transvecinv(tvi, axis);
+    ms_mat4d_mul(tv, rx, ref);
+    ms_mat4d_mul(ref, tvi, ref);
     t_ok(mat_diff(r, ref) < 1e-12, "rotation about an axis matches transvec.Rx.transvecinv");
     double ex[3] = {1, 0, 0}, out[3], len = ms_v3_length(axis);
-    ms_mat4_apply_point(tv, ex, out);
+    ms_mat4d_apply_point(tv, ex, out);
     t_ok(near(out[0], axis[0] / len, 1e-12) && near(out[1], axis[1] / len, 1e-12) &&
              near(out[2], axis[2] / len, 1e-12), "transvec takes x onto the vector's direction");
     double z[3] = {0, 0, 1}, q[3];
-    ms_mat4_axis_rotation(r, 'z', M_PI / 2);
-    ms_mat4_apply_point(r, ex, q);
+    ms_mat4d_axis_rotation(r, 'z', M_PI / 2);
+    ms_mat4d_apply_point(r, ex, q);
     t_ok(near(q[1], 1, 1e-12) && near(q[0], 0, 1e-12), "rotation about z turns x onto y");
-    ms_mat4_rotate_about(r, z, M_PI / 2);
-    ms_mat4_apply_point(r, ex, q);
+    ms_mat4d_rotate_about(r, z, M_PI / 2);
+    ms_mat4d_apply_point(r, ex, q);
     t_ok(near(q[1], 1, 1e-12), "rotation about {0 0 1} turns x onto y");
 }
 
@@ -130,7 +130,7 @@ static void test_eigen(void)
     /* A = R diag(5, 2, -1) R^T for a known rotation R: eigenvalues 5 2 -1, vectors R's
      * columns. */
     double R[16], axis[3] = {1, 2, 2}, d[3] = {2, 5, -1}, A[9] = {0}, ev[3], vec[9];
-    ms_mat4_rotate_about(R, axis, 1.1);
+    ms_mat4d_rotate_about(R, axis, 1.1);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
             for (int k = 0; k < 3; k++) A[3 * i + j] += R[4 * i + k] * d[k] * R[4 * j + k];
@@ -212,10 +212,10 @@ static void test_inertia_box(void)
     int rc;
     t_suite = "measure";
     double xyz[24], R[16], axis[3] = {1, -1, 0.5};
-    ms_mat4_rotate_about(R, axis, 0.9);
+    ms_mat4d_rotate_about(R, axis, 0.9);
     for (int k = 0; k < 8; k++) {
         double p[3] = {k & 1 ? 3 : -3, k & 2 ? 2 : -2, k & 4 ? 1 : -1};
-        ms_mat4_apply_point(R, p, xyz + 3 * k);
+        ms_mat4d_apply_point(R, p, xyz + 3 * k);
         xyz[3 * k] += 10;   /* and moved off the origin */
     }
     ms_molecule *m = make_mol(8, xyz);
@@ -245,7 +245,7 @@ static double fitted_rmsd(size_t n, const double *x, const double *y, const doub
     double s = 0;
     for (size_t i = 0; i < n; i++) {
         double p[3], d[3];
-        ms_mat4_apply_point(m, x + 3 * i, p);
+        ms_mat4d_apply_point(m, x + 3 * i, p);
         ms_v3_sub(p, y + 3 * i, d);
         s += ms_v3_dot(d, d);
     }
@@ -266,10 +266,10 @@ static void test_fit_rotation(void)
     enum { N = 20 };
     double x[3 * N], y[3 * N], R[16], axis[3] = {1, 2, 3}, m[16], t[3] = {3, -2, 7};
     ms_error err = {{0}};
-    ms_mat4_rotate_about(R, axis, 37 * M_PI / 180);
+    ms_mat4d_rotate_about(R, axis, 37 * M_PI / 180);
     for (int k = 0; k < 3; k++) R[4 * k + 3] = t[k];
     for (int i = 0; i < 3 * N; i++) x[i] = 10 * rnd() - 5;
-    for (int i = 0; i < N; i++) ms_mat4_apply_point(R, x + 3 * i, y + 3 * i);
+    for (int i = 0; i < N; i++) ms_mat4d_apply_point(R, x + 3 * i, y + 3 * i);
     rc = ms_measure_fit_points(N, x, y, NULL, m, &err);
     t_ok(rc == 0, "fit of a rotated copy");
     t_ok(mat_diff(m, R) < 1e-10, "the rotation and translation come back (%g)", mat_diff(m, R));
@@ -277,7 +277,7 @@ static void test_fit_rotation(void)
     /* and the reverse direction is the inverse */
     double back[16], inv[16];
     ms_measure_fit_points(N, y, x, NULL, back, &err);
-    ms_mat4_inverse(R, inv);
+    ms_mat4d_inverse(R, inv);
     t_ok(mat_diff(back, inv) < 1e-10, "fitting y onto x gives the inverse motion");
     /* a zero weight on a displaced atom: the others still fit exactly */
     double w[N];
@@ -310,8 +310,8 @@ static void test_fit_mirror(void)
     for (int k = 0; k < 2000; k++) {
         double axis[3] = {rnd() - 0.5, rnd() - 0.5, rnd() - 0.5}, r[16], cx[3] = {0.4, 0.6, 0.8};
         double cy[3] = {-0.4, 0.6, 0.8}, rc[3];
-        ms_mat4_rotate_about(r, axis, 2 * M_PI * rnd());
-        ms_mat4_apply_point(r, cx, rc);
+        ms_mat4d_rotate_about(r, axis, 2 * M_PI * rnd());
+        ms_mat4d_apply_point(r, cx, rc);
         for (int j = 0; j < 3; j++) r[4 * j + 3] = cy[j] - rc[j];
         if (fitted_rmsd(5, x, y, r) < best - 1e-9) beaten++;
     }
@@ -354,11 +354,11 @@ static void test_fit_sets(void)
     for (int i = 0; i < 3 * N; i++) x[i] = 20 * rnd() - 10;
     ms_molecule *mol = make_mol(N, x);
     ms_frame *f = ms_mol_add_frame(mol, 0, &err);
-    ms_mat4_rotate_about(R, axis, 2.0);
+    ms_mat4d_rotate_about(R, axis, 2.0);
     R[3] = 1, R[7] = 2, R[11] = -3;
     for (int i = 0; i < N; i++) {
         double p[3];
-        ms_mat4_apply_point(R, x + 3 * i, p);
+        ms_mat4d_apply_point(R, x + 3 * i, p);
         for (int k = 0; k < 3; k++) f->pos[3 * i + k] = (float)p[k];
     }
     uint32_t *idx = iota(N), order[N];
