@@ -1,18 +1,24 @@
 # tests: unit tests (C), Tcl-level tests run by molscope, cross-checks, fuzz smoke runs.
 # `make check` (or tests/run-tests after `make check-build`) runs them all; the last line
 # is "N passed, N failed" (", N skipped" when a backend or peer is missing).
-TEST_CORE_LIBS = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS)
+TEST_CORE_LIBS = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS) $(MPI_LIBS)
 
-check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule
+check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_serialize
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h $(PLUGIN_UTIL)
 tests_unit_test_base_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_molecule_LDADD = $(TEST_CORE_LIBS)
+tests_unit_test_serialize_SOURCES = tests/unit/test_serialize.c tests/unit/ms_test.h \
+	plugins/pdb.c $(PLUGIN_UTIL)
+tests_unit_test_serialize_LDADD = $(TEST_CORE_LIBS)
 
 EXTRA_DIST += tests/run-tests tests/tcl tests/data tests/python
 
-check-build: all $(check_PROGRAMS)
+# The test programs after `all`, not beside it: under make -j both would build the
+# library's objects at once.
+check-build: all
+	$(MAKE) $(AM_MAKEFLAGS) $(check_PROGRAMS)
 
 check-local: check-build
 	$(top_srcdir)/tests/run-tests $(abs_top_builddir)
@@ -22,3 +28,4 @@ check-local: check-build
 # Per-target flags give the test programs their own objects of the shared plugin sources.
 tests_unit_test_base_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_molecule_CFLAGS = $(AM_CFLAGS)
+tests_unit_test_serialize_CFLAGS = $(AM_CFLAGS)
