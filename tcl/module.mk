@@ -6,7 +6,7 @@ tcllib_DATA += tcl/init.tcl
 # layer (src/parallel) so it also works in a plain tclsh; Tcl stubs when available.
 parallelpkgdir = $(tcllibdir)/parallel
 parallelpkg_LTLIBRARIES = tcl/parallel/parallel.la
-parallelpkg_DATA = tcl/parallel/pkgIndex.tcl
+dist_parallelpkg_DATA = tcl/parallel/pkgIndex.tcl
 tcl_parallel_parallel_la_SOURCES = tcl/parallel/parallel.c \
 	src/parallel/parallel.h src/parallel/internal.h \
 	src/parallel/comm.c src/parallel/sched.c src/base/base.c
