@@ -166,6 +166,7 @@ int main(int argc, char **argv)
     }
     if (ms_par_rank() == 0 && ms_par_size() > 1)
         fprintf(stderr, "molscope: parallel: %d ranks\n", ms_par_size());
+    ms_par_share_cores();
     app->interactive = isatty(0) && ms_par_size() == 1;
     choose_dispdev(app, o.dispdev);
     if (o.width) {

@@ -14,14 +14,20 @@
  *      batch after a control word (more / done / failed), so memory stays bounded and
  *      the others receive while rank 0 reads.
  * A failure that is not rank 0's read error (memory on some rank) ends the job: the others
- * are in the middle of the exchange and cannot be told otherwise. */
+ * are in the middle of the exchange and cannot be told otherwise. While rank 0 reads, the
+ * others wait without spinning and rank 0's thread pool uses every core of the node.
+ *
+ * Also here, as it too belongs to molscope itself and not to the Tcl package's copy of the
+ * layer: sharing a node's cores between its ranks. */
 #include "config.h"
 #include "parallel/parallel.h"
+#include "base/threads.h"
 #include "fileio/load.h"
 #include "molecule/serialize.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define BATCH_BYTES ((size_t)64 << 20)
 
@@ -30,6 +36,14 @@ enum { CTL_DONE = 0, CTL_BATCH = 1, CTL_FAILED = 2 };
 int ms_par_bcast_enabled(void)
 {
     return ms_par_size() > 1 && !ms_env_flag("MOLSCOPE_NOBCAST");
+}
+
+void ms_par_share_cores(void)
+{
+    int local = ms_par_local_size();
+    if (local <= 1 || getenv("MOLSCOPE_THREADS")) return;
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    ms_threads_set_limit(cores / local > 1 ? (int)(cores / local) : 1);
 }
 
 static uint64_t fnv(uint64_t h, const void *data, size_t n)
@@ -72,7 +86,7 @@ static int join(const char *what, const char *path, const ms_load_opts *o, size_
 static int share_outcome(int rc, ms_error *err)
 {
     int32_t v = rc;
-    ms_par_bcast(&v, sizeof v, err);
+    ms_par_bcast_small(&v, sizeof v, err); /* the others wait here while rank 0 reads */
     if (v != 0) ms_par_bcast(err->msg, sizeof err->msg, err);
     return v;
 }
@@ -149,7 +163,7 @@ static int share_pending(ms_molecule *m, ms_error *err)
             free(done);
             ctl = rc < 0 ? CTL_FAILED : m->nframes > before || rc > 0 ? CTL_BATCH : CTL_DONE;
         }
-        ms_par_bcast(&ctl, sizeof ctl, err);
+        ms_par_bcast_small(&ctl, sizeof ctl, err);
         if (ctl == CTL_FAILED) {
             ms_par_bcast(err->msg, sizeof err->msg, err);
             return -1;
@@ -161,6 +175,17 @@ static int share_pending(ms_molecule *m, ms_error *err)
     if (ms_par_rank() != 0 && ms_load_finish_bonds(m, err))
         ms_par_abort(1, "broadcast load: %s", err->msg);
     return 0;
+}
+
+/* Rank 0 reads while the others wait (without taking a core): give it the whole pool. */
+static int rank0_all_cores(void)
+{
+    return ms_par_rank() == 0 && !getenv("MOLSCOPE_THREADS") ? ms_threads_set_limit(0) : -1;
+}
+
+static void rank0_share_again(int limit)
+{
+    if (limit >= 0) ms_threads_set_limit(limit);
 }
 
 static void load_opts_first(const ms_load_opts *o, ms_load_opts *first)
@@ -175,15 +200,21 @@ static ms_molecule *load_new_joined(const ms_registry *r, const char *path,
                                     const ms_load_opts *o, ms_error *err)
 {
     ms_molecule *m = NULL;
+    int limit = rank0_all_cores();
     if (ms_par_rank() == 0) {
         ms_load_opts first;
         load_opts_first(o, &first);
         m = ms_load_new(r, path, &first, err);
     }
-    if (share_outcome(m || ms_par_rank() != 0 ? 0 : -1, err)) return NULL;
+    if (share_outcome(m || ms_par_rank() != 0 ? 0 : -1, err)) {
+        rank0_share_again(limit);
+        return NULL;
+    }
     m = share_structure(m, err);
     share_frames(m, 0, err); /* the frames read with the structure (rank 0 decides) */
-    if (share_pending(m, err)) {
+    int rc = share_pending(m, err);
+    rank0_share_again(limit);
+    if (rc) {
         ms_mol_free(m);
         return NULL;
     }
@@ -225,13 +256,17 @@ int ms_par_load_add(const ms_registry *r, ms_molecule *m, const char *path,
         return 0;
     }
     size_t before = m->nframes;
-    int frame_before = m->frame, rc = 0;
+    int frame_before = m->frame, rc = 0, limit = rank0_all_cores();
     if (ms_par_rank() == 0) {
         ms_load_opts first;
         load_opts_first(o, &first);
         rc = ms_load_add(r, m, path, &first, err);
     }
-    if (share_outcome(rc, err)) return -1;
+    rc = share_outcome(rc, err);
+    if (rc) {
+        rank0_share_again(limit);
+        return -1;
+    }
     /* The file record (its type is the plugin rank 0 chose). */
     void *type = ms_par_rank() == 0 ? m->files[m->nfiles - 1].type : NULL;
     size_t len = ms_par_rank() == 0 ? strlen(type) + 1 : 0;
@@ -243,7 +278,9 @@ int ms_par_load_add(const ms_registry *r, ms_molecule *m, const char *path,
         if (bad) ms_par_abort(1, "broadcast load: %s", err->msg[0] ? err->msg : "bad file type");
     }
     share_frames(m, before, err);
-    if (share_pending(m, err)) {
+    rc = share_pending(m, err);
+    rank0_share_again(limit);
+    if (rc) {
         drop_last_file(m, before, frame_before);
         return -1;
     }

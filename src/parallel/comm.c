@@ -52,17 +52,6 @@ static void set_host_name(void)
 }
 
 #ifdef MS_HAVE_MPI
-/* Several ranks on one node share its cores unless the user said otherwise. */
-static void share_cores(void)
-{
-    if (par.local_size <= 1 || getenv("MOLSCOPE_THREADS")) return;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    long share = cores > 0 ? cores / par.local_size : 1;
-    char buf[32];
-    snprintf(buf, sizeof buf, "%ld", share > 0 ? share : 1);
-    setenv("MOLSCOPE_THREADS", buf, 0);
-}
-
 static int mpi_start(int *argc, char ***argv, ms_error *err)
 {
     int flag = 0, fin = 0;
@@ -95,7 +84,6 @@ static int mpi_start(int *argc, char ***argv, ms_error *err)
     int len = 0;
     if (MPI_Get_processor_name(par.name, &len) != MPI_SUCCESS || len <= 0) set_host_name();
     par.mpi = 1;
-    share_cores();
     return 0;
 }
 #endif

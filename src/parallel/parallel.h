@@ -25,9 +25,7 @@
 
 /* Start MPI when a launcher started us (see above). Safe to call when MPI is already
  * initialised (then this copy uses it but does not finalize it) and more than once.
- * With several ranks on one node and MOLSCOPE_THREADS unset, sets MOLSCOPE_THREADS so each
- * rank's thread pool gets its share of the cores. Returns 0; -1 when MPI failed to start
- * (err says why; the job then runs as one rank). */
+ * Returns 0; -1 when MPI failed to start (err says why). */
 int ms_par_init(int *argc, char ***argv, ms_error *err);
 /* Whether MPI is in use, this copy initialised it, and the job's shape. */
 int ms_par_using_mpi(void);
@@ -36,6 +34,10 @@ int ms_par_rank(void);
 int ms_par_size(void);
 /* Ranks sharing this node (1 without MPI). */
 int ms_par_local_size(void);
+/* Give this rank's thread pool its share of the node's cores (ms_threads_set_limit) when
+ * several ranks share the node and MOLSCOPE_THREADS is not set. (In bcastload.c with the
+ * other parts that only molscope itself has, not the Tcl package's copy.) */
+void ms_par_share_cores(void);
 /* The processor (host) name. */
 const char *ms_par_nodename(void);
 /* The MPI thread level provided (0 without MPI). */

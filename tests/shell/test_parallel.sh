@@ -114,9 +114,6 @@ fi
 echo 'puts "[parallel nodecount] [parallel allgather x]"' > one.tcl
 out=$(MOLSCOPE_NOMPI=1 mpi 2 -x MOLSCOPE_NOMPI $M -e one.tcl </dev/null 2>&1)
 expect_eq "MOLSCOPE_NOMPI: every process is a job of one" "$(printf '%s\n' "$out" | sort | tr '\n' ,)" "1 x,1 x,"
-out=$(echo 'puts $env(MOLSCOPE_THREADS)' | mpi 3 $M 2>/dev/null)
-expect_eq "ranks sharing a node share its cores" "$(printf '%s\n' "$out" | sort -u | tr '\n' ,)" \
-    "$(( $(nproc) / 3 > 0 ? $(nproc) / 3 : 1 )),"
 
 # ---------------------------------------------------------------- broadcast loading
 # Rank 0 runs in A, where x.pdb is; ranks 1 and 2 in B, where it is not.
