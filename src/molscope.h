@@ -2,8 +2,12 @@
  * this one includes them in pipeline order, so a reader can start here.
  *
  *   base/       utilities: errors, interned strings, worker threads
- *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set
+ *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set,
+ *               serialisation (a molecule as bytes for other ranks)
  *   fileio/     the plugin registry, loading files into molecules, writing them out
+ *   parallel/   MPI: start-up and shutdown, collectives, the dynamic for-loop, loading a
+ *               file on rank 0 and broadcasting the molecule (also the core of the
+ *               molscope::parallel Tcl package, ../tcl/parallel)
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   app/        the program: command line, startup order, shell
  *   ../plugins  file formats, each a module loaded at run time (ms_plugin.h)
@@ -18,9 +22,11 @@
 #include "molecule/elements.h"
 #include "molecule/analysis.h"
 #include "molecule/molset.h"
+#include "molecule/serialize.h"
 #include "fileio/registry.h"
 #include "fileio/load.h"
 #include "fileio/write.h"
+#include "parallel/parallel.h"
 #include "app/app.h"
 #include "commands/commands.h"
 
