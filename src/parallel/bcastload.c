@@ -56,9 +56,11 @@ static uint64_t fnv(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-/* Step 1: every rank loads the same file the same way. */
+/* Step 1: every rank loads the same file the same way. A rank that already failed
+ * (failed != 0, its message in err) still takes part, with a key no other rank has, so
+ * every rank returns an error and none waits for it. */
 static int join(const char *what, const char *path, const ms_load_opts *o, size_t natoms,
-                ms_error *err)
+                int failed, ms_error *err)
 {
     uint64_t h = 1469598103934665603ull;
     long nums[5] = {o->first, o->last, o->step, o->filebonds, o->autobonds};
@@ -68,12 +70,14 @@ static int join(const char *what, const char *path, const ms_load_opts *o, size_
     h = fnv(h, o->type ? o->type : "", strlen(o->type ? o->type : "") + 1);
     h = fnv(h, nums, sizeof nums);
     h = fnv(h, &n, sizeof n);
+    if (failed) h ^= 0x9e3779b97f4a7c15ull * (uint64_t)(ms_par_rank() + 1);
     const char *env = getenv("MOLSCOPE_BCAST_TIMEOUT");
     double timeout = env && *env ? atof(env) : 300.0;
     int same;
     if (ms_par_agree(h, timeout, &same, err))
         ms_par_abort(1, "broadcast load of %s: %s (is it run on rank 0 only? load with bcast "
                         "only where every rank loads the same file)", path, err->msg);
+    if (failed) return -1;
     if (!same) {
         ms_error_set(err, "the ranks do not all load this file with the same options (or into "
                           "molecules of the same size) at this point");
@@ -226,7 +230,7 @@ ms_molecule *ms_par_load_new(const ms_registry *r, const char *path, const ms_lo
                              ms_error *err)
 {
     err->msg[0] = '\0';
-    if (join("new", path, o, 0, err)) return NULL;
+    if (join("new", path, o, 0, 0, err)) return NULL;
     return load_new_joined(r, path, o, err);
 }
 
@@ -247,7 +251,14 @@ int ms_par_load_add(const ms_registry *r, ms_molecule *m, const char *path,
                     const ms_load_opts *o, ms_error *err)
 {
     err->msg[0] = '\0';
-    if (join("add", path, o, m->atoms.n, err)) return -1;
+    /* Files load in order: first the frames each rank is still reading for itself. */
+    int failed = 0;
+    if (m->pending) {
+        char *done = NULL;
+        failed = ms_loader_pump(m, -1, &done, err) < 0;
+        free(done);
+    }
+    if (join("add", path, o, m->atoms.n, failed, err)) return -1;
     if (m->atoms.n == 0) {
         /* A structure into an empty molecule: load it as new, then move it in. */
         ms_molecule *src = load_new_joined(r, path, o, err);

@@ -273,7 +273,10 @@ static int gather_v(const void *buf, size_t len, int root, ms_par_parts *out, ms
     long long mine = (long long)len, *all = malloc((size_t)n * sizeof *all);
     int *counts = malloc((size_t)n * sizeof *counts), *displs = malloc((size_t)n * sizeof *displs);
     if (!all || !counts || !displs) ms_par_abort(1, "out of memory gathering from %d ranks", n);
-    MPI_Allgather(&mine, 1, MPI_LONG_LONG, all, 1, MPI_LONG_LONG, par.comm);
+    /* Ranks arrive here at different times: wait for the lengths without spinning. */
+    MPI_Request req;
+    MPI_Iallgather(&mine, 1, MPI_LONG_LONG, all, 1, MPI_LONG_LONG, par.comm, &req);
+    ms_par_wait(&req, 0);
     long long total = 0;
     for (int r = 0; r < n; r++) total += all[r];
     int too_big = total > INT_MAX;
@@ -327,16 +330,6 @@ int ms_par_gather0(const void *buf, size_t len, ms_par_parts *out, ms_error *err
     if (par.mpi && par.size > 1) return gather_v(buf, len, 0, out, err);
 #endif
     return parts_self(buf, len, out, err);
-}
-
-int ms_par_max_int(int v, int *out, ms_error *err)
-{
-    (void)err;
-    *out = v;
-#ifdef MS_HAVE_MPI
-    if (par.mpi && par.size > 1) MPI_Allreduce(&v, out, 1, MPI_INT, MPI_MAX, par.comm);
-#endif
-    return 0;
 }
 
 int ms_par_agree(uint64_t key, double timeout, int *same, ms_error *err)

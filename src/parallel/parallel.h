@@ -74,8 +74,6 @@ void ms_par_parts_free(ms_par_parts *p);
 int ms_par_allgather(const void *buf, size_t len, ms_par_parts *out, ms_error *err);
 /* Gather every rank's bytes on rank 0 only (the others get n = 0). */
 int ms_par_gather0(const void *buf, size_t len, ms_par_parts *out, ms_error *err);
-/* The largest of every rank's value. */
-int ms_par_max_int(int v, int *out, ms_error *err);
 
 /* Do all ranks pass the same key? Sets *same to 1 or 0 on every rank. Waits at most
  * timeout seconds for every rank to arrive (<= 0: forever); -1 with err when they do not

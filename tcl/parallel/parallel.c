@@ -130,7 +130,7 @@ static int par_allreduce(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
     if (ms_par_rank() == 0) rc = fold_on_rank0(interp, objv[2], &parts);
     ms_par_parts_free(&parts);
     /* Rank 0's outcome, then its result or error message, to everyone. */
-    ms_par_bcast(&rc, sizeof rc, &err);
+    ms_par_bcast_small(&rc, sizeof rc, &err); /* the others wait while rank 0 folds */
     void *out = NULL;
     size_t n = 0;
     if (ms_par_rank() == 0) {
