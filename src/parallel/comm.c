@@ -12,6 +12,11 @@
 
 #include "parallel/internal.h"
 
+#define NAME_LEN 256
+#ifdef MS_HAVE_MPI
+_Static_assert(NAME_LEN >= MPI_MAX_PROCESSOR_NAME, "room for MPI's processor name");
+#endif
+
 /* Broadcasts go in pieces of this size: MPI counts are ints, and pieces let large
  * messages stream through the network while the next one is prepared. */
 #define PIECE ((size_t)64 << 20)
@@ -22,12 +27,19 @@ static struct {
     int owner;         /* this copy called MPI_Init (and will finalize) */
     int finalized;
     int rank, size, local_size, thread_level;
-    char name[256];
+    char name[NAME_LEN];
 #ifdef MS_HAVE_MPI
     MPI_Comm comm;     /* our duplicate of MPI_COMM_WORLD */
 #endif
 } par = {.size = 1, .local_size = 1};
 
+static void set_host_name(void)
+{
+    if (gethostname(par.name, sizeof par.name - 1) != 0) strcpy(par.name, "localhost");
+    par.name[sizeof par.name - 1] = '\0';
+}
+
+#ifdef MS_HAVE_MPI
 /* Environment variables that launchers set in the processes they start. */
 static int under_launcher(void)
 {
@@ -45,13 +57,6 @@ static int under_launcher(void)
     return 0;
 }
 
-static void set_host_name(void)
-{
-    if (gethostname(par.name, sizeof par.name - 1) != 0) strcpy(par.name, "localhost");
-    par.name[sizeof par.name - 1] = '\0';
-}
-
-#ifdef MS_HAVE_MPI
 static int mpi_start(int *argc, char ***argv, ms_error *err)
 {
     int flag = 0, fin = 0;

@@ -26,6 +26,16 @@
 #include <pthread.h>
 #include <stdio.h>
 
+static int serial_loop(long first, long last, ms_par_item_fn fn, void *ctx, ms_error *err)
+{
+    for (long i = first; i <= last; i++) {
+        if (fn(ctx, i, err)) return -1;
+        if (i == LONG_MAX) break;
+    }
+    return 0;
+}
+
+#ifdef MS_HAVE_MPI
 typedef struct sched {
     ms_par_item_fn fn;
     void *ctx;
@@ -47,16 +57,6 @@ static int take(sched *s, long *i)
     return 1;
 }
 
-static int serial_loop(long first, long last, ms_par_item_fn fn, void *ctx, ms_error *err)
-{
-    for (long i = first; i <= last; i++) {
-        if (fn(ctx, i, err)) return -1;
-        if (i == LONG_MAX) break;
-    }
-    return 0;
-}
-
-#ifdef MS_HAVE_MPI
 /* Answer every request waiting now. Returns how many were answered. */
 static int serve_pending(sched *s)
 {
