@@ -160,8 +160,10 @@ int main(int argc, char **argv)
         goto done;
     }
     if (o.help || o.version) {
-        if (ms_par_rank() == 0 && o.help) ms_options_usage(argv[0]);
-        else if (ms_par_rank() == 0) printf("molscope %s\n", PACKAGE_VERSION);
+        if (ms_par_rank() == 0) {
+            if (o.help) ms_options_usage(argv[0]);
+            else printf("molscope %s\n", PACKAGE_VERSION);
+        }
         goto done;
     }
     if (ms_par_rank() == 0 && ms_par_size() > 1)
