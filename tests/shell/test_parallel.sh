@@ -137,7 +137,9 @@ awk 'BEGIN{for(k=0;k<6;k++){printf "MODEL %d\n",k+1;
   printf "ATOM      1  N   ALA A   1    %8.3f   0.000   0.000  1.00  0.00           N\n",k;
   printf "ATOM      2  CA  ALA A   1    %8.3f   1.400   0.000  1.00  0.00           C\n",k*2;
   print "ENDMDL"}}' > A/models.pdb
+sed '/^MODEL 4/,/^ENDMDL/s/   0.000   0.000  1.00/   0.0x0   0.000  1.00/' A/models.pdb > A/bad.pdb
 cat > traj.tcl <<'TCL'
+if {[catch {mol new bad.pdb bcast on} msg]} { puts "R [parallel noderank] $msg" }
 mol new models.pdb bcast on
 mol addfile models.pdb bcast on first 2
 puts "F [parallel noderank] [molinfo top get {numatoms numframes frame}] [lindex [molinfo top get filename] 0]"
@@ -156,6 +158,9 @@ expect_eq "mol new/addfile bcast on: frames of a trajectory reach every rank" \
     "0:F 0 2 10 9 models.pdb models.pdb,F 1 2 10 9 models.pdb models.pdb,F 2 2 10 9 models.pdb models.pdb,"
 sums=$(md5sum traj0.pdb traj1.pdb traj2.pdb | awk '{print $1}' | sort -u | wc -l)
 expect_eq "... with the same coordinates in every frame" "$sums:$(grep -c '^ATOM' traj0.pdb)" "1:20"
+expect_match "a bad frame in a broadcast trajectory fails the load on every rank alike" \
+    "$(printf '%s\n' "$out" | grep '^R' | cut -d' ' -f3- | sort | uniq -c | sed 's/^ *//')" \
+    "3 mol new: bad.pdb: frame 3: *bad y coordinate*"
 expect_eq "a failed broadcast load is every rank's error, with rank 0's message" \
     "$(printf '%s\n' "$out" | grep '^E' | cut -d' ' -f3- | sort | uniq -c | sed 's/^ *//')" \
     "3 mol new: missing.pdb: No such file or directory"
