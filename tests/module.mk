@@ -1,12 +1,13 @@
 # tests: unit tests (C), Tcl-level tests run by molscope, cross-checks, fuzz smoke runs.
 # `make check` (or tests/run-tests after `make check-build`) runs them all; the last line
 # is "N passed, N failed" (", N skipped" when a backend or peer is missing).
-TEST_CORE_LIBS = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS)
+TEST_CORE_LIBS = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS) $(MPI_LIBS)
 
 check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_image
 tests_unit_test_image_SOURCES = tests/unit/test_image.c tests/unit/ms_test.h
 tests_unit_test_image_LDADD = $(TEST_CORE_LIBS)
 check_PROGRAMS += tests/unit/test_measure
+check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_serialize
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h $(PLUGIN_UTIL)
 tests_unit_test_base_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h \
@@ -18,6 +19,9 @@ tests_unit_test_scene_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_measure_SOURCES = tests/unit/test_measure.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_measure_LDADD = $(TEST_CORE_LIBS)
+tests_unit_test_serialize_SOURCES = tests/unit/test_serialize.c tests/unit/ms_test.h \
+	plugins/pdb.c $(PLUGIN_UTIL)
+tests_unit_test_serialize_LDADD = $(TEST_CORE_LIBS)
 
 # Every plugin linked into one program (tests/tools/plugin_*.c rename their entry points).
 BUILTIN_PLUGINS = tests/tools/builtin.h tests/tools/plugin_pdb.c tests/tools/plugin_psf.c \
@@ -108,3 +112,4 @@ check-local: check-build
 tests_unit_test_base_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_molecule_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_measure_CFLAGS = $(AM_CFLAGS)
+tests_unit_test_serialize_CFLAGS = $(AM_CFLAGS)

@@ -555,9 +555,7 @@ fail_nosink:
     return NULL;
 }
 
-/* Move a freshly loaded structure into an existing empty molecule, keeping its identity
- * (id, flags, view, attachments). */
-static void adopt_structure(ms_molecule *dst, ms_molecule *src)
+void ms_load_adopt(ms_molecule *dst, ms_molecule *src)
 {
     ms_molecule old = *dst;
     *dst = *src;
@@ -653,7 +651,7 @@ int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms
     if (m->atoms.n == 0) {
         ms_molecule *src = ms_load_new(r, path, o, err);
         if (!src) return -1;
-        adopt_structure(m, src);
+        ms_load_adopt(m, src);
         return 0;
     }
     size_t before = m->nframes;
