@@ -6,3 +6,21 @@ plugins_LTLIBRARIES += plugins/pdb.la
 plugins_pdb_la_SOURCES = plugins/pdb.c $(PLUGIN_UTIL)
 plugins_pdb_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_pdb_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/psf.la
+plugins_psf_la_SOURCES = plugins/psf.c $(PLUGIN_UTIL)
+plugins_psf_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/dcd.la
+plugins_dcd_la_SOURCES = plugins/dcd.c $(PLUGIN_UTIL)
+plugins_dcd_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_dcd_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/xyz.la
+plugins_xyz_la_SOURCES = plugins/xyz.c $(PLUGIN_UTIL)
+plugins_xyz_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/gro.la
+plugins_gro_la_SOURCES = plugins/gro.c $(PLUGIN_UTIL)
+plugins_gro_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_gro_la_LIBADD = -lm

@@ -16,6 +16,7 @@ typedef struct pdb_reader {
     int structure_done;
     int single_model;      /* no frames after the first model */
     int *serial;           /* serial of each atom (for CONECT), -1 when unknown */
+    size_t serial_cap;
 } pdb_reader;
 
 enum rec { R_OTHER, R_ATOM, R_HETATM, R_MODEL, R_ENDMDL, R_END, R_CRYST1, R_HELIX, R_SHEET,
@@ -166,9 +167,13 @@ static int parse_atom(pdb_reader *r, ms_struct_sink *sink, int hetero, ms_perr *
     memcpy(serialf, l + 6, 5);
     if (ms_hy36_decode(serialf, 5, &serial) <= 0) serial = -1;
     size_t idx = (size_t)r->natoms;
-    int *ns = realloc(r->serial, (idx + 1) * sizeof *ns);
-    if (!ns) return ms_perr_set(err, "out of memory");
-    r->serial = ns;
+    if (idx == r->serial_cap) {
+        size_t cap = r->serial_cap ? r->serial_cap * 2 : 4096;
+        int *ns = realloc(r->serial, cap * sizeof *ns);
+        if (!ns) return ms_perr_set(err, "out of memory");
+        r->serial = ns;
+        r->serial_cap = cap;
+    }
     r->serial[idx] = (int)serial;
     if (sink->add_atom(sink, &a)) return ms_perr_set(err, "out of memory at line %ld", in->line_no);
     r->natoms++;
@@ -342,6 +347,9 @@ static int pdb_read_structure(void *h, ms_struct_sink *sink, ms_perr *err)
     }
     if (add_conect_bonds(r, sink, &conect, err) != MS_PLUGIN_OK) goto fail;
     free(conect.v);
+    free(r->serial); /* only CONECT needed them */
+    r->serial = NULL;
+    r->serial_cap = 0;
     r->structure_done = 1;
     /* Position the reader at the second model for read_frame. */
     if (r->frame2 >= 0 && ms_lines_seek(in, r->frame2, r->frame2_line) != 0) {

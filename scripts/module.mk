@@ -1,5 +1,8 @@
 # scripts: set-up, example and benchmark drivers.
-EXTRA_DIST += scripts/bootstrap scripts/example scripts/example.tcl \
-	scripts/bench/bench_select.sh scripts/bench/bench_select.py \
-	scripts/bench/bench_select.tcl scripts/bench/bench_select.sels \
-	scripts/bench/replicate_pdb.py
+EXTRA_DIST += scripts/bootstrap scripts/example scripts/example.tcl
+EXTRA_DIST += scripts/bench
+
+# `make bench`: every benchmark beside its peer (long; not part of the tests).
+bench: all
+	@for b in $(top_srcdir)/scripts/bench/bench_*.sh; do echo "### $$b"; bash $$b || exit 1; done
+.PHONY: bench

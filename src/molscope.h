@@ -2,11 +2,21 @@
  * this one includes them in pipeline order, so a reader can start here.
  *
  *   base/       utilities: errors, interned strings, worker threads
- *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set
+ *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set,
+ *               serialisation (a molecule as bytes for other ranks)
  *   select/     the atom selection language (compiled to a tree, evaluated to bit sets) and
  *               the atomselect command
  *   fileio/     the plugin registry, loading files into molecules, writing them out
+ *   scene/      display lists, colours, materials, user graphics, the Scene devices draw
+ *   view/       camera and display settings, lights, axes, stage, rotate/translate/scale
+ *   render/     the render devices by VMD name and the file exporters (Tachyon, POV3, OBJ)
+ *   parallel/   MPI: start-up and shutdown, collectives, the dynamic for-loop, loading a
+ *               file on rank 0 and broadcasting the molecule (also the core of the
+ *               molscope::parallel Tcl package, ../tcl/parallel)
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
+ *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
+ *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
+ *   commands/   the Tcl command bindings (mol, molinfo, animate, measure, vecadd ...)
  *   app/        the program: command line, startup order, shell
  *   ../plugins  file formats, each a module loaded at run time (ms_plugin.h)
  */
@@ -20,10 +30,22 @@
 #include "molecule/elements.h"
 #include "molecule/analysis.h"
 #include "molecule/molset.h"
+#include "molecule/serialize.h"
 #include "select/select.h"
 #include "fileio/registry.h"
 #include "fileio/load.h"
 #include "fileio/write.h"
+#include "scene/mat4.h"
+#include "scene/displaylist.h"
+#include "scene/color.h"
+#include "scene/material.h"
+#include "scene/graphics.h"
+#include "scene/scene.h"
+#include "view/view.h"
+#include "render/render.h"
+#include "vecmath/vecmath.h"
+#include "measure/measure.h"
+#include "parallel/parallel.h"
 #include "app/app.h"
 #include "commands/commands.h"
 #include "select/atomsel.h"

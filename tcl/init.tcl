@@ -9,8 +9,15 @@ if {[lsearch -exact $::auto_path $::molscope::libdir] < 0} {
     lappend ::auto_path $::molscope::libdir
 }
 
+# The `parallel` command (VMD's, over MPI) is a package of its own so that a plain tclsh
+# under mpirun can load it too. A missing package is reported, not fatal.
+if {[catch {package require molscope::parallel} ::molscope::err]} {
+    puts stderr "molscope: the parallel command is not available: $::molscope::err"
+}
+unset -nocomplain ::molscope::err
+
 # Library scripts, in order; each defines procs only.
-foreach ::molscope::script {} {
+foreach ::molscope::script {vectors.tcl} {
     source [file join $::molscope::libdir $::molscope::script]
 }
 unset -nocomplain ::molscope::script

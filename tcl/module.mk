@@ -1,2 +1,15 @@
 # tcl: the Tcl library shipped with molscope.
-tcllib_DATA += tcl/init.tcl
+tcllib_DATA += tcl/init.tcl tcl/vectors.tcl
+
+# The molscope::parallel package: a loadable Tcl extension (libtool module) with its
+# pkgIndex.tcl, in tcl/parallel/ of the Tcl library. It carries its own copy of the MPI
+# layer (src/parallel) so it also works in a plain tclsh; Tcl stubs when available.
+parallelpkgdir = $(tcllibdir)/parallel
+parallelpkg_LTLIBRARIES = tcl/parallel/parallel.la
+dist_parallelpkg_DATA = tcl/parallel/pkgIndex.tcl
+tcl_parallel_parallel_la_SOURCES = tcl/parallel/parallel.c \
+	src/parallel/parallel.h src/parallel/internal.h \
+	src/parallel/comm.c src/parallel/sched.c src/base/base.c
+tcl_parallel_parallel_la_CFLAGS = $(AM_CFLAGS) $(TCL_STUB_CFLAGS)
+tcl_parallel_parallel_la_LDFLAGS = -module -avoid-version -shared
+tcl_parallel_parallel_la_LIBADD = $(TCL_STUB_LIBS) $(MPI_LIBS) $(PTHREAD_LIBS)

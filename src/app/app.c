@@ -60,6 +60,8 @@ static void find_plugins(ms_app *app)
     }
 }
 
+static void idle_load(ClientData cd);
+
 ms_app *ms_app_new(const char *argv0)
 {
     ms_app *app = calloc(1, sizeof *app);
@@ -89,6 +91,8 @@ ms_app *ms_app_new(const char *argv0)
 void ms_app_free(ms_app *app)
 {
     if (!app) return;
+    if (app->idle_scheduled) Tcl_CancelIdleCall(idle_load, app);
+    for (size_t i = 0; i < app->mols.n; i++) ms_loader_cancel(app->mols.mols[i]);
     if (app->interp) {
         Tcl_SetVar(app->interp, "vmd_quit", "1", TCL_GLOBAL_ONLY);
         ms_molset_free(&app->mols);
@@ -132,15 +136,17 @@ static void pump_one(ms_app *app, ms_molecule *m, long max)
     free(done);
 }
 
+/* Read pending frames while Tcl is idle, about 50 ms of work per turn so an interactive
+ * session stays responsive (VMD reads one frame per redraw). */
 static void idle_load(ClientData cd)
 {
     ms_app *app = cd;
     app->idle_scheduled = 0;
+    double until = ms_now() + 0.05;
     int more = 0;
     for (size_t i = 0; i < app->mols.n; i++) {
         ms_molecule *m = app->mols.mols[i];
-        if (!m->pending) continue;
-        pump_one(app, m, 1);  /* one frame per idle turn, as VMD's display loop does */
+        while (m->pending && ms_now() < until) pump_one(app, m, 1);
         more |= m->pending != NULL;
     }
     if (more) ms_app_schedule_loading(app);

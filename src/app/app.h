@@ -21,6 +21,12 @@ typedef struct ms_app {
     int quit_requested, quit_status;
     int idle_scheduled;        /* a background frame-loading callback is queued */
     void *module[16];          /* state owned by other modules (scene, reps, ...) */
+    /* Scene-side state, created by ms_cmd_scene_register (commands/scenecmds.h). */
+    struct ms_colors *colors;        /* scene/color.h: colour table and categories */
+    struct ms_materials *materials;  /* scene/material.h */
+    struct ms_view *view;            /* view/view.h: camera, display settings, lights */
+    struct ms_renderers *renderers;  /* render/render.h: per-device settings */
+    int ugraphics_slot;              /* molecule attachment of user graphics, -1 if none */
 } ms_app;
 
 /* Create the application: interpreter, plugins, molecule set, commands. NULL on failure

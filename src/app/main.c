@@ -1,11 +1,17 @@
-/* main.c: molscope's entry point. Parses VMD's command line, starts the Tcl interpreter,
- * and follows VMD's startup order: the Tcl library's init script, the files named on the
- * command line, the first startup file found, the -e script, then the shell. */
+/* main.c: molscope's entry point. Starts MPI when a launcher started us (before anything
+ * else, as VMD does), parses VMD's command line, starts the Tcl interpreter, and follows
+ * VMD's startup order: the Tcl library's init script, the files named on the command line
+ * (loaded by rank 0 and broadcast when there are several ranks), the first startup file
+ * found, the -e script, then the shell. Every exit goes through ms_par_exit, so a non-zero
+ * status on any rank ends the whole MPI job. */
 #include "config.h"
 #include "app/app.h"
 #include "app/options.h"
 #include "app/shell.h"
+#include "parallel/parallel.h"
 
+#include <malloc.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,18 +41,19 @@ static void choose_dispdev(ms_app *app, const char *dev)
 {
     static const char *known[] = {"text", "none", "win", "opengl", "openglpbuffer", "osmesa",
                                   "egl", "cave", "caveforms", "freevr", "freevrforms"};
+    int talk = ms_par_rank() == 0;  /* only rank 0 prints informational messages */
     if (!dev) return;
     for (size_t i = 0; i < sizeof known / sizeof known[0]; i++) {
         if (strcasecmp(dev, known[i]) != 0) continue;
-        if (i >= 2)
+        if (i >= 2 && talk)
             fprintf(stderr, "molscope: display device '%s' is not built into this version; "
                             "using text (render snapshot and the ray tracers work without a "
                             "display)\n", dev);
-        else
+        else if (i < 2)
             snprintf(app->dispdev, sizeof app->dispdev, "%s", known[i]);
         return;
     }
-    fprintf(stderr, "molscope: unknown display device '%s'; using text\n", dev);
+    if (talk) fprintf(stderr, "molscope: unknown display device '%s'; using text\n", dev);
 }
 
 /* Run one startup stage; in batch mode an error ends the program. Returns 0 to continue,
@@ -81,6 +88,11 @@ static int load_cmdline_files(ms_app *app, const ms_options *o, int *status)
         }
         Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj("waitfor", -1));
         Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj("all", -1));
+        /* Every rank reaches this point with the same command line: rank 0 reads. */
+        if (ms_par_bcast_enabled()) {
+            Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj("bcast", -1));
+            Tcl_ListObjAppendElement(NULL, cmd, Tcl_NewStringObj("on", -1));
+        }
         int rc = Tcl_EvalObjEx(app->interp, cmd, TCL_EVAL_GLOBAL);
         Tcl_DecrRefCount(cmd);
         if (stage(app, rc, "molscope", status)) return 1;
@@ -116,28 +128,48 @@ static int run_startup_file(ms_app *app, const ms_options *o, int *status)
     return 0;
 }
 
+/* Tcl_Exit from anywhere (a package, Tcl_Panic's cousins) ends the job the same way. */
+static void exit_proc(ClientData cd)
+{
+    int status = (int)(intptr_t)cd;
+    fflush(stdout);
+    exit(ms_par_exit(status));
+}
+
 int main(int argc, char **argv)
 {
+    ms_error perr = {{0}};
+    if (ms_par_init(&argc, &argv, &perr) != 0) {
+        fprintf(stderr, "molscope: cannot start MPI: %s\n", perr.msg);
+        return 1;
+    }
+    /* A fixed mmap threshold keeps every large array in its own mapping, returned to the
+     * system when freed: without it glibc raises the threshold after the first large free
+     * and the big transient buffers of a load (bond pairs, grids) stay resident. */
+    mallopt(M_MMAP_THRESHOLD, 256 * 1024);
     ms_app *app = ms_app_new(argv[0]);
     if (!app) {
         fprintf(stderr, "molscope: cannot start (out of memory)\n");
-        return 1;
+        return ms_par_exit(1);
     }
+    Tcl_SetExitProc(exit_proc);
     ms_options o;
     int status = 0;
     if (ms_options_parse(argc, argv, is_plugin_type, app, &o) != 0) {
-        ms_options_free(&o);
-        ms_app_free(app);
-        return 2;
+        status = 2;
+        goto done;
     }
     if (o.help || o.version) {
-        if (o.help) ms_options_usage(argv[0]);
-        else printf("molscope %s\n", PACKAGE_VERSION);
-        ms_options_free(&o);
-        ms_app_free(app);
-        return 0;
+        if (ms_par_rank() == 0) {
+            if (o.help) ms_options_usage(argv[0]);
+            else printf("molscope %s\n", PACKAGE_VERSION);
+        }
+        goto done;
     }
-    app->interactive = isatty(0);
+    if (ms_par_rank() == 0 && ms_par_size() > 1)
+        fprintf(stderr, "molscope: parallel: %d ranks\n", ms_par_size());
+    ms_par_share_cores();
+    app->interactive = isatty(0) && ms_par_size() == 1;
     choose_dispdev(app, o.dispdev);
     if (o.width) {
         app->width = o.width;
@@ -152,7 +184,8 @@ int main(int argc, char **argv)
     status = ms_shell_run(app);
 done:
     ms_options_free(&o);
+    Tcl_SetExitProc(NULL);
     ms_app_free(app);
     fflush(stdout);
-    return status;
+    return ms_par_exit(status);
 }

@@ -6,5 +6,5 @@ src_libmscore_la_SOURCES += \
 
 bin_PROGRAMS += src/molscope
 src_molscope_SOURCES = src/app/main.c
-src_molscope_LDADD = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS)
+src_molscope_LDADD = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS) $(MPI_LIBS)
 src_molscope_LDFLAGS = -no-install

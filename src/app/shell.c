@@ -2,9 +2,14 @@
  * history through tclreadline when it is installed, loaded at run time; a plain prompt
  * otherwise); batch otherwise, where an error prints the message with its stack trace and
  * ends the program with status 1. Tcl events (background frame loading, servers) run while
- * the shell waits for input. */
+ * the shell waits for input.
+ *
+ * Under MPI only rank 0 has standard input: it reads each line and broadcasts it, and every
+ * rank evaluates it, so `mpirun -np 4 molscope < script.tcl` runs the script on every rank.
+ * Only rank 0 echoes results (the informational output); `puts` prints on every rank. */
 #include "config.h"
 #include "app/shell.h"
+#include "parallel/parallel.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,8 +31,8 @@ void ms_shell_report_error(ms_app *app, const char *context)
     const char *info = Tcl_GetVar(interp, "errorInfo", TCL_GLOBAL_ONLY);
     const char *msg = Tcl_GetStringResult(interp);
     if (context) fprintf(stderr, "%s: ", context);
-    fprintf(stderr, "%s\n", msg);
-    if (info && *info && strcmp(info, msg) != 0) fprintf(stderr, "while executing\n%s\n", info);
+    /* errorInfo starts with the message and goes on with the Tcl stack trace. */
+    fprintf(stderr, "%s\n", info && *info ? info : msg);
     fflush(stderr);
 }
 
@@ -42,7 +47,7 @@ static int shell_eval(shell *sh, Tcl_Obj *cmd)
     }
     if (rc == TCL_OK) {
         const char *res = Tcl_GetStringResult(app->interp);
-        if (*res) printf("%s\n", res);
+        if (*res && ms_par_rank() == 0) printf("%s\n", res);
     } else {
         ms_shell_report_error(app, NULL);
         if (!app->interactive) {
@@ -141,9 +146,56 @@ static int readline_loop(shell *sh)
     return 1;
 }
 
+/* Several ranks: rank 0 reads a line, every rank gets it (length -1: end of input). */
+static int bcast_line(Tcl_Channel in, Tcl_Obj *line, char **text, int64_t *len)
+{
+    ms_error err = {{0}};
+    *len = -1;
+    *text = NULL;
+    if (ms_par_rank() == 0 && in && Tcl_GetsObj(in, line) >= 0) {
+        int n;
+        *text = Tcl_GetStringFromObj(line, &n);
+        *len = n;
+    }
+    if (ms_par_bcast_small(len, sizeof *len, &err)) return -1;
+    if (*len < 0) return 0;
+    if (ms_par_rank() != 0 && !(*text = malloc((size_t)*len + 1)))
+        ms_par_abort(1, "out of memory reading a line of %lld bytes", (long long)*len);
+    ms_par_bcast(*text, (size_t)*len, &err);
+    (*text)[*len] = '\0';
+    return 0;
+}
+
+static int bcast_loop(shell *sh)
+{
+    Tcl_Channel in = Tcl_GetStdChannel(TCL_STDIN);
+    while (!sh->done) {
+        Tcl_Obj *line = Tcl_NewObj();
+        Tcl_IncrRefCount(line);
+        char *text;
+        int64_t len;
+        if (bcast_line(in, line, &text, &len) == 0 && len >= 0) {
+            if (shell_line(sh, text, (int)len)) sh->done = 1;
+        } else {
+            sh->done = 1;
+            if (sh->pending) {
+                fprintf(stderr, "molscope: standard input ended inside an unfinished command\n");
+                sh->status = 1;
+            }
+        }
+        if (ms_par_rank() != 0) free(text);
+        Tcl_DecrRefCount(line);
+        while (!sh->done && Tcl_DoOneEvent(TCL_ALL_EVENTS | TCL_DONT_WAIT)) {}
+    }
+    if (sh->app->quit_requested) sh->status = sh->app->quit_status;
+    if (sh->pending) Tcl_DecrRefCount(sh->pending);
+    return sh->status;
+}
+
 int ms_shell_run(ms_app *app)
 {
     shell sh = {.app = app};
+    if (ms_par_size() > 1) return bcast_loop(&sh);
     if (app->interactive && readline_loop(&sh)) {
         if (sh.pending) Tcl_DecrRefCount(sh.pending);
         return sh.status;

@@ -64,7 +64,8 @@ void ms_strtab_free(ms_strtab *t)
 static int strtab_same(const ms_strtab *t, uint32_t id, const char *s, size_t len)
 {
     const char *a = t->arena + t->offset[id];
-    return memcmp(a, s, len) == 0 && a[len] == '\0';
+    /* strncmp stops at the stored string's end: it may be shorter than len. */
+    return strncmp(a, s, len) == 0 && a[len] == '\0';
 }
 
 ms_str ms_strtab_intern(ms_strtab *t, const char *s, size_t len)

@@ -14,6 +14,7 @@ typedef struct pool_job {
     ms_range_fn fn;
     void *ctx;
     size_t n, chunk;
+    int nactive;             /* threads that take part (the others only check in) */
     atomic_size_t next;
     atomic_int pending;      /* workers still inside this job */
 } pool_job;
@@ -26,6 +27,7 @@ static struct {
     unsigned long generation;
     pool_job *job;
     int started;
+    int limit;               /* 0 = all of the pool */
 } pool = {.once = PTHREAD_ONCE_INIT,
           .lock = PTHREAD_MUTEX_INITIALIZER,
           .wake = PTHREAD_COND_INITIALIZER,
@@ -62,7 +64,7 @@ static void *worker_main(void *arg)
         seen = pool.generation;
         pool_job *job = pool.job;
         pthread_mutex_unlock(&pool.lock);
-        run_chunks(job, tid);
+        if (tid < job->nactive) run_chunks(job, tid);
         pthread_mutex_lock(&pool.lock);
         if (atomic_fetch_sub(&job->pending, 1) == 1) pthread_cond_signal(&pool.done);
     }
@@ -88,10 +90,23 @@ static void pool_init(void)
     }
 }
 
-int ms_threads_count(void)
+static int pool_size(void)
 {
     pthread_once(&pool.once, pool_init);
     return pool.nthreads;
+}
+
+int ms_threads_count(void)
+{
+    int n = pool_size();
+    return pool.limit > 0 && pool.limit < n ? pool.limit : n;
+}
+
+int ms_threads_set_limit(int n)
+{
+    int before = pool.limit;
+    pool.limit = n > 0 ? n : 0;
+    return before;
 }
 
 void ms_parallel_for(size_t n, size_t chunk, ms_range_fn fn, void *ctx)
@@ -103,9 +118,9 @@ void ms_parallel_for(size_t n, size_t chunk, ms_range_fn fn, void *ctx)
         fn(ctx, 0, n, 0);
         return;
     }
-    pool_job job = {.fn = fn, .ctx = ctx, .n = n, .chunk = chunk};
+    pool_job job = {.fn = fn, .ctx = ctx, .n = n, .chunk = chunk, .nactive = nt};
     atomic_init(&job.next, 0);
-    atomic_init(&job.pending, nt - 1);
+    atomic_init(&job.pending, pool_size() - 1);
     pthread_mutex_lock(&pool.lock);
     pool.job = &job;
     pool.generation++;

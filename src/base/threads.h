@@ -12,8 +12,13 @@
 typedef void (*ms_range_fn)(void *ctx, size_t begin, size_t end, int thread);
 void ms_parallel_for(size_t n, size_t chunk, ms_range_fn fn, void *ctx);
 
-/* Number of threads ms_parallel_for uses (workers plus the caller). */
+/* Number of threads ms_parallel_for uses (workers plus the caller), within the limit. */
 int ms_threads_count(void);
+/* Use at most n threads (at least 1) in later loops; 0 lifts the limit. Returns the limit
+ * before (0 for none). The pool keeps its threads: several MPI ranks on one node each take
+ * their share of the cores, and a rank working while the others wait takes them all. Call
+ * it from the thread that runs the loops, between loops. */
+int ms_threads_set_limit(int n);
 /* Number of online processors. */
 int ms_cpu_count(void);
 

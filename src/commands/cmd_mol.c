@@ -6,7 +6,9 @@
  *   mol load type file [type file ...]                -> molid   (obsolescent form)
  *   mol delete molid|all; mol top molid; mol list [molid]; mol rename molid name
  *   mol on|off|fix|free|unfix|active|inactive molspec
- *   mol cancel molid; mol reanalyze molid; mol bondsrecalc molid */
+ *   mol cancel molid; mol reanalyze molid; mol bondsrecalc molid
+ * molscope adds the load option `bcast on` to new and addfile: under MPI, rank 0 reads the
+ * file and every rank receives the molecule (see commands.h). */
 #include "config.h"
 #include "commands/commands.h"
 #include "fileio/load.h"

@@ -3,6 +3,7 @@
 #include "config.h"
 #include "commands/commands.h"
 #include "fileio/load.h"
+#include "parallel/parallel.h"
 #include "select/atomsel.h"
 
 #include <stdio.h>
@@ -293,12 +294,14 @@ int ms_cmd_parse_load_opts(Tcl_Interp *interp, const char *cmd, int objc, Tcl_Ob
             if (get_bool_opt(interp, cmd, opt, v, &o->filebonds)) return TCL_ERROR;
         } else if (!strcasecmp(opt, "autobonds")) {
             if (get_bool_opt(interp, cmd, opt, v, &o->autobonds)) return TCL_ERROR;
+        } else if (!strcasecmp(opt, "bcast")) {
+            if (get_bool_opt(interp, cmd, opt, v, &o->bcast)) return TCL_ERROR;
         } else if (!strcasecmp(opt, "volsets")) {
             /* volumetric data sets: accepted, no volumes in these formats */
         } else {
             return ms_cmd_error(interp,
                                 "%s: unknown option '%s': must be type, first, last, step, "
-                                "waitfor, filebonds, autobonds or volsets", cmd, opt);
+                                "waitfor, filebonds, autobonds, volsets or bcast", cmd, opt);
         }
     }
     if (o->last >= 0 && o->last < o->first)
@@ -307,12 +310,29 @@ int ms_cmd_parse_load_opts(Tcl_Interp *interp, const char *cmd, int objc, Tcl_Ob
     return TCL_OK;
 }
 
+/* `bcast on` with several ranks: a collective load (parallel.h). Never inside a `parallel
+ * for` callback, where the other ranks are elsewhere and would never join. Returns 1 when
+ * the load should be broadcast, 0 when not, -1 after setting an error. */
+static int use_bcast(Tcl_Interp *interp, const char *cmd, const ms_load_opts *o)
+{
+    if (!o->bcast || !ms_par_bcast_enabled()) return 0;
+    if (Tcl_GetAssocData(interp, "molscope::parallel::busy", NULL)) {
+        ms_cmd_error(interp, "%s: bcast on cannot be used inside a parallel for callback: every "
+                             "rank must load the file at the same point", cmd);
+        return -1;
+    }
+    return 1;
+}
+
 int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *path,
                 const ms_load_opts *o, ms_molecule *into)
 {
     ms_error err = {{0}};
+    int bcast = use_bcast(interp, cmd, o);
+    if (bcast < 0) return TCL_ERROR;
     if (!into) {
-        ms_molecule *m = ms_load_new(&app->plugins, path, o, &err);
+        ms_molecule *m = bcast ? ms_par_load_new(&app->plugins, path, o, &err)
+                               : ms_load_new(&app->plugins, path, o, &err);
         if (!m) return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
         if (ms_molset_add(&app->mols, m, &err)) {
             ms_mol_free(m);
@@ -326,7 +346,8 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         return TCL_OK;
     }
     size_t atoms_before = into->atoms.n, frames_before = into->nframes;
-    if (ms_load_add(&app->plugins, into, path, o, &err))
+    if (bcast ? ms_par_load_add(&app->plugins, into, path, o, &err)
+              : ms_load_add(&app->plugins, into, path, o, &err))
         return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
     if (atoms_before == 0 && into->atoms.n > 0) {
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE, into, NULL);
@@ -349,4 +370,8 @@ void ms_commands_register(ms_app *app)
     ms_cmd_animate_register(app);
     ms_cmd_vmdinfo_register(app);
     ms_atomsel_register(app);
+    ms_cmd_scene_register(app);
+    ms_cmd_vector_register(app);
+    ms_cmd_measure_register(app);
+    ms_cmd_measure_geom_register(app);
 }

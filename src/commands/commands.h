@@ -62,13 +62,22 @@ void ms_cmd_mol_register(ms_app *app);
 void ms_cmd_molinfo_register(ms_app *app);
 void ms_cmd_animate_register(ms_app *app);
 void ms_cmd_vmdinfo_register(ms_app *app);
+/* The scene-side commands (color, material, display, render, graphics ...): scenecmds.h */
+void ms_cmd_scene_register(ms_app *app);
+/* measure (cmd_measure.c, with bond/angle/dihed/imprp/inverse from cmd_measure_geom.c) and
+ * VMD's vector and matrix commands (cmd_vector.c). */
+void ms_cmd_measure_register(ms_app *app);
+void ms_cmd_measure_geom_register(ms_app *app);
+void ms_cmd_vector_register(ms_app *app);
 
 /* Shared by mol and animate: load a file as `mol new` (new molecule) or into mol. */
 typedef struct ms_load_opts ms_load_opts;
 int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *path,
                 const ms_load_opts *o, ms_molecule *into);
-/* Parse VMD's load options (type first last step waitfor filebonds autobonds volsets)
- * from objv[start..]; a trailing odd word is returned in *molid_word when allowed. */
+/* Parse VMD's load options (type first last step waitfor filebonds autobonds volsets),
+ * and molscope's `bcast on|off` (load on rank 0 and broadcast to every MPI rank: every rank
+ * must run the same command at the same point; all frames arrive before the command
+ * returns; ignored with one rank or MOLSCOPE_NOBCAST) from objv[start..]; a trailing odd word is returned in *molid_word when allowed. */
 int ms_cmd_parse_load_opts(Tcl_Interp *interp, const char *cmd, int objc, Tcl_Obj *const objv[],
                            int start, ms_load_opts *o, Tcl_Obj **molid_word);
 

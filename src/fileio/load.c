@@ -76,6 +76,17 @@ static int sink_reserve(ms_struct_sink *s, size_t natoms)
 
 static char blank_to_nul(char c) { return c == ' ' ? '\0' : c; }
 
+/* Keep a first-frame xyz buffer as long as the atom arrays (same capacity, no slack). */
+static int sink_grow_xyz(float **buf, size_t *cap, size_t atoms_cap)
+{
+    if (*cap >= atoms_cap) return 0;
+    float *p = realloc(*buf, atoms_cap * 3 * sizeof(float));
+    if (!p) return -1;
+    *buf = p;
+    *cap = atoms_cap;
+    return 0;
+}
+
 static int sink_add_atom(ms_struct_sink *s, const ms_atom_in *in)
 {
     sink_state *st = (sink_state *)s;
@@ -116,26 +127,26 @@ static int sink_add_atom(ms_struct_sink *s, const ms_atom_in *in)
     a->atomicnumber[i] = (uint8_t)z;
     ms_analysis_atom_defaults(m, i, has & MS_HAS_MASS, has & MS_HAS_RADIUS, z > 0);
 
+    if (((has & MS_HAS_POS) || st->any_pos) && sink_grow_xyz(&st->pos, &st->pos_cap, a->cap))
+        goto oom;
+    if (((has & MS_HAS_VEL) || st->any_vel) && sink_grow_xyz(&st->vel, &st->vel_cap, a->cap))
+        goto oom;
     if (has & MS_HAS_POS) {
-        if (ms_grow((void **)&st->pos, &st->pos_cap, a->cap, 3 * sizeof(float))) goto oom;
         if (!st->any_pos) memset(st->pos, 0, 3 * sizeof(float) * i);
         st->any_pos = 1;
         st->pos[3 * i] = in->x;
         st->pos[3 * i + 1] = in->y;
         st->pos[3 * i + 2] = in->z;
     } else if (st->any_pos) {
-        if (ms_grow((void **)&st->pos, &st->pos_cap, a->cap, 3 * sizeof(float))) goto oom;
         memset(st->pos + 3 * i, 0, 3 * sizeof(float));
     }
     if (has & MS_HAS_VEL) {
-        if (ms_grow((void **)&st->vel, &st->vel_cap, a->cap, 3 * sizeof(float))) goto oom;
         if (!st->any_vel) memset(st->vel, 0, 3 * sizeof(float) * i);
         st->any_vel = 1;
         st->vel[3 * i] = in->vx;
         st->vel[3 * i + 1] = in->vy;
         st->vel[3 * i + 2] = in->vz;
     } else if (st->any_vel) {
-        if (ms_grow((void **)&st->vel, &st->vel_cap, a->cap, 3 * sizeof(float))) goto oom;
         memset(st->vel + 3 * i, 0, 3 * sizeof(float));
     }
     return 0;
@@ -544,9 +555,7 @@ fail_nosink:
     return NULL;
 }
 
-/* Move a freshly loaded structure into an existing empty molecule, keeping its identity
- * (id, flags, view, attachments). */
-static void adopt_structure(ms_molecule *dst, ms_molecule *src)
+void ms_load_adopt(ms_molecule *dst, ms_molecule *src)
 {
     ms_molecule old = *dst;
     *dst = *src;
@@ -642,7 +651,7 @@ int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms
     if (m->atoms.n == 0) {
         ms_molecule *src = ms_load_new(r, path, o, err);
         if (!src) return -1;
-        adopt_structure(m, src);
+        ms_load_adopt(m, src);
         return 0;
     }
     size_t before = m->nframes;

@@ -15,6 +15,8 @@ typedef struct ms_load_opts {
     long waitfor;       /* frames to read now; < 0 = all */
     int filebonds;      /* use bonds the file lists */
     int autobonds;      /* add bonds by distance unless the file lists every bond */
+    int bcast;          /* `bcast on`: load once and broadcast to every MPI rank; the
+                         * commands route such loads to ms_par_load_* (parallel.h) */
 } ms_load_opts;
 
 void ms_load_opts_default(ms_load_opts *o);
@@ -32,6 +34,10 @@ ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_o
  * frames otherwise (the atom count must match). On error the molecule is as before. */
 int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms_load_opts *o,
                 ms_error *err);
+
+/* Move a freshly loaded molecule src into an existing empty molecule dst, keeping dst's
+ * identity (id, flags, view, attachments); src is freed. */
+void ms_load_adopt(ms_molecule *dst, ms_molecule *src);
 
 /* Read up to max_frames pending frames (all when max_frames < 0). Returns 1 when frames are
  * still pending, 0 when the file is done, -1 on a read error (frames read so far are kept,

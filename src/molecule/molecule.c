@@ -25,6 +25,14 @@ static void **atom_field(ms_atoms *a, size_t k)
     return (void **)((char *)a + atom_fields[k].offset);
 }
 
+size_t ms_atoms_field_count(void) { return MS_COUNTOF(atom_fields); }
+
+void **ms_atoms_field(ms_atoms *a, size_t k, size_t *elsize)
+{
+    *elsize = atom_fields[k].elsize;
+    return atom_field(a, k);
+}
+
 static const float identity4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
 ms_molecule *ms_mol_new(ms_error *err)

@@ -100,6 +100,11 @@ typedef struct ms_molecule {
     void *ext[8];             /* per-module attachments (reps, selections...), see molset.h */
 } ms_molecule;
 
+/* The per-atom arrays of ms_atoms, for code that treats them all alike (growth,
+ * serialisation): how many there are, and array k's address and element size. */
+size_t ms_atoms_field_count(void);
+void **ms_atoms_field(ms_atoms *a, size_t k, size_t *elsize);
+
 /* Create an empty molecule (no atoms, no frames). */
 ms_molecule *ms_mol_new(ms_error *err);
 void ms_mol_free(ms_molecule *m);

@@ -90,6 +90,40 @@ static void test_threads(void)
     free(c.seen);
 }
 
+static atomic_int tids_used;
+
+static void tid_body(void *vctx, size_t b, size_t e, int tid)
+{
+    pf_body(vctx, b, e, tid);
+    atomic_fetch_or(&tids_used, 1 << (tid & 15));
+    for (volatile int spin = 0; spin < 2000; spin++) {} /* give every thread a chance */
+}
+
+/* A limit below the pool's size keeps the loops to that many threads, and lifts again. */
+static void test_thread_limit(void)
+{
+    t_suite = "threads";
+    size_t n = 200000;
+    pf_ctx c = {.seen = calloc(n, 1)};
+    atomic_init(&c.sum, 0);
+    atomic_init(&c.calls, 0);
+    int pool = ms_threads_count();
+    int before = ms_threads_set_limit(2);
+    atomic_store(&tids_used, 0);
+    for (int rep = 0; rep < 5; rep++) ms_parallel_for(n, 100, tid_body, &c);
+    t_ok(before == 0 && ms_threads_count() == 2 && (atomic_load(&tids_used) & ~3) == 0,
+         "limit 2 of a pool of %d: threads used 0x%x", pool, atomic_load(&tids_used));
+    ms_threads_set_limit(0);
+    atomic_store(&tids_used, 0);
+    for (int rep = 0; rep < 5; rep++) ms_parallel_for(n, 100, tid_body, &c);
+    t_ok(ms_threads_count() == pool && (atomic_load(&tids_used) & ~3) != 0,
+         "no limit: the whole pool of %d works again (0x%x)", pool, atomic_load(&tids_used));
+    int each = 1;
+    for (size_t i = 0; i < n; i++) each &= c.seen[i] == 10;
+    t_ok(each, "every index visited exactly once per loop, limited or not");
+    free(c.seen);
+}
+
 static void test_hy36(void)
 {
     t_suite = "hybrid36";
@@ -130,9 +164,11 @@ static void test_fields(void)
 
 int main(void)
 {
+    setenv("MOLSCOPE_THREADS", "4", 1); /* a pool larger than a limit of 2, on any machine */
     test_strtab();
     test_grow();
     test_threads();
+    test_thread_limit();
     test_hy36();
     test_fields();
     return t_done();

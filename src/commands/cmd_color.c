@@ -1,0 +1,369 @@
+/* cmd_color.c: the `color` and `colorinfo` commands.
+ *
+ *   color <category> <item> ?color?          get or set an item's colour
+ *   color change rgb <color> ?r g b | gray?  change a colour (no value: restore its default)
+ *   color change rgblist {{r g b} ...} | {{color r g b} ...}
+ *   color change namelist {{category item color} ...}
+ *   color scale method|midpoint|min|max <v>;  color scale colors <method> ?c1 c2 c3?
+ *   color restype <resname> ?type?;  color add item <category> <item> <color>
+ *   colorinfo categories | category <cat> ?item? | num | max | colors | index <c> | rgb <c>
+ *   colorinfo scale method|methods|midpoint|min|max
+ * Every failure leaves the colours unchanged. */
+#include "config.h"
+#include "commands/scenecmds.h"
+#include "scene/color.h"
+
+#include <string.h>
+#include <strings.h>
+
+static int get_color(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, int *id)
+{
+    *id = ms_color_index(app->colors, Tcl_GetString(o));
+    if (*id < 0) return ms_cmd_error(interp, "%s: unknown color '%s'", cmd, Tcl_GetString(o));
+    return TCL_OK;
+}
+
+static int get_category(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, int *cat)
+{
+    *cat = ms_color_category_index(app->colors, Tcl_GetString(o));
+    if (*cat < 0)
+        return ms_cmd_error(interp, "%s: unknown color category '%s'", cmd, Tcl_GetString(o));
+    return TCL_OK;
+}
+
+static Tcl_Obj *color_obj(int id)
+{
+    const char *name = ms_color_name(id);
+    return name ? Tcl_NewStringObj(name, -1) : Tcl_NewIntObj(id);
+}
+
+static Tcl_Obj *rgb_obj(const float rgb[3])
+{
+    Tcl_Obj *v[3];
+    for (int k = 0; k < 3; k++) v[k] = Tcl_NewDoubleObj(rgb[k]);
+    return Tcl_NewListObj(3, v);
+}
+
+/* An {r g b} list or a colour name. */
+static int get_rgb(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, float rgb[3])
+{
+    int id = ms_color_index(app->colors, Tcl_GetString(o));
+    if (id >= 0 && !strchr(Tcl_GetString(o), ' ')) {
+        memcpy(rgb, ms_color_rgb(app->colors, id), 3 * sizeof(float));
+        return TCL_OK;
+    }
+    return ms_cmd_get_vec3(interp, o, rgb, cmd);
+}
+
+/* ---------------------------------------------------------------- color change */
+
+static int change_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *cmd = "color change rgb";
+    if (objc != 4 && objc != 5 && objc != 7)
+        return ms_cmd_error(interp, "%s: usage: color change rgb <color> ?<gray> | <r> <g> <b>?", cmd);
+    int id;
+    if (get_color(app, interp, objv[3], cmd, &id)) return TCL_ERROR;
+    if (id >= MS_COLOR_NUM)
+        return ms_cmd_error(interp, "%s: color %d is on the color scale; use color scale", cmd, id);
+    float rgb[3];
+    if (objc == 4) {
+        ms_color_default_rgb(id, rgb);
+    } else {
+        for (int k = 0; k < 3; k++)
+            if (ms_cmd_get_float(interp, objv[objc == 5 ? 4 : 4 + k], &rgb[k], cmd)) return TCL_ERROR;
+    }
+    ms_color_set_rgb(app->colors, id, rgb);
+    return TCL_OK;
+}
+
+/* {{r g b} ...} sets colours 0, 1, ...; {{name r g b} ...} or {{name {r g b}} ...} by name. */
+static int change_rgblist(ms_app *app, Tcl_Interp *interp, Tcl_Obj *list)
+{
+    const char *cmd = "color change rgblist";
+    Tcl_Obj **e;
+    int n;
+    if (Tcl_ListObjGetElements(NULL, list, &n, &e) != TCL_OK)
+        return ms_cmd_error(interp, "%s: expected a list, got '%s'", cmd, Tcl_GetString(list));
+    int ids[MS_COLOR_NUM];
+    float rgb[MS_COLOR_NUM][3];
+    if (n > MS_COLOR_NUM) return ms_cmd_error(interp, "%s: %d entries for %d colors", cmd, n, MS_COLOR_NUM);
+    for (int i = 0; i < n; i++) {
+        Tcl_Obj **f;
+        int m;
+        if (Tcl_ListObjGetElements(NULL, e[i], &m, &f) != TCL_OK) m = 0;
+        if (m == 3) {
+            ids[i] = i;
+            if (ms_cmd_get_vec3(interp, e[i], rgb[i], cmd)) return TCL_ERROR;
+        } else if (m == 2 || m == 4) {
+            if (get_color(app, interp, f[0], cmd, &ids[i])) return TCL_ERROR;
+            Tcl_Obj *v = m == 2 ? f[1] : Tcl_NewListObj(3, f + 1);
+            if (ms_cmd_get_vec3(interp, v, rgb[i], cmd)) return TCL_ERROR;
+            if (ids[i] >= MS_COLOR_NUM)
+                return ms_cmd_error(interp, "%s: color %d is on the color scale", cmd, ids[i]);
+        } else {
+            return ms_cmd_error(interp, "%s: bad entry '%s': expected {r g b} or {color r g b}",
+                                cmd, Tcl_GetString(e[i]));
+        }
+    }
+    for (int i = 0; i < n; i++) ms_color_set_rgb(app->colors, ids[i], rgb[i]);
+    return TCL_OK;
+}
+
+static int change_namelist(ms_app *app, Tcl_Interp *interp, Tcl_Obj *list)
+{
+    const char *cmd = "color change namelist";
+    Tcl_Obj **e;
+    int n;
+    if (Tcl_ListObjGetElements(NULL, list, &n, &e) != TCL_OK)
+        return ms_cmd_error(interp, "%s: expected a list, got '%s'", cmd, Tcl_GetString(list));
+    /* check everything first: all or nothing */
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = 0; i < n; i++) {
+            Tcl_Obj **f;
+            int m, cat, col;
+            if (Tcl_ListObjGetElements(NULL, e[i], &m, &f) != TCL_OK || m != 3)
+                return ms_cmd_error(interp, "%s: bad entry '%s': expected {category item color}",
+                                    cmd, Tcl_GetString(e[i]));
+            if (get_category(app, interp, f[0], cmd, &cat) || get_color(app, interp, f[2], cmd, &col))
+                return TCL_ERROR;
+            if (pass == 0 && ms_color_item_index(app->colors, cat, Tcl_GetString(f[1])) < 0)
+                return ms_cmd_error(interp, "%s: category %s has no item '%s'", cmd,
+                                    Tcl_GetString(f[0]), Tcl_GetString(f[1]));
+            if (pass == 1) ms_color_item_set(app->colors, cat, Tcl_GetString(f[1]), col);
+        }
+    return TCL_OK;
+}
+
+static int color_change(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc < 4)
+        return ms_cmd_error(interp, "color change: usage: color change rgb|rgblist|namelist ...");
+    const char *what = Tcl_GetString(objv[2]);
+    if (ms_word_eq(what, "rgb")) return change_rgb(app, interp, objc, objv);
+    if (objc != 4)
+        return ms_cmd_error(interp, "color change %s: takes one list", what);
+    if (ms_word_eq(what, "rgblist")) return change_rgblist(app, interp, objv[3]);
+    if (ms_word_eq(what, "namelist")) return change_namelist(app, interp, objv[3]);
+    return ms_cmd_error(interp, "color change: unknown option '%s': must be rgb, rgblist or namelist", what);
+}
+
+/* ---------------------------------------------------------------- color scale */
+
+static int scale_colors(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *cmd = "color scale colors";
+    if (objc != 4 && objc != 7)
+        return ms_cmd_error(interp, "%s: usage: color scale colors <method> ?<low> <mid> <high>?", cmd);
+    int m = ms_color_scale_method_index(app->colors, Tcl_GetString(objv[3]));
+    if (m < 0)
+        return ms_cmd_error(interp, "%s: unknown color scale method '%s'", cmd, Tcl_GetString(objv[3]));
+    if (objc == 4) {
+        Tcl_Obj *v[3];
+        for (int i = 0; i < 3; i++) v[i] = rgb_obj(app->colors->methods[m].rgb[i]);
+        Tcl_SetObjResult(interp, Tcl_NewListObj(3, v));
+        return TCL_OK;
+    }
+    float rgb[3][3];
+    for (int i = 0; i < 3; i++)
+        if (get_rgb(app, interp, objv[4 + i], cmd, rgb[i])) return TCL_ERROR;
+    ms_color_scale_set_colors(app->colors, m, rgb);
+    return TCL_OK;
+}
+
+static int color_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc >= 3 && ms_word_eq(Tcl_GetString(objv[2]), "colors"))
+        return scale_colors(app, interp, objc, objv);
+    if (objc != 4)
+        return ms_cmd_error(interp, "color scale: usage: color scale method|midpoint|min|max <value>");
+    const char *what = Tcl_GetString(objv[2]);
+    ms_colors *c = app->colors;
+    if (ms_word_eq(what, "method")) {
+        int m = ms_color_scale_method_index(c, Tcl_GetString(objv[3]));
+        if (m < 0)
+            return ms_cmd_error(interp, "color scale method: unknown method '%s'", Tcl_GetString(objv[3]));
+        ms_color_scale_set_method(c, m);
+        return TCL_OK;
+    }
+    float v, mid = c->scale_mid, min = c->scale_min, max = c->scale_max;
+    if (!ms_word_eq(what, "midpoint") && !ms_word_eq(what, "min") && !ms_word_eq(what, "max"))
+        return ms_cmd_error(interp, "color scale: unknown option '%s': must be method, midpoint, "
+                                    "min, max or colors", what);
+    if (ms_cmd_get_float(interp, objv[3], &v, "color scale")) return TCL_ERROR;
+    if (ms_word_eq(what, "midpoint")) {
+        if (v < 0 || v > 1)
+            return ms_cmd_error(interp, "color scale midpoint: %g is outside 0..1", v);
+        mid = v;
+    } else if (ms_word_eq(what, "min")) {
+        min = v;
+    } else {
+        max = v;
+    }
+    ms_color_scale_set_values(c, mid, min, max);
+    return TCL_OK;
+}
+
+/* ---------------------------------------------------------------- the rest */
+
+/* color restype <resname> ?type?. `color Restype <type> ?color?` (the category, which the
+ * subcommand word shadows) also works, as it does in VMD. */
+static int color_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[]);
+
+static int color_restype(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3 && objc != 4)
+        return ms_cmd_error(interp, "color restype: usage: color restype <resname> ?<type>?");
+    const char *res = Tcl_GetString(objv[2]);
+    int cat = ms_color_category_index(app->colors, "Restype");
+    int is_item = ms_color_item_index(app->colors, cat, res) >= 0;
+    if (objc == 3) {
+        const char *t = ms_color_restype(app->colors, res);
+        if (!t && is_item) return color_item(app, interp, objc, objv);
+        if (!t) return ms_cmd_error(interp, "color restype: no restype for residue '%s'", res);
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(t, -1));
+        return TCL_OK;
+    }
+    if (ms_color_set_restype(app->colors, res, Tcl_GetString(objv[3])) == 0) return TCL_OK;
+    if (is_item && ms_color_index(app->colors, Tcl_GetString(objv[3])) >= 0)
+        return color_item(app, interp, objc, objv);
+    return ms_cmd_error(interp, "color restype: unknown residue type '%s'", Tcl_GetString(objv[3]));
+}
+
+static int color_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 6 || !ms_word_eq(Tcl_GetString(objv[2]), "item"))
+        return ms_cmd_error(interp, "color add: usage: color add item <category> <item> <color>");
+    int cat, col;
+    if (get_category(app, interp, objv[3], "color add item", &cat) ||
+        get_color(app, interp, objv[5], "color add item", &col))
+        return TCL_ERROR;
+    if (ms_color_item_add(app->colors, cat, Tcl_GetString(objv[4]), col) < 0)
+        return ms_cmd_error(interp, "color add item: out of memory");
+    return TCL_OK;
+}
+
+/* color <category> <item> ?color? */
+static int color_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3 && objc != 4)
+        return ms_cmd_error(interp, "color: usage: color <category> <item> ?<color>?, color change "
+                                    "..., color scale ..., color restype ...");
+    int cat, col;
+    if (get_category(app, interp, objv[1], "color", &cat)) return TCL_ERROR;
+    const char *item = Tcl_GetString(objv[2]);
+    if (ms_color_item_index(app->colors, cat, item) < 0)
+        return ms_cmd_error(interp, "color: category %s has no item '%s'", Tcl_GetString(objv[1]), item);
+    if (objc == 3) {
+        Tcl_SetObjResult(interp, color_obj(ms_color_item_get(app->colors, cat, item)));
+        return TCL_OK;
+    }
+    if (get_color(app, interp, objv[3], "color", &col)) return TCL_ERROR;
+    ms_color_item_set(app->colors, cat, item, col);
+    return TCL_OK;
+}
+
+/* ---------------------------------------------------------------- colorinfo */
+
+static int info_categories(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (size_t i = 0; i < app->colors->ncats; i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(app->colors->cats[i].name, -1));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+static int info_category(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3 && objc != 4)
+        return ms_cmd_error(interp, "colorinfo category: usage: colorinfo category <category> ?<item>?");
+    int cat;
+    if (get_category(app, interp, objv[2], "colorinfo category", &cat)) return TCL_ERROR;
+    const ms_color_category *k = &app->colors->cats[cat];
+    if (objc == 4) {
+        int col = ms_color_item_get(app->colors, cat, Tcl_GetString(objv[3]));
+        if (col < 0)
+            return ms_cmd_error(interp, "colorinfo category: category %s has no item '%s'",
+                                k->name, Tcl_GetString(objv[3]));
+        Tcl_SetObjResult(interp, color_obj(col));
+        return TCL_OK;
+    }
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (size_t i = 0; i < k->n; i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(k->items[i].name, -1));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+static int info_num(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(MS_COLOR_NUM));
+    return TCL_OK;
+}
+
+static int info_max(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(MS_COLOR_MAX));
+    return TCL_OK;
+}
+
+static int info_colors(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (int i = 0; i < MS_COLOR_NUM; i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_color_name(i), -1));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+static int info_index_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *what = Tcl_GetString(objv[1]);
+    if (objc != 3) return ms_cmd_error(interp, "colorinfo %s: usage: colorinfo %s <color>", what, what);
+    int id;
+    if (get_color(app, interp, objv[2], "colorinfo", &id)) return TCL_ERROR;
+    Tcl_SetObjResult(interp, ms_word_eq(what, "index") ? Tcl_NewIntObj(id)
+                                                        : rgb_obj(ms_color_rgb(app->colors, id)));
+    return TCL_OK;
+}
+
+static int info_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3)
+        return ms_cmd_error(interp, "colorinfo scale: usage: colorinfo scale method|methods|midpoint|min|max");
+    const char *w = Tcl_GetString(objv[2]);
+    const ms_colors *c = app->colors;
+    if (ms_word_eq(w, "method")) {
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(c->methods[c->method].name, -1));
+    } else if (ms_word_eq(w, "methods")) {
+        Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+        for (int i = 0; i < MS_COLOR_SCALE_METHODS; i++)
+            Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(c->methods[i].name, -1));
+        Tcl_SetObjResult(interp, l);
+    } else if (ms_word_eq(w, "midpoint") || ms_word_eq(w, "min") || ms_word_eq(w, "max")) {
+        float v = ms_word_eq(w, "midpoint") ? c->scale_mid : ms_word_eq(w, "min") ? c->scale_min
+                                                                                   : c->scale_max;
+        Tcl_SetObjResult(interp, Tcl_NewDoubleObj(v));
+    } else {
+        return ms_cmd_error(interp, "colorinfo scale: unknown option '%s': must be method, methods, "
+                                    "midpoint, min or max", w);
+    }
+    return TCL_OK;
+}
+
+static const ms_subcmd color_table[] = {
+    {"change", color_change}, {"scale", color_scale}, {"restype", color_restype},
+    {"add", color_add}, {NULL, NULL}};
+
+static const ms_subcmd colorinfo_table[] = {
+    {"categories", info_categories}, {"category", info_category}, {"num", info_num},
+    {"max", info_max}, {"colors", info_colors}, {"index", info_index_rgb},
+    {"rgb", info_index_rgb}, {"scale", info_scale}, {NULL, NULL}};
+
+void ms_cmd_color_register(ms_app *app)
+{
+    ms_cmdset_create(app, "color", color_table);
+    ms_cmdset_fallback(app, "color", color_item);
+    ms_cmdset_create(app, "colorinfo", colorinfo_table);
+}

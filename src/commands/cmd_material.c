@@ -1,0 +1,125 @@
+/* cmd_material.c: the `material` command.
+ *
+ *   material list                                    names, in order
+ *   material settings <name>                         ambient specular diffuse shininess
+ *                                                    mirror opacity outline outlinewidth
+ *                                                    transmode (VMD's "%f" numbers)
+ *   material add ?<name>? ?copy <from>?              -> the new material's name
+ *   material rename <old> <new>;  material delete <name>
+ *   material change <property> <name> <value>
+ *   material default <name|index>                    restore a built-in material's values */
+#include "config.h"
+#include "commands/scenecmds.h"
+#include "scene/material.h"
+
+static int get_material(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, int *i)
+{
+    *i = ms_material_index(app->materials, Tcl_GetString(o));
+    if (*i < 0) return ms_cmd_error(interp, "%s: unknown material '%s'", cmd, Tcl_GetString(o));
+    return TCL_OK;
+}
+
+static int mat_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (size_t i = 0; i < app->materials->n; i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(app->materials->list[i].name, -1));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+static int mat_settings(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    int i;
+    if (objc != 3)
+        return ms_cmd_error(interp, "material settings: usage: material settings <name>");
+    if (get_material(app, interp, objv[2], "material settings", &i)) return TCL_ERROR;
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (int p = 0; p < MS_MAT_NPROPS; p++)
+        Tcl_ListObjAppendElement(NULL, l, ms_cmd_float_obj(
+                                     ms_material_get(&app->materials->list[i], (ms_mat_prop)p)));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+static int mat_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *name = NULL;
+    int from = 0, copy = -1;
+    if (objc == 3) name = Tcl_GetString(objv[2]);
+    else if (objc == 4) copy = 2;
+    else if (objc == 5) name = Tcl_GetString(objv[2]), copy = 3;
+    else if (objc != 2)
+        return ms_cmd_error(interp, "material add: usage: material add ?<name>? ?copy <from>?");
+    if (copy > 0) {
+        if (!ms_word_eq(Tcl_GetString(objv[copy]), "copy"))
+            return ms_cmd_error(interp, "material add: expected 'copy', got '%s'",
+                                Tcl_GetString(objv[copy]));
+        if (get_material(app, interp, objv[copy + 1], "material add", &from)) return TCL_ERROR;
+    }
+    ms_error err = {{0}};
+    int i = ms_material_add(app->materials, name, from, &err);
+    if (i < 0) return ms_cmd_error(interp, "material add: %s", err.msg);
+    Tcl_SetObjResult(interp, Tcl_NewStringObj(app->materials->list[i].name, -1));
+    return TCL_OK;
+}
+
+static int mat_rename(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    int i;
+    if (objc != 4) return ms_cmd_error(interp, "material rename: usage: material rename <old> <new>");
+    if (get_material(app, interp, objv[2], "material rename", &i)) return TCL_ERROR;
+    ms_error err = {{0}};
+    if (ms_material_rename(app->materials, i, Tcl_GetString(objv[3]), &err))
+        return ms_cmd_error(interp, "material rename: %s", err.msg);
+    return TCL_OK;
+}
+
+static int mat_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    int i;
+    if (objc != 3) return ms_cmd_error(interp, "material delete: usage: material delete <name>");
+    if (get_material(app, interp, objv[2], "material delete", &i)) return TCL_ERROR;
+    ms_error err = {{0}};
+    if (ms_material_delete(app->materials, i, &err))
+        return ms_cmd_error(interp, "material delete: %s", err.msg);
+    return TCL_OK;
+}
+
+static int mat_change(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 5)
+        return ms_cmd_error(interp, "material change: usage: material change <property> <name> <value>");
+    int p = ms_material_prop_from_name(Tcl_GetString(objv[2]));
+    if (p < 0)
+        return ms_cmd_error(interp, "material change: unknown property '%s': must be ambient, "
+                                    "specular, diffuse, shininess, mirror, opacity, outline, "
+                                    "outlinewidth or transmode", Tcl_GetString(objv[2]));
+    int i;
+    float v;
+    if (get_material(app, interp, objv[3], "material change", &i) ||
+        ms_cmd_get_float(interp, objv[4], &v, "material change"))
+        return TCL_ERROR;
+    ms_material_set(app->materials, i, (ms_mat_prop)p, v);
+    return TCL_OK;
+}
+
+static int mat_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    int i;
+    if (objc != 3) return ms_cmd_error(interp, "material default: usage: material default <name|index>");
+    if (get_material(app, interp, objv[2], "material default", &i)) return TCL_ERROR;
+    ms_error err = {{0}};
+    if (ms_material_restore_default(app->materials, i, &err))
+        return ms_cmd_error(interp, "material default: %s", err.msg);
+    return TCL_OK;
+}
+
+static const ms_subcmd material_table[] = {
+    {"list", mat_list}, {"settings", mat_settings}, {"add", mat_add}, {"rename", mat_rename},
+    {"delete", mat_delete}, {"change", mat_change}, {"default", mat_default}, {NULL, NULL}};
+
+void ms_cmd_material_register(ms_app *app)
+{
+    ms_cmdset_create(app, "material", material_table);
+}

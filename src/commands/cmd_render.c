@@ -1,0 +1,157 @@
+/* cmd_render.c: the `render` command.
+ *
+ *   render list                                  the device names
+ *   render <method> <file> ?cmd...?              write the scene; then run cmd (words joined
+ *                                                with spaces; %s file, %w %h display size)
+ *   render options <method> ?cmd...?             get or set the device's post-render command
+ *   render default <method>                      VMD's default post-render command
+ *   render hasaa <method>;  render aasamples|aosamples <method> ?n?
+ *   render imagesize <method>;  render aspectratio <method>
+ *   render formats <method>;  render format <method> ?fmt? */
+#include "config.h"
+#include "commands/scenecmds.h"
+#include "render/render.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+static const ms_render_device *get_device(Tcl_Interp *interp, Tcl_Obj *o, const char *cmd)
+{
+    const ms_render_device *d = ms_render_find(Tcl_GetString(o));
+    if (!d) ms_cmd_error(interp, "%s: no render method '%s' (see render list)", cmd, Tcl_GetString(o));
+    return d;
+}
+
+/* Words from objv[from] on joined with spaces (a Tcl_Obj with refcount 0). */
+static Tcl_Obj *joined(int objc, Tcl_Obj *const objv[], int from)
+{
+    Tcl_Obj *s = Tcl_NewObj();
+    for (int i = from; i < objc; i++) {
+        if (i > from) Tcl_AppendToObj(s, " ", 1);
+        Tcl_AppendObjToObj(s, objv[i]);
+    }
+    return s;
+}
+
+static ms_render_setting *setting(ms_app *app, Tcl_Interp *interp, const ms_render_device *d)
+{
+    ms_render_setting *s = ms_render_setting_of(app->renderers, d);
+    if (!s) ms_cmd_error(interp, "render: out of memory");
+    return s;
+}
+
+static int r_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (size_t i = 0; i < ms_render_count(); i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_render_device_at(i)->name, -1));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+static int r_options(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *w = Tcl_GetString(objv[1]);
+    if (objc < 3) return ms_cmd_error(interp, "render %s: usage: render %s <method>", w, w);
+    const ms_render_device *d = get_device(interp, objv[2], "render");
+    ms_render_setting *s = d ? setting(app, interp, d) : NULL;
+    if (!s) return TCL_ERROR;
+    if (ms_word_eq(w, "default")) {
+        if (objc != 3) return ms_cmd_error(interp, "render default: usage: render default <method>");
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(d->default_cmd, -1));
+        return TCL_OK;
+    }
+    if (objc == 3) {
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(s->cmd, -1));
+        return TCL_OK;
+    }
+    Tcl_Obj *cmd = joined(objc, objv, 3);
+    Tcl_IncrRefCount(cmd);
+    int rc = ms_render_set_cmd(s, Tcl_GetString(cmd));
+    Tcl_DecrRefCount(cmd);
+    return rc ? ms_cmd_error(interp, "render options: out of memory") : TCL_OK;
+}
+
+static int r_samples(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *w = Tcl_GetString(objv[1]);
+    int ao = ms_word_eq(w, "aosamples");
+    if (objc != 3 && objc != 4) return ms_cmd_error(interp, "render %s: usage: render %s <method> ?<n>?", w, w);
+    const ms_render_device *d = get_device(interp, objv[2], "render");
+    ms_render_setting *s = d ? setting(app, interp, d) : NULL;
+    if (!s) return TCL_ERROR;
+    if (objc == 4) {
+        long n;
+        char what[32];
+        snprintf(what, sizeof what, "render %s", ao ? "aosamples" : "aasamples");
+        if (ms_cmd_get_count(interp, objv[3], 65536, what, &n)) return TCL_ERROR;
+        if (ms_render_set_samples(s, ao ? -1 : (int)n, ao ? (int)n : -1))
+            return ms_cmd_error(interp, "render: out of memory");
+    }
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(ao ? s->aosamples : s->aasamples));
+    return TCL_OK;
+}
+
+static int r_info(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const char *w = Tcl_GetString(objv[1]);
+    if (objc != 3) return ms_cmd_error(interp, "render %s: usage: render %s <method>", w, w);
+    const ms_render_device *d = get_device(interp, objv[2], "render");
+    if (!d) return TCL_ERROR;
+    if (ms_word_eq(w, "hasaa")) {
+        Tcl_SetObjResult(interp, Tcl_NewIntObj(d->has_aa));
+    } else if (ms_word_eq(w, "imagesize")) {
+        Tcl_SetObjResult(interp, Tcl_ObjPrintf("%d %d", app->width, app->height));
+    } else if (ms_word_eq(w, "aspectratio")) {
+        Tcl_SetObjResult(interp, Tcl_NewDoubleObj((double)app->width / app->height));
+    } else {   /* formats */
+        Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+        for (const char *const *f = d->formats; f && *f; f++)
+            Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(*f, -1));
+        Tcl_SetObjResult(interp, l);
+    }
+    return TCL_OK;
+}
+
+static int r_format(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3 && objc != 4) return ms_cmd_error(interp, "render format: usage: render format <method> ?<format>?");
+    const ms_render_device *d = get_device(interp, objv[2], "render format");
+    ms_render_setting *s = d ? setting(app, interp, d) : NULL;
+    if (!s) return TCL_ERROR;
+    if (objc == 3) {
+        if (d->formats) Tcl_SetObjResult(interp, Tcl_NewStringObj(d->formats[s->format], -1));
+        return TCL_OK;
+    }
+    if (ms_render_set_format(s, Tcl_GetString(objv[3])))
+        return ms_cmd_error(interp, "render format: unknown format '%s' for %s", Tcl_GetString(objv[3]), d->name);
+    return TCL_OK;
+}
+
+/* render <method> <file> ?cmd...? */
+static int r_render(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc < 3)
+        return ms_cmd_error(interp, "render: usage: render list | render <method> <file> ?<command>?");
+    const ms_render_device *d = get_device(interp, objv[1], "render");
+    if (!d) return TCL_ERROR;
+    Tcl_Obj *cmd = joined(objc, objv, 3);
+    Tcl_IncrRefCount(cmd);
+    ms_error err = {{0}};
+    int rc = ms_render(app, d, Tcl_GetString(objv[2]), Tcl_GetString(cmd), &err);
+    Tcl_DecrRefCount(cmd);
+    if (rc) return ms_cmd_error(interp, "render %s: %s", d->name, err.msg);
+    return TCL_OK;
+}
+
+static const ms_subcmd render_table[] = {
+    {"list", r_list}, {"options", r_options}, {"default", r_options}, {"aasamples", r_samples},
+    {"aosamples", r_samples}, {"hasaa", r_info}, {"imagesize", r_info}, {"aspectratio", r_info},
+    {"formats", r_info}, {"format", r_format}, {NULL, NULL}};
+
+void ms_cmd_render_register(ms_app *app)
+{
+    ms_cmdset_create(app, "render", render_table);
+    ms_cmdset_fallback(app, "render", r_render);
+}

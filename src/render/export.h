@@ -1,0 +1,43 @@
+/* export.h: what the file exporters share: VMD's sizes for lines, points and text, world
+ * transforms of scene items, tessellation for formats without spheres, cylinders or cones,
+ * dashed lines, and the stroke font text is drawn with. */
+#ifndef MS_EXPORT_H
+#define MS_EXPORT_H
+
+#include "scene/mat4.h"
+#include "scene/scene.h"
+
+#define MS_EXPORT_LINE_RADIUS 0.002f    /* VMD: width 1 lines and size 1 points */
+#define MS_EXPORT_DASH 0.02f            /* VMD's dash length */
+#define MS_EXPORT_TEXT_HEIGHT 0.1f      /* capital height of size-1 text, world units */
+
+/* Triangles with per-vertex unit normals, in the coordinates given. */
+typedef void (*ms_tri_cb)(void *ud, const float p[9], const float n[9]);
+/* A UV sphere: max(res, 2) stacks of 2 * max(res, 2) slices (2 * slices * (stacks - 1)
+ * triangles). */
+void ms_tess_sphere(const float c[3], float r, int res, ms_tri_cb cb, void *ud);
+/* A truncated cone (a cylinder when rb == ra) of max(res, 3) sides, with the ends named in
+ * caps (MS_CAP_BASE, MS_CAP_APEX) closed by triangle fans. */
+void ms_tess_cone(const float base[3], const float apex[3], float rb, float ra, int res,
+                  int caps, ms_tri_cb cb, void *ud);
+
+/* Segments. */
+typedef void (*ms_seg_cb)(void *ud, const float a[3], const float b[3]);
+/* VMD's dashed line: dashes of MS_EXPORT_DASH with gaps of the same length. */
+void ms_export_dashes(const float a[3], const float b[3], ms_seg_cb cb, void *ud);
+/* Strokes of a string written from anchor along +x with +y up (screen-aligned in VMD's
+ * default view), capital height size * MS_EXPORT_TEXT_HEIGHT. */
+void ms_export_text(const char *s, const float anchor[3], float size, ms_seg_cb cb, void *ud);
+
+/* Number text as printf's "%g" and "%.3f" give it, written faster (numfmt.c). out needs 32
+ * bytes; the length is returned. */
+int ms_fmt_g(char *out, float v);
+int ms_fmt_f3(char *out, float v);
+
+/* World-space helpers for scene items. */
+static inline float ms_item_scale(const ms_scene_item *it)
+{
+    return ms_mat4_scale_factor(it->xform);
+}
+
+#endif

@@ -1,0 +1,5 @@
+# src/render: the render device registry and the file exporters (Tachyon, POV3, Wavefront).
+src_libmscore_la_SOURCES += \
+	src/render/render.h src/render/render.c \
+	src/render/export.h src/render/font.c src/render/tess.c src/render/numfmt.c \
+	src/render/tachyon.c src/render/pov3.c src/render/wavefront.c

@@ -1,0 +1,238 @@
+/* render.c: the device registry, per-application device settings, transactional output
+ * files, and `render`'s sequence: build the scene, write, run the post-render command. */
+#include "config.h"
+#include "render/render.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define MAX_DEVICES 32
+static const ms_render_device *devices[MAX_DEVICES];
+static size_t ndevices;
+
+int ms_render_register(const ms_render_device *dev)
+{
+    if (ms_render_find(dev->name)) return 0;
+    if (ndevices >= MAX_DEVICES) return -1;
+    devices[ndevices++] = dev;
+    return 0;
+}
+
+size_t ms_render_count(void)
+{
+    return ndevices;
+}
+
+const ms_render_device *ms_render_device_at(size_t i)
+{
+    return i < ndevices ? devices[i] : NULL;
+}
+
+const ms_render_device *ms_render_find(const char *name)
+{
+    for (size_t i = 0; i < ndevices; i++)
+        if (!strcasecmp(devices[i]->name, name)) return devices[i];
+    return NULL;
+}
+
+extern const ms_render_device ms_render_tachyon, ms_render_pov3, ms_render_wavefront;
+
+void ms_render_register_builtin(void)
+{
+    ms_render_register(&ms_render_tachyon);
+    ms_render_register(&ms_render_pov3);
+    ms_render_register(&ms_render_wavefront);
+}
+
+/* ---------------------------------------------------------------- settings */
+
+ms_renderers *ms_renderers_new(void)
+{
+    ms_render_register_builtin();
+    return calloc(1, sizeof(ms_renderers));
+}
+
+void ms_renderers_free(ms_renderers *r)
+{
+    if (!r) return;
+    for (size_t i = 0; i < r->n; i++) free(r->list[i].cmd);
+    free(r->list);
+    free(r);
+}
+
+ms_render_setting *ms_render_setting_of(ms_renderers *r, const ms_render_device *dev)
+{
+    for (size_t i = 0; i < r->n; i++)
+        if (r->list[i].dev == dev) return &r->list[i];
+    char *cmd = ms_strdup(dev->default_cmd);
+    if (!cmd || ms_grow((void **)&r->list, &r->cap, r->n + 1, sizeof *r->list)) {
+        free(cmd);
+        return NULL;
+    }
+    ms_render_setting *s = &r->list[r->n++];
+    s->dev = dev;
+    s->cmd = cmd;
+    s->aasamples = dev->aasamples;
+    s->aosamples = dev->aosamples;
+    s->format = dev->default_format;
+    return s;
+}
+
+/* The command the device makes for the current settings; 0 when it has none. */
+static int generated_cmd(const ms_render_setting *s, char *buf, size_t size)
+{
+    if (!s->dev->cmd_for) return 0;
+    s->dev->cmd_for(s->format, s->aasamples, buf, size);
+    return 1;
+}
+
+int ms_render_set_samples(ms_render_setting *set, int aasamples, int aosamples)
+{
+    char gen[1024];
+    int follow = generated_cmd(set, gen, sizeof gen) && !strcmp(gen, set->cmd);
+    if (aasamples >= 0) set->aasamples = aasamples;
+    if (aosamples >= 0) set->aosamples = aosamples;
+    if (!follow) return 0;
+    generated_cmd(set, gen, sizeof gen);
+    return ms_render_set_cmd(set, gen);
+}
+
+int ms_render_set_format(ms_render_setting *set, const char *name)
+{
+    const char *const *f = set->dev->formats;
+    for (int i = 0; f && f[i]; i++) {
+        if (strcasecmp(f[i], name)) continue;
+        char gen[1024];
+        set->format = i;
+        return generated_cmd(set, gen, sizeof gen) ? ms_render_set_cmd(set, gen) : 0;
+    }
+    return -1;
+}
+
+int ms_render_set_cmd(ms_render_setting *set, const char *cmd)
+{
+    char *c = ms_strdup(cmd);
+    if (!c) return -1;
+    free(set->cmd);
+    set->cmd = c;
+    return 0;
+}
+
+/* ---------------------------------------------------------------- files */
+
+FILE *ms_render_open_tmp(const char *path, char **tmp, ms_error *err)
+{
+    size_t n = strlen(path);
+    char *name = malloc(n + 16);
+    if (!name) {
+        ms_error_set(err, "%s: out of memory", path);
+        return NULL;
+    }
+    memcpy(name, path, n);
+    memcpy(name + n, ".tmp-XXXXXX", 12);
+    int fd = mkstemp(name);
+    if (fd < 0) {
+        ms_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        free(name);
+        return NULL;
+    }
+    FILE *f = fdopen(fd, "w");
+    if (!f) {
+        ms_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        close(fd);
+        unlink(name);
+        free(name);
+        return NULL;
+    }
+    /* mkstemp makes the file private; give it the permissions a plain fopen would. */
+    mode_t mask = umask(0);
+    umask(mask);
+    fchmod(fd, 0666 & ~mask);
+    setvbuf(f, NULL, _IOFBF, 1 << 16);
+    *tmp = name;
+    return f;
+}
+
+int ms_render_commit(FILE *f, char *tmp, const char *path, int ok, ms_error *err)
+{
+    int failed = !ok;
+    if (ok && ferror(f)) {
+        ms_error_set(err, "%s: write error: %s", path, strerror(errno));
+        failed = 1;
+    }
+    if (fclose(f) != 0 && !failed) {
+        ms_error_set(err, "%s: write error: %s", path, strerror(errno));
+        failed = 1;
+    }
+    if (!failed && rename(tmp, path) != 0) {
+        ms_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        failed = 1;
+    }
+    if (failed) unlink(tmp);
+    free(tmp);
+    return failed ? -1 : 0;
+}
+
+/* ---------------------------------------------------------------- render */
+
+char *ms_render_expand_cmd(const char *cmd, const char *path, int w, int h)
+{
+    char ws[16], hs[16];
+    snprintf(ws, sizeof ws, "%d", w);
+    snprintf(hs, sizeof hs, "%d", h);
+    size_t cap = strlen(cmd) + 1, n = 0;
+    for (const char *p = cmd; *p; p++)
+        if (p[0] == '%' && (p[1] == 's' || p[1] == 'w' || p[1] == 'h')) cap += strlen(path) + 16;
+    char *out = malloc(cap);
+    if (!out) return NULL;
+    for (const char *p = cmd; *p; p++) {
+        const char *sub = NULL;
+        if (p[0] == '%' && p[1] == 's') sub = path;
+        else if (p[0] == '%' && p[1] == 'w') sub = ws;
+        else if (p[0] == '%' && p[1] == 'h') sub = hs;
+        if (sub) {
+            size_t l = strlen(sub);
+            memcpy(out + n, sub, l);
+            n += l;
+            p++;
+        } else {
+            out[n++] = *p;
+        }
+    }
+    out[n] = '\0';
+    return out;
+}
+
+int ms_render(ms_app *app, const ms_render_device *dev, const char *path, const char *post_cmd,
+              ms_error *err)
+{
+    ms_render_setting *set = ms_render_setting_of(app->renderers, dev);
+    if (!set) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    ms_scene scene;
+    if (ms_scene_build(app, &scene, err)) return -1;
+    scene.aa_samples = set->aasamples;
+    scene.ao_samples = set->aosamples;
+    int rc = dev->write(&scene, path, err);
+    ms_scene_free(&scene);
+    if (rc || !post_cmd || !*post_cmd) return rc;
+    char *cmd = ms_render_expand_cmd(post_cmd, path, app->width, app->height);
+    if (!cmd) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    /* As VMD: the command's own exit status is not an error of `render`. */
+    fflush(stdout);
+    if (system(cmd) == -1) {
+        ms_error_set(err, "cannot run the post-render command '%s': %s", cmd, strerror(errno));
+        rc = -1;
+    }
+    free(cmd);
+    return rc;
+}

@@ -1,0 +1,182 @@
+/* scene.c: the scene a device draws: placing display lists, VMD's camera projection, and
+ * assembling the scene from the molecules, user graphics, axes and stage. */
+#include "config.h"
+#include "scene/scene.h"
+#include "scene/color.h"
+#include "scene/mat4.h"
+#include "view/view.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_SOURCES 8
+static ms_scene_source_fn sources[MAX_SOURCES];
+static int nsources;
+
+int ms_scene_register_source(ms_scene_source_fn fn)
+{
+    for (int i = 0; i < nsources; i++)
+        if (sources[i] == fn) return 0;
+    if (nsources >= MAX_SOURCES) return -1;
+    sources[nsources++] = fn;
+    return 0;
+}
+
+void ms_scene_init(ms_scene *s)
+{
+    memset(s, 0, sizeof *s);
+    s->aa_samples = 12;
+    s->ao_samples = 12;
+}
+
+void ms_scene_free(ms_scene *s)
+{
+    for (size_t i = 0; i < s->nowned; i++) {
+        ms_dl_free(s->owned[i]);
+        free(s->owned[i]);
+    }
+    free(s->owned);
+    free(s->items);
+    ms_scene_init(s);
+}
+
+int ms_scene_add(ms_scene *s, const ms_displaylist *dl, const float xform[16],
+                 const ms_materials *mats, ms_error *err)
+{
+    if (ms_grow((void **)&s->items, &s->capitems, s->nitems + 1, sizeof *s->items)) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    ms_scene_item *it = &s->items[s->nitems++];
+    it->dl = dl;
+    memcpy(it->xform, xform, sizeof it->xform);
+    it->mat = *ms_material_by_id(mats, dl->material);
+    return 0;
+}
+
+ms_displaylist *ms_scene_new_list(ms_scene *s, ms_error *err)
+{
+    ms_displaylist *dl = malloc(sizeof *dl);
+    if (!dl || ms_grow((void **)&s->owned, &s->capowned, s->nowned + 1, sizeof *s->owned)) {
+        free(dl);
+        ms_error_set(err, "out of memory");
+        return NULL;
+    }
+    ms_dl_init(dl);
+    s->owned[s->nowned++] = dl;
+    return dl;
+}
+
+/* ---------------------------------------------------------------- camera */
+
+static float dot3(const float *a, const float *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Distance from the eye to the screen plane, and the visible half-height there. */
+static float screen_dist(const ms_camera *c)
+{
+    return c->eye[2] - c->distance;
+}
+
+int ms_scene_project(const ms_scene *s, const float world[3], float *px, float *py, float *depth)
+{
+    const ms_camera *c = &s->cam;
+    float right[3] = {c->dir[1] * c->up[2] - c->dir[2] * c->up[1],
+                      c->dir[2] * c->up[0] - c->dir[0] * c->up[2],
+                      c->dir[0] * c->up[1] - c->dir[1] * c->up[0]};
+    float rel[3] = {world[0] - c->eye[0], world[1] - c->eye[1], world[2] - c->eye[2]};
+    float xe = dot3(rel, right), ye = dot3(rel, c->up), d = dot3(rel, c->dir);
+    float half_h, xs, ys;
+    if (c->projection == MS_PROJ_ORTHOGRAPHIC) {
+        half_h = c->height / 4.0f;
+        xs = xe;
+        ys = ye;
+    } else {
+        if (d <= 0) return -1;
+        half_h = c->height / 2.0f;
+        xs = xe * screen_dist(c) / d;
+        ys = ye * screen_dist(c) / d;
+    }
+    float aspect = (float)s->width / (float)s->height;
+    *px = 0.5f * (float)s->width * (1.0f + xs / (half_h * aspect));
+    *py = 0.5f * (float)s->height * (1.0f - ys / half_h);
+    if (depth) *depth = d;
+    return 0;
+}
+
+float ms_scene_pixel_size(const ms_scene *s, float depth)
+{
+    const ms_camera *c = &s->cam;
+    if (c->projection == MS_PROJ_ORTHOGRAPHIC) return c->height / 2.0f / (float)s->height;
+    return c->height * depth / (screen_dist(c) * (float)s->height);
+}
+
+/* ---------------------------------------------------------------- assembling */
+
+static void display_color(const ms_colors *c, const char *item, float rgb[3])
+{
+    int id = ms_color_item_get(c, ms_color_category_index(c, "Display"), item);
+    memcpy(rgb, ms_color_rgb(c, id < 0 ? 16 : id), 3 * sizeof(float));
+}
+
+static void copy_settings(ms_app *app, ms_scene *s)
+{
+    const ms_view *v = app->view;
+    s->width = app->width;
+    s->height = app->height;
+    s->cam = v->cam;
+    memcpy(s->lights, v->lights, sizeof s->lights);
+    display_color(app->colors, "Background", s->background);
+    display_color(app->colors, "BackgroundTop", s->bg_top);
+    display_color(app->colors, "BackgroundBot", s->bg_bottom);
+    s->bg_gradient = v->bg_gradient;
+    s->depthcue = v->depthcue;
+    s->cuemode = v->cuemode;
+    s->cue_start = v->cue_start;
+    s->cue_end = v->cue_end;
+    s->cue_density = v->cue_density;
+    s->shadows = v->shadows;
+    s->ao = v->ao;
+    s->ao_ambient = v->ao_ambient;
+    s->ao_direct = v->ao_direct;
+}
+
+static int add_decorations(ms_app *app, ms_scene *s, ms_error *err)
+{
+    const ms_view *v = app->view;
+    float xform[16];
+    if (v->axes != MS_AXES_OFF) {
+        ms_displaylist *dl = ms_scene_new_list(s, err);
+        if (!dl || ms_view_axes_list(v, app->colors, (float)s->width / (float)s->height, dl,
+                                     xform, err) ||
+            ms_scene_add(s, dl, xform, app->materials, err))
+            return -1;
+    }
+    if (v->stage != MS_STAGE_OFF) {
+        ms_displaylist *dl = ms_scene_new_list(s, err);
+        if (!dl || ms_view_stage_list(v, app->colors, dl, xform, err) ||
+            ms_scene_add(s, dl, xform, app->materials, err))
+            return -1;
+    }
+    return 0;
+}
+
+int ms_scene_build(ms_app *app, ms_scene *s, ms_error *err)
+{
+    ms_scene_init(s);
+    copy_settings(app, s);
+    for (size_t i = 0; i < app->mols.n; i++) {
+        ms_molecule *m = app->mols.mols[i];
+        if (!m->displayed) continue;
+        float model[16];
+        ms_view_mol_model(m, model);
+        for (int k = 0; k < nsources; k++)
+            if (sources[k](app, m, s, model, err)) goto fail;
+    }
+    if (add_decorations(app, s, err) == 0) return 0;
+fail:
+    ms_scene_free(s);
+    return -1;
+}

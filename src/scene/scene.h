@@ -1,0 +1,96 @@
+/* scene.h: the Scene, the one input of every device: the visible display lists with their
+ * model-to-world transforms and resolved materials, VMD's camera, the lights, depth cueing,
+ * the background (and gradient), shadow / ambient-occlusion / depth-of-field settings and
+ * the image size. Devices never read a Molecule.
+ *
+ * VMD's camera: the eye at (0, 0, 2) looks down -z with +y up; the screen plane is at
+ * z = distance (-2) and is `height` (6) tall. Perspective: a point projects through the eye
+ * onto the screen plane. Orthographic: the visible height is height / 2 at every depth.
+ *
+ * A scene is assembled from the application state by ms_scene_build: the displayed
+ * molecules (each molecule's model = global * rotate * scale * center) with the display
+ * lists that registered sources give for them (user graphics now, representations later),
+ * then the axes and the stage. */
+#ifndef MS_SCENE_H
+#define MS_SCENE_H
+
+#include "app/app.h"
+#include "scene/displaylist.h"
+#include "scene/material.h"
+
+#define MS_SCENE_LIGHTS 4
+
+typedef enum ms_projection { MS_PROJ_PERSPECTIVE, MS_PROJ_ORTHOGRAPHIC } ms_projection;
+typedef enum ms_cuemode { MS_CUE_LINEAR, MS_CUE_EXP, MS_CUE_EXP2 } ms_cuemode;
+
+typedef struct ms_camera {
+    ms_projection projection;
+    float eye[3], dir[3], up[3];     /* (0,0,2), (0,0,-1), (0,1,0) */
+    float height;                    /* screen height (display height) */
+    float distance;                  /* z of the screen plane (display distance) */
+    float near_clip, far_clip;
+    float eyesep, focal_length;
+    int dof;
+    float dof_fnumber, dof_focaldist;
+} ms_camera;
+
+typedef struct ms_light {
+    int on;
+    float pos[3];                    /* direction towards the light (VMD's light position) */
+    float color[3];
+} ms_light;
+
+/* One display list placed in the world. */
+typedef struct ms_scene_item {
+    const ms_displaylist *dl;
+    float xform[16];                 /* model to world, row-major */
+    ms_material mat;                 /* resolved (name not owned) */
+} ms_scene_item;
+
+typedef struct ms_scene {
+    int width, height;
+    ms_camera cam;
+    ms_light lights[MS_SCENE_LIGHTS];
+    float background[3];
+    int bg_gradient;
+    float bg_top[3], bg_bottom[3];
+    int depthcue;
+    ms_cuemode cuemode;
+    float cue_start, cue_end, cue_density;
+    int shadows, ao;
+    float ao_ambient, ao_direct;
+    int aa_samples, ao_samples;      /* filled in by the renderer that draws it */
+    ms_scene_item *items;
+    size_t nitems, capitems;
+    ms_displaylist **owned;          /* lists made while building (axes, stage) */
+    size_t nowned, capowned;
+} ms_scene;
+
+void ms_scene_init(ms_scene *s);
+void ms_scene_free(ms_scene *s);
+
+/* Place a display list (not copied: it must outlive the scene) with a transform. */
+int ms_scene_add(ms_scene *s, const ms_displaylist *dl, const float xform[16],
+                 const ms_materials *mats, ms_error *err);
+/* A new empty display list the scene owns (freed with it); NULL when memory runs out. Fill
+ * it, then place it with ms_scene_add. */
+ms_displaylist *ms_scene_new_list(ms_scene *s, ms_error *err);
+
+/* Screen position of a world point: pixel x from the left, y from the top (pixel centres at
+ * +0.5), and the depth along the view direction. Returns 0, or -1 when the point is at or
+ * behind the eye (perspective). */
+int ms_scene_project(const ms_scene *s, const float world[3], float *px, float *py, float *depth);
+/* World-space size of one pixel at a given depth (distance along the view direction). */
+float ms_scene_pixel_size(const ms_scene *s, float depth);
+
+/* Sources of per-molecule display lists. fn appends lists for molecule m to s, with
+ * `model` as the molecule's model-to-world transform. Registered once per program. */
+typedef int (*ms_scene_source_fn)(ms_app *app, ms_molecule *m, ms_scene *s,
+                                  const float model[16], ms_error *err);
+int ms_scene_register_source(ms_scene_source_fn fn);
+
+/* Assemble the scene from the application state (see above). On failure the scene is
+ * freed and err says why. */
+int ms_scene_build(ms_app *app, ms_scene *s, ms_error *err);
+
+#endif

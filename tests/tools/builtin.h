@@ -1,0 +1,24 @@
+/* builtin.h: every plugin linked into a test program (see plugin_*.c), for tools and tests
+ * that load files without the plugin directory. */
+#ifndef MS_TEST_BUILTIN_H
+#define MS_TEST_BUILTIN_H
+
+#include "fileio/registry.h"
+
+const ms_plugin *ms_plugin_entry_pdb(void);
+const ms_plugin *ms_plugin_entry_psf(void);
+const ms_plugin *ms_plugin_entry_dcd(void);
+const ms_plugin *ms_plugin_entry_xyz(void);
+const ms_plugin *ms_plugin_entry_gro(void);
+
+/* Add all of them to a registry; 0 or -1 (out of memory). */
+static inline int ms_test_add_builtin(ms_registry *r)
+{
+    const ms_plugin *p[] = {ms_plugin_entry_pdb(), ms_plugin_entry_psf(), ms_plugin_entry_dcd(),
+                            ms_plugin_entry_xyz(), ms_plugin_entry_gro()};
+    for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
+        if (ms_registry_add(r, p[i], NULL, NULL) < 0) return -1;
+    return 0;
+}
+
+#endif

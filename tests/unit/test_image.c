@@ -1,0 +1,80 @@
+/* test_image.c: image files: every format written and read back pixel for pixel, errors for
+ * bad paths, unknown extensions and absurd sizes, and no partial file left after a failure. */
+#include "config.h"
+#include "ms_test.h"
+#include "image/image.h"
+
+#include <dirent.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static const char *out_dir(void)
+{
+    const char *d = getenv("MS_TEST_OUT");
+    return d ? d : "/tmp";
+}
+
+static int count_files(const char *dir, const char *prefix)
+{
+    DIR *d = opendir(dir);
+    int n = 0;
+    struct dirent *e;
+    while (d && (e = readdir(d)))
+        if (!strncmp(e->d_name, prefix, strlen(prefix))) n++;
+    if (d) closedir(d);
+    return n;
+}
+
+int main(void)
+{
+    t_suite = "image";
+    ms_image img;
+    ms_error err = {{0}};
+    /* 37 x 23: odd sizes exercise BMP row padding. */
+    t_ok(ms_image_alloc(&img, 37, 23, &err) == 0, "allocate 37x23");
+    for (int y = 0; y < img.height; y++)
+        for (int x = 0; x < img.width; x++) {
+            uint8_t *p = img.rgb + 3 * (y * img.width + x);
+            p[0] = (uint8_t)(x * 7);
+            p[1] = (uint8_t)(y * 11);
+            p[2] = (uint8_t)(x * y);
+        }
+    const char *ext[] = {"png", "tga", "ppm", "bmp"};
+    for (int k = 0; k < 4; k++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/img_rt.%s", out_dir(), ext[k]);
+        ms_image back = {0};
+        int ok = ms_image_write(&img, path, &err) == 0 && ms_image_read(path, &back, &err) == 0 &&
+                 back.width == 37 && back.height == 23 &&
+                 memcmp(back.rgb, img.rgb, (size_t)37 * 23 * 3) == 0;
+        t_ok(ok, "%s written and read back pixel for pixel (%s)", ext[k], ok ? "" : err.msg);
+        ms_image_free(&back);
+    }
+    char path[1024];
+    snprintf(path, sizeof path, "%s/nodir/x.png", out_dir());
+    t_ok(ms_image_write(&img, path, &err) == -1 && strstr(err.msg, "No such file"),
+         "a bad path is an error (%s)", err.msg);
+    snprintf(path, sizeof path, "%s/img.xyz", out_dir());
+    t_ok(ms_image_write(&img, path, &err) == -1 && strstr(err.msg, "image format"),
+         "an unknown extension is an error (%s)", err.msg);
+    t_ok(count_files(out_dir(), "img.xyz") == 0 && count_files(out_dir(), "img_rt.png.tmp") == 0,
+         "no partial or temporary file is left");
+    t_ok(ms_image_alloc(&img, 0, 10, &err) == -1 && strstr(err.msg, "out of range"),
+         "a zero size is an error (%s)", err.msg);
+    t_ok(ms_image_alloc(&img, 100000, 100000, &err) == -1 && strstr(err.msg, "out of range"),
+         "an absurd size is an error, not an allocation (%s)", err.msg);
+    /* A full disk: /dev/full accepts the open and fails the writes. */
+    if (access("/dev/full", W_OK) == 0) {
+        ms_image big;
+        ms_image_alloc(&big, 512, 512, &err);
+        FILE *f = fopen("/dev/full", "wb");
+        int rc = ms_image_write_stream(&big, MS_IMG_PPM, f, &err);
+        int rc2 = fflush(f);
+        fclose(f);
+        t_ok(rc != 0 || rc2 != 0, "a full disk is reported");
+        ms_image_free(&big);
+    }
+    ms_image_free(&img);
+    return t_done();
+}

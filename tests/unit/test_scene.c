@@ -1,0 +1,304 @@
+/* test_scene.c: unit tests of the scene module: display list growth and bounds, normal
+ * quantization (OpenGL 1.2.1 table 2.6), VMD's colour scale formula and default colours,
+ * materials' shininess scale, matrices, the camera projection, tessellation, the stroke
+ * font, and user graphics ids (VMD's replace and delete rules). Expected values are worked
+ * out by hand from the formulas in vmd-compat.md. */
+#include "config.h"
+#include "ms_test.h"
+#include "render/export.h"
+#include "scene/color.h"
+#include "scene/displaylist.h"
+#include "scene/graphics.h"
+#include "scene/mat4.h"
+#include "scene/material.h"
+#include "scene/scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int near(float a, float b, float tol) { return fabsf(a - b) <= tol; }
+
+static void test_displaylist(void)
+{
+    t_suite = "displaylist";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    ms_error err = {{0}};
+    ms_rgba8 red = {255, 0, 0, 255};
+    int ok = 1;
+    for (int i = 0; i < 100000; i++) {
+        float c[3] = {(float)i, -(float)i, 0.5f};
+        ok &= ms_dl_sphere(&dl, c, 1.0f, red, 12) == 0;
+    }
+    t_ok(ok && dl.spheres.n == 100000 && dl.spheres.xyz[3 * 99999] == 99999.0f,
+         "100000 spheres appended past the first capacity");
+    long first = ms_dl_extend(&dl, MS_DL_SPHERES, 1000, &err);
+    t_ok(first == 100000 && dl.spheres.n == 101000, "extend claims a block at the end (%ld)", first);
+    for (int i = 0; i < 1000; i++) {
+        float *p = dl.spheres.xyz + 3 * (first + i);
+        p[0] = p[1] = p[2] = 0;
+        dl.spheres.radius[first + i] = 2;
+        dl.spheres.color[first + i] = red;
+        dl.spheres.res[first + i] = 6;
+    }
+    float lo[3], hi[3];
+    t_ok(ms_dl_bounds(&dl, lo, hi) && lo[0] == 0 && hi[0] == 99999 && lo[1] == -99999 && hi[2] == 0.5f,
+         "bounds span the spheres' centres");
+    float a[3] = {0, 0, 0}, b[3] = {0, 0, 5};
+    ms_dl_cylinder(&dl, a, b, 0.5f, red, MS_CAP_BASE, 12);
+    ms_dl_text(&dl, a, "hello", 1, 1, red);
+    ms_dl_text(&dl, b, "world", 1, 1, red);
+    t_ok(!strcmp(dl.texts.chars + dl.texts.start[1], "world"), "texts keep their strings");
+    float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, n[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    ms_rgba8 cols[3] = {red, red, red};
+    ms_dl_triangle(&dl, p, n, cols);
+    t_ok(dl.mesh.nverts == 3 && dl.mesh.ntris == 1 && dl.mesh.tri[2] == 2 && dl.mesh.normal[2] == 127,
+         "a triangle is three vertices and one face with quantized normals");
+    t_ok(ms_dl_count(&dl) == 101000 + 1 + 2 + 1, "count of every primitive");
+    ms_dl_clear(&dl);
+    t_ok(ms_dl_count(&dl) == 0 && dl.spheres.cap >= 101000, "clear keeps the memory");
+    ms_dl_free(&dl);
+    t_ok(dl.spheres.cap == 0 && dl.lit == 1, "free releases it");
+    t_ok(ms_dl_extend(&dl, MS_DL_SPHERES, (size_t)-1 / 2, &err) < 0 && strstr(err.msg, "memory"),
+         "an impossible block is refused with an error");
+    ms_dl_free(&dl);
+}
+
+static void test_normals(void)
+{
+    t_suite = "normals";
+    /* table 2.6: f = (2c + 1) / 255 */
+    t_ok(ms_normal_dequantize(127) == 1.0f && ms_normal_dequantize(-128) == -1.0f,
+         "127 and -128 are +1 and -1");
+    t_ok(near(ms_normal_dequantize(0), 1.0f / 255.0f, 1e-7f), "0 is 1/255");
+    t_ok(ms_normal_quantize(1.0f) == 127 && ms_normal_quantize(-1.0f) == -128 &&
+         ms_normal_quantize(2.0f) == 127, "the ends quantize to 127 and -128 (clamped)");
+    float worst = 0;
+    for (int i = -1000; i <= 1000; i++) {
+        float f = i / 1000.0f;
+        worst = fmaxf(worst, fabsf(ms_normal_dequantize(ms_normal_quantize(f)) - f));
+    }
+    t_ok(worst <= 1.0f / 255.0f + 1e-6f, "round trip within one step (%g)", worst);
+}
+
+static void test_colors(void)
+{
+    t_suite = "color";
+    ms_error err = {{0}};
+    ms_colors *c = ms_colors_new(&err);
+    t_ok(c != NULL, "created");
+    if (!c) return;
+    const float *cyan = ms_color_rgb(c, ms_color_index(c, "cyan"));
+    t_ok(ms_color_index(c, "cyan") == 10 && cyan[0] == .25f && cyan[1] == .75f, "cyan is 10");
+    t_ok(ms_color_index(c, "Orange3") == 32 && ms_color_index(c, "1056") == 1056 &&
+         ms_color_index(c, "1057") == -1 && ms_color_index(c, "nope") == -1, "names and ids");
+    /* RWB with midpoint 0.5 and offset 0.1 (hand-computed) */
+    const float *s0 = ms_color_rgb(c, 33), *s256 = ms_color_rgb(c, 33 + 256), *s1023 = ms_color_rgb(c, 1056);
+    t_ok(s0[0] == 1 && near(s0[1], 0.1f, 1e-6f) && near(s0[2], 0.1f, 1e-6f), "scale start: red + 0.1");
+    t_ok(s256[0] == 1 && near(s256[1], 0.600489f, 1e-5f) && near(s256[2], 0.600489f, 1e-5f),
+         "scale 256: (1, 0.600489, 0.600489)");
+    t_ok(near(s1023[0], 0.1f, 1e-6f) && s1023[2] == 1, "scale end: blue + 0.1");
+    t_ok(ms_color_scale_index(0.5f, 0, 1) == 544 && ms_color_scale_index(1, 0, 1) == 1056 &&
+         ms_color_scale_index(-3, 0, 1) == 33 && ms_color_scale_index(2, 2, 2) == 545,
+         "value to scale index, clamped, min == max gives the middle");
+    int name = ms_color_category_index(c, "Name"), res = ms_color_category_index(c, "Resname");
+    t_ok(ms_color_for_value(c, name, "1HB") == 8 && ms_color_for_value(c, name, "CA") == 10,
+         "Name keyed by the first non-digit letter (1HB white, CA cyan)");
+    size_t n0 = c->cats[res].n;
+    int first = ms_color_for_value(c, res, "XYZ"), second = ms_color_for_value(c, res, "XYY");
+    t_ok(first == (int)(n0 % 32) && second == (int)((n0 + 1) % 32),
+         "new residue names take the item count mod 32 (%d, %d)", first, second);
+    unsigned long v = c->version;
+    t_ok(ms_color_item_set(c, res, "XYZ", 1) == 0 && c->version > v && ms_color_item_get(c, res, "XYZ") == 1,
+         "setting an item bumps the version");
+    t_ok(ms_color_set_restype(c, "XYZ", "Acidic") == 0 && !strcmp(ms_color_restype(c, "XYZ"), "Acidic") &&
+         ms_color_set_restype(c, "XYZ", "Sour") < 0 && !strcmp(ms_color_restype(c, "ALA"), "Nonpolar"),
+         "residue types");
+    ms_colors_free(c);
+}
+
+static void test_materials(void)
+{
+    t_suite = "material";
+    ms_error err = {{0}};
+    ms_materials *m = ms_materials_new(&err);
+    t_ok(m && m->n == 23, "23 default materials");
+    if (!m) return;
+    t_ok(near(ms_material_shininess_from_ui(0.534f), 40.0f, 0.05f) &&
+         near(ms_material_shininess_to_ui(40.0f), 0.534020f, 1e-5f), "1000^0.534 is 40");
+    int g = ms_material_index(m, "glossy");
+    t_ok(g == 8 && m->list[g].specular == 1.0f && near(ms_material_get(&m->list[g], MS_MAT_SHININESS), 0.88f, 1e-5f),
+         "Glossy: specular 1, shininess 0.88");
+    int i = ms_material_add(m, NULL, g, &err);
+    t_ok(i == 23 && !strcmp(m->list[i].name, "Material23") && m->list[i].specular == 1.0f,
+         "an unnamed copy is Material23");
+    int id = m->list[i].id;
+    t_ok(ms_material_delete(m, 0, &err) < 0 && ms_material_delete(m, i, &err) == 0 &&
+         ms_material_by_id(m, id) == &m->list[0], "Opaque stays; a deleted id falls back to Opaque");
+    ms_material_set(m, g, MS_MAT_SPECULAR, 0.25f);
+    t_ok(ms_material_restore_default(m, g, &err) == 0 && m->list[g].specular == 1.0f, "default restores");
+    ms_materials_free(m);
+}
+
+static void test_matrices_and_camera(void)
+{
+    t_suite = "camera";
+    float r[16], p[3], x[3] = {1, 0, 0};
+    ms_mat4_rotation(r, 'z', 90);
+    ms_mat4_point(r, x, p);
+    t_ok(near(p[0], 0, 1e-6f) && near(p[1], 1, 1e-6f), "z 90 turns x into y");
+    ms_mat4_scaling(r, 0.25f);
+    t_ok(near(ms_mat4_scale_factor(r), 0.25f, 1e-6f), "scale factor");
+    ms_scene s;
+    ms_scene_init(&s);
+    s.width = 400;
+    s.height = 200;
+    s.cam.projection = MS_PROJ_PERSPECTIVE;
+    s.cam.eye[2] = 2;
+    s.cam.dir[2] = -1;
+    s.cam.up[1] = 1;
+    s.cam.height = 6;
+    s.cam.distance = -2;
+    float px, py, d, o[3] = {0, 0, 0}, top[3] = {0, 1.5f, 0}, side[3] = {1.5f, 0, -2};
+    ms_scene_project(&s, o, &px, &py, &d);
+    t_ok(px == 200 && py == 100 && d == 2, "the origin is the image centre, 2 from the eye");
+    ms_scene_project(&s, top, &px, &py, &d);
+    t_ok(near(py, 0, 1e-4f), "y 1.5 at z 0 is the top edge (half-height 0.75 per unit depth)");
+    ms_scene_project(&s, side, &px, &py, &d);
+    t_ok(near(px, 200 + 200 * (1.5f * 4 / 4) / (3 * 2), 1e-3f), "x at depth 4 (%g)", px);
+    s.cam.projection = MS_PROJ_ORTHOGRAPHIC;
+    ms_scene_project(&s, top, &px, &py, &d);
+    t_ok(near(py, 0, 1e-4f) && near(ms_scene_pixel_size(&s, 5), 3.0f / 200, 1e-6f),
+         "orthographic: half-height 1.5 at every depth");
+}
+
+static void count_tri(void *ud, const float p[9], const float n[9])
+{
+    int *k = ud;
+    float c[3] = {1, 2, 3};
+    for (int v = 0; v < 3; v++) {
+        float d = sqrtf(powf(p[3 * v] - c[0], 2) + powf(p[3 * v + 1] - c[1], 2) + powf(p[3 * v + 2] - c[2], 2));
+        if (fabsf(d - 2.0f) > 1e-4f) k[1]++;
+    }
+    k[0]++;
+}
+
+static void count_seg(void *ud, const float a[3], const float b[3])
+{
+    ++*(int *)ud;
+}
+
+static void test_tessellation(void)
+{
+    t_suite = "tessellation";
+    int k[2] = {0, 0};
+    float c[3] = {1, 2, 3};
+    ms_tess_sphere(c, 2.0f, 6, count_tri, k);
+    t_ok(k[0] == 2 * 12 * 5 && k[1] == 0, "sphere res 6: 120 triangles, every vertex on the sphere");
+    k[0] = 0;
+    float a[3] = {0, 0, 0}, b[3] = {0, 0, 1};
+    ms_tess_cone(a, b, 1, 1, 8, MS_CAP_BASE | MS_CAP_APEX, count_tri, k);
+    t_ok(k[0] == 8 * 4, "closed cylinder of 8 sides: 16 side and 16 cap triangles");
+    int segs = 0;
+    ms_export_text("I", a, 1, count_seg, &segs);
+    t_ok(segs == 3, "'I' is three strokes");
+    segs = 0;
+    float e[3] = {0.1f, 0, 0};
+    ms_export_dashes(a, e, count_seg, &segs);
+    t_ok(segs == 3, "a 0.1 dashed line is 3 dashes of 0.02");
+}
+
+/* The fast number text must read back as printf's does. */
+static void test_numfmt(void)
+{
+    t_suite = "numfmt";
+    char a[32], b[32];
+    int same = 0, close = 0, n = 0;
+    unsigned x = 12345;
+    for (int i = 0; i < 200000; i++) {
+        x = x * 1103515245u + 12345u;
+        float v = ((float)(x >> 8) / (float)(1u << 24) - 0.5f) * powf(10.0f, (float)(i % 14) - 6.0f);
+        ms_fmt_g(a, v);
+        snprintf(b, sizeof b, "%g", v);
+        n++;
+        same += !strcmp(a, b);
+        double da = strtod(a, NULL), db = strtod(b, NULL);
+        close += fabs(da - db) <= 1.0000001e-6 * fabs(db) * 10;   /* one unit in the 6th digit */
+    }
+    t_ok(close == n, "every value reads back within one unit of the 6th digit (%d of %d)", close, n);
+    t_ok(same >= n - n / 10000, "the text is printf's %%g, ties to even included (%d of %d)", same, n);
+    ms_fmt_g(a, 0.25098f);
+    ms_fmt_g(b, -1234.5678f);
+    t_ok(!strcmp(a, "0.25098") && !strcmp(b, "-1234.57"), "examples: %s %s", a, b);
+    ms_fmt_f3(a, -0.25f);
+    ms_fmt_f3(b, 1.0f);
+    t_ok(!strcmp(a, "-0.250") && !strcmp(b, "1.000"), "%%.3f examples: %s %s", a, b);
+}
+
+static void test_ugraphics(void)
+{
+    t_suite = "graphics";
+    ms_ugraphics *g = ms_ugraphics_new();
+    ms_ug_item it;
+    memset(&it, 0, sizeof it);
+    it.kind = MS_UG_SPHERE;
+    it.radius = 1;
+    int a = ms_ugraphics_add(g, &it), b = ms_ugraphics_add(g, &it), c = ms_ugraphics_add(g, &it);
+    t_ok(a == 0 && b == 1 && c == 2, "ids count from 0");
+    ms_ugraphics_delete(g, 1);
+    t_ok(ms_ugraphics_find(g, 1) < 0 && ms_ugraphics_add(g, &it) == 3, "a deleted id is not reused");
+    t_ok(ms_ugraphics_replace(g, 0) == 0 && ms_ugraphics_add(g, &it) == 0 &&
+         ms_ugraphics_find(g, 0) == 0 && ms_ugraphics_add(g, &it) == 4,
+         "replace: the next item takes the id and its place; then ids go on");
+    t_ok(ms_ugraphics_replace(g, 42) < 0, "replace of a missing id fails");
+    it.kind = MS_UG_POINT;
+    it.data[0] = 10;
+    ms_ugraphics_add(g, &it);
+    float ctr[3], scale;
+    t_ok(ms_ugraphics_cov(g, ctr, &scale) && ctr[0] == 5 && scale == 2.0f / 10, "centre and scale of the graphics");
+
+    /* display lists: built once, rebuilt when the items or the colours change */
+    ms_error err = {{0}};
+    ms_colors *colors = ms_colors_new(&err);
+    ms_ugraphics_delete_all(g);
+    memset(&it, 0, sizeof it);
+    it.kind = MS_UG_COLOR;
+    it.iv[0] = 1;                                   /* red */
+    ms_ugraphics_add(g, &it);
+    it.kind = MS_UG_SPHERE;
+    it.radius = 2;
+    ms_ugraphics_add(g, &it);
+    it.kind = MS_UG_MATERIAL;
+    it.iv[0] = 7;
+    ms_ugraphics_add(g, &it);
+    it.kind = MS_UG_POINT;
+    ms_ugraphics_add(g, &it);
+    t_ok(ms_ugraphics_update(g, colors, &err) == 0 && g->nlists == 2 && g->lists[0].spheres.n == 1 &&
+         g->lists[0].spheres.color[0].r == 255 && g->lists[0].spheres.color[0].g == 0 &&
+         g->lists[1].material == 7 && g->lists[1].points.n == 1,
+         "a new list where the material changes; colours resolved at build");
+    g->lists[0].spheres.radius[0] = -1;             /* marks the built list */
+    ms_ugraphics_update(g, colors, &err);
+    t_ok(g->lists[0].spheres.radius[0] == -1, "no change, no rebuild");
+    float green[3] = {0, 1, 0};
+    ms_color_set_rgb(colors, 1, green);
+    ms_ugraphics_update(g, colors, &err);
+    t_ok(g->lists[0].spheres.radius[0] == 2 && g->lists[0].spheres.color[0].g == 255,
+         "a colour change rebuilds with the new RGB");
+    ms_colors_free(colors);
+    ms_ugraphics_free(g);
+}
+
+int main(void)
+{
+    test_displaylist();
+    test_normals();
+    test_colors();
+    test_materials();
+    test_matrices_and_camera();
+    test_tessellation();
+    test_numfmt();
+    test_ugraphics();
+    return t_done();
+}
