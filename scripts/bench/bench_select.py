@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""bench_select.py: the selection benchmark. Builds systems of N atoms by replicating
-tests/data/1tii.pdb on a lattice (scripts/bench/replicate_pdb.py; the PDB goes to bench-out/),
+"""bench_select.py: the selection benchmark. Builds systems of about N atoms by replicating
+tests/data/1tii.pdb on a lattice (scripts/bench/replicate.py; the PDB goes to bench-out/),
 times molscope's selections (bench_select.tcl, through the binary) and MDAnalysis'
-equivalents on the same coordinates in the same run, checks that both select the same
-number of atoms, and prints a table with the ratios.
+equivalents on the same file's coordinates in the same run, checks that both select the
+same number of atoms, and prints a table with the ratios.
 
 usage: bench_select.py [--repeat R] N [N ...]      (e.g. 1000000 2000000)
 
@@ -19,8 +19,6 @@ import warnings
 warnings.filterwarnings("ignore")
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, HERE)
-import replicate_pdb  # noqa: E402
 
 # MDAnalysis' selections with the same meaning as bench_select.sels. VMD's `within d of S`
 # includes S; MDAnalysis' `around` excludes it, hence the `or`.
@@ -32,28 +30,50 @@ MDA = {
 }
 
 
+def hy36_decode(field):
+    """Integer of a PDB number field in decimal or hybrid-36 (upper case)."""
+    field = field.strip()
+    try:
+        return int(field)
+    except ValueError:
+        width = len(field)
+        return int(field, 36) - 10 * 36 ** (width - 1) + 10 ** width
+
+
+def read_pdb(path):
+    """records[i] = (name, resname, chain, resid, segid), xyz[i] = (x, y, z)."""
+    records, xyz = [], []
+    for l in open(path):
+        if l.startswith(("ATOM  ", "HETATM")):
+            records.append((l[12:16].strip(), l[17:21].strip(), l[21], hy36_decode(l[22:26]),
+                            l[72:76].strip()))
+            xyz.append((float(l[30:38]), float(l[38:46]), float(l[46:54])))
+    return records, xyz
+
+
 def build_universe(records, xyz):
+    """An MDAnalysis Universe of the same atoms, residues as molscope makes them (runs of
+    atoms sharing resid, chain and segment)."""
     import MDAnalysis as mda
     import numpy as np
-    n = len(records)
-    resindex, residues, segs, segindex = [], [], [], {}
+    resindex, residues, segindex = [], [], {}
     key_prev = None
     for rec in records:
-        key = (rec[4], rec[3], rec[5])         # resid, chain, segment, as molscope's residues
+        key = (rec[3], rec[2], rec[4])
         if key != key_prev:
             residues.append(rec)
             key_prev = key
         resindex.append(len(residues) - 1)
     for r in residues:
-        segindex.setdefault(r[5], len(segindex))
-    u = mda.Universe.empty(n, n_residues=len(residues), n_segments=len(segindex),
+        segindex.setdefault(r[4], len(segindex))
+    u = mda.Universe.empty(len(records), n_residues=len(residues), n_segments=len(segindex),
                            atom_resindex=np.array(resindex),
-                           residue_segindex=np.array([segindex[r[5]] for r in residues]),
+                           residue_segindex=np.array([segindex[r[4]] for r in residues]),
                            trajectory=True)
-    u.add_TopologyAttr("name", [r[1].strip() for r in records])
-    u.add_TopologyAttr("chainIDs", [r[3] for r in records])
-    u.add_TopologyAttr("resname", [r[2].strip() for r in residues])
-    u.add_TopologyAttr("resid", [r[4] for r in residues])
+    u.add_TopologyAttr("name", [r[0] for r in records])
+    u.add_TopologyAttr("chainIDs", [r[2] for r in records])
+    u.add_TopologyAttr("resname", [r[1] for r in residues])
+    u.add_TopologyAttr("resid", [r[3] for r in residues])
     u.add_TopologyAttr("segid", list(segindex))
     u.atoms.positions = np.array(xyz, dtype=np.float32)
     return u
@@ -96,17 +116,21 @@ def main():
         repeat, args = int(args[1]), args[2:]
     sizes = [int(a) for a in args] or [1000000, 2000000]
     os.makedirs(os.path.join(ROOT, "bench-out"), exist_ok=True)
-    systems = {}
+    pdbs = {}
     for n in sizes:
-        pdb = os.path.join(ROOT, "bench-out", "rep%d.pdb" % n)
-        records, xyz = replicate_pdb.replicate(os.path.join(ROOT, "tests", "data", "1tii.pdb"), n)
-        if not os.path.exists(pdb):
-            replicate_pdb.write(records, xyz, pdb)
-        systems[n] = (pdb, records, xyz)
-    ms = run_molscope([systems[n][0] for n in sizes], repeat)
+        pdbs[n] = os.path.join(ROOT, "bench-out", "select%d.pdb" % n)
+        if not os.path.exists(pdbs[n]):
+            subprocess.run([sys.executable, os.path.join(HERE, "replicate.py"),
+                            os.path.join(ROOT, "tests", "data", "1tii.pdb"), str(n), pdbs[n]],
+                           check=True, stdout=subprocess.DEVNULL)
+    ms = run_molscope([pdbs[n] for n in sizes], repeat)
     results = {}
+    natoms = {}
     for n in sizes:
-        u = build_universe(systems[n][1], systems[n][2])
+        records, xyz = read_pdb(pdbs[n])
+        natoms[n] = len(records)
+        u = build_universe(records, xyz)
+        n = len(records)   # replicate.py writes whole copies: slightly more than asked
         for label, text in MDA.items():
             t, tbest, count = time_mda(u, text, repeat)
             mt, mbest, mcount = ms[(n, label)]
@@ -117,7 +141,7 @@ def main():
                   % (n, label, mt, mbest, t, tbest, t / mt, mcount, same), flush=True)
         print("%9d atoms load: molscope %.0f ms" % (n, ms[(n, "load")][0]), flush=True)
     if len(sizes) >= 2:
-        a, b = sizes[0], sizes[-1]
+        a, b = natoms[sizes[0]], natoms[sizes[-1]]
         for label in MDA:
             print("scaling %-10s molscope %d -> %d atoms: %.2fx time (medians)"
                   % (label, a, b, results[(b, label)] / results[(a, label)]))
