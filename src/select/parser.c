@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAX_DEPTH 500        /* nesting of parentheses, nots and macros */
+#define MAX_DEPTH 1000       /* nesting of parentheses, expressions and macros */
 
 typedef struct parser {
     const char *text;
@@ -575,9 +575,11 @@ static ms_selnode *parse_unary(parser *p)
     if (enter(p)) return NULL;
     ms_selnode *n;
     if (kind(p) == TK_NOT) {
-        p->i++;
+        /* not not a is a: a chain of nots never nests more than one deep */
+        int nots = 0;
+        for (; kind(p) == TK_NOT; p->i++) nots ^= 1;
         ms_selnode *c = parse_unary(p);
-        n = c ? node2(p, SN_NOT, c, NULL) : NULL;
+        n = c && nots ? node2(p, SN_NOT, c, NULL) : c;
     } else {
         n = parse_primary(p);
     }
