@@ -9,7 +9,6 @@
 #include "select/selint.h"
 
 #include <ctype.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -124,6 +123,15 @@ static int merge_values(ms_selnode *n, ms_selnode *b)
     return 0;
 }
 
+/* The room allocated for a chain of n kids: chains grow through ms_grow, which doubles from
+ * 16, so the room is a power of two of at least 16 and at least n. */
+static size_t chain_capacity(size_t n)
+{
+    size_t cap = 16;
+    while (cap < n) cap *= 2;
+    return cap;
+}
+
 /* Append b to the and/or chain a (or start one), flattening chains of the same kind: and
  * and or are associative, and flat chains keep the evaluator's recursion shallow. */
 static ms_selnode *join(parser *p, ms_node_kind k, ms_selnode *a, ms_selnode *b)
@@ -133,7 +141,7 @@ static ms_selnode *join(parser *p, ms_node_kind k, ms_selnode *a, ms_selnode *b)
         if (merged) return merged > 0 ? a : join_fail(p, a, b);
     }
     ms_selnode *n = a;
-    size_t cap = a->kind == k ? a->nkids : 0;
+    size_t cap = a->kind == k ? chain_capacity(a->nkids) : 0;
     if (a->kind != k) {
         if (!(n = node_new(p, k)) || ms_grow((void **)&n->kids, &cap, 1, sizeof *n->kids)) {
             free(n);
