@@ -88,6 +88,13 @@ int ms_atomsel_retie(Tcl_Interp *interp, Tcl_Obj *level, const char *name)
     for (int i = 0; i < 3; i++) Tcl_IncrRefCount(words[i]);
     int rc = Tcl_EvalObjv(interp, 3, words, 0);
     for (int i = 0; i < 3; i++) Tcl_DecrRefCount(words[i]);
+    if (rc != TCL_OK) {   /* a bad level: keep the tie where it was */
+        Tcl_Obj *msg = Tcl_GetObjResult(interp);
+        Tcl_IncrRefCount(msg);
+        ms_atomsel_tie(interp, name);
+        Tcl_SetObjResult(interp, msg);
+        Tcl_DecrRefCount(msg);
+    }
     return rc;
 }
 
