@@ -4,6 +4,7 @@
  *   base/       utilities: errors, interned strings, worker threads
  *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set
  *   fileio/     the plugin registry, loading files into molecules, writing them out
+ *   surf/       QuickSurf: Gaussian density maps, marching cubes, the surface engine
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   app/        the program: command line, startup order, shell
  *   ../plugins  file formats, each a module loaded at run time (ms_plugin.h)
@@ -21,6 +22,7 @@
 #include "fileio/registry.h"
 #include "fileio/load.h"
 #include "fileio/write.h"
+#include "surf/qsurf.h"
 #include "app/app.h"
 #include "commands/commands.h"
 

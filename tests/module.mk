@@ -3,12 +3,15 @@
 # is "N passed, N failed" (", N skipped" when a backend or peer is missing).
 TEST_CORE_LIBS = src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS)
 
-check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule
+check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_qsurf
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h $(PLUGIN_UTIL)
 tests_unit_test_base_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_molecule_LDADD = $(TEST_CORE_LIBS)
+tests_unit_test_qsurf_SOURCES = tests/unit/test_qsurf.c tests/unit/ms_test.h \
+	plugins/pdb.c $(PLUGIN_UTIL)
+tests_unit_test_qsurf_LDADD = $(TEST_CORE_LIBS)
 
 EXTRA_DIST += tests/run-tests tests/tcl tests/data tests/python
 
@@ -22,3 +25,4 @@ check-local: check-build
 # Per-target flags give the test programs their own objects of the shared plugin sources.
 tests_unit_test_base_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_molecule_CFLAGS = $(AM_CFLAGS)
+tests_unit_test_qsurf_CFLAGS = $(AM_CFLAGS)

@@ -1,0 +1,184 @@
+/* density.c: the CPU density map: the fast exp2, the plain C loops (scatter: each atom
+ * adds its Gaussian to the voxels within its cutoff, skipping rows outside the cutoff
+ * sphere; gather: each voxel sums the atoms of the cells around it), and the driver that
+ * splits a slab into groups of planes handed to all cores. A plane is written by one
+ * thread only, and every voxel sums its atoms in cell order, so the result does not depend
+ * on the thread count, the slab boundaries or the loop chosen. */
+#include "config.h"
+#include "surf/qsurf_impl.h"
+#include "base/threads.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static inline float exp2_plain(float e)
+{
+    float fl = floorf(e), f = e - fl;
+    float p = fmaf(fmaf(fmaf(fmaf(MS_QSURF_EXP2_C4, f, MS_QSURF_EXP2_C3), f,
+                             MS_QSURF_EXP2_C2), f, MS_QSURF_EXP2_C1), f, MS_QSURF_EXP2_C0);
+    int32_t bits;
+    memcpy(&bits, &p, sizeof bits);
+    bits += (int32_t)fl * (1 << 23);
+    memcpy(&p, &bits, sizeof p);
+    return p;
+}
+
+float ms_qsurf_exp2(float e)
+{
+    return exp2_plain(e < -126.0f ? -126.0f : e);
+}
+
+/* Add atom (a, w, c) to the voxels x0..x1 of one row, dyz = dy^2 + dz^2. */
+static void row_plain(float *d, float *const rgb[3], size_t off, int x0, int x1, const float *a,
+                      float dyz, float elim, const float *c)
+{
+    for (int x = x0; x <= x1; x++) {
+        float dx = (float)x - a[0];
+        float e = a[3] * fmaf(dx, dx, dyz);
+        if (e < elim) continue;
+        float g = exp2_plain(e);
+        d[off + x] += g;
+        if (!c) continue;
+        for (int k = 0; k < 3; k++) rgb[k][off + x] = fmaf(g, c[k], rgb[k][off + x]);
+    }
+}
+
+void ms_qsurf_scatter_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi)
+{
+    size_t layer = (size_t)ag->nc[0] * (size_t)ag->nc[1];
+    int cz0 = ms_qsurf_cell_of((float)zlo - ag->cutmax, ag->cw[2], ag->nc[2]);
+    int cz1 = ms_qsurf_cell_of((float)zhi + ag->cutmax, ag->cw[2], ag->nc[2]);
+    for (size_t i = ag->cellstart[cz0 * layer]; i < ag->cellstart[(cz1 + 1) * layer]; i++) {
+        const float *a = ag->xyzw + 4 * i, *c = ag->rgb ? ag->rgb + 4 * i : NULL;
+        float r2 = ag->elim / a[3], r = sqrtf(r2);
+        int z0 = MS_MAX(zlo, (int)floorf(a[2] - r) - 1), z1 = MS_MIN(zhi, (int)ceilf(a[2] + r) + 1);
+        int y0 = MS_MAX(0, (int)floorf(a[1] - r) - 1), y1 = MS_MIN(s->ny - 1, (int)ceilf(a[1] + r) + 1);
+        for (int z = z0; z <= z1; z++) {
+            float dz = (float)z - a[2];
+            for (int y = y0; y <= y1; y++) {
+                float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz * dz);
+                if (a[3] * dyz < ag->elim) continue;
+                float half = sqrtf(MS_MAX(r2 - dyz, 0.0f));
+                int x0 = MS_MAX(0, (int)floorf(a[0] - half) - 1);
+                int x1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + half) + 1);
+                size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
+                row_plain(s->dens, s->rgb, off, x0, x1, a, dyz, ag->elim, c);
+            }
+        }
+    }
+}
+
+/* One voxel summed over atoms [b, e) of the table. */
+static void voxel_plain(const ms_qsurf_atomgrid *ag, size_t b, size_t e, float x, float y,
+                        float z, float acc[4])
+{
+    for (size_t i = b; i < e; i++) {
+        const float *a = ag->xyzw + 4 * i;
+        float dx = x - a[0], dy = y - a[1], dz = z - a[2];
+        float ex = a[3] * fmaf(dx, dx, fmaf(dy, dy, dz * dz));
+        if (ex < ag->elim) continue;
+        float g = exp2_plain(ex);
+        acc[0] += g;
+        if (!ag->rgb) continue;
+        for (int k = 0; k < 3; k++) acc[1 + k] = fmaf(g, ag->rgb[4 * i + k], acc[1 + k]);
+    }
+}
+
+/* Cells [lo, hi] along axis d around coordinate v. */
+static void cell_span(const ms_qsurf_atomgrid *ag, int d, float v0, float v1, int *lo, int *hi)
+{
+    *lo = ms_qsurf_cell_of(v0 - ag->cutmax, ag->cw[d], ag->nc[d]);
+    *hi = ms_qsurf_cell_of(v1 + ag->cutmax, ag->cw[d], ag->nc[d]);
+}
+
+void ms_qsurf_gather_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi)
+{
+    for (int z = zlo; z <= zhi; z++)
+        for (int y = 0; y < s->ny; y++) {
+            int cz0, cz1, cy0, cy1;
+            cell_span(ag, 2, (float)z, (float)z, &cz0, &cz1);
+            cell_span(ag, 1, (float)y, (float)y, &cy0, &cy1);
+            size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
+            for (int x = 0; x < s->nx; x++) {
+                float acc[4] = {0, 0, 0, 0};
+                int cx0, cx1;
+                cell_span(ag, 0, (float)x, (float)x, &cx0, &cx1);
+                for (int cz = cz0; cz <= cz1; cz++)
+                    for (int cy = cy0; cy <= cy1; cy++) {
+                        size_t row = ((size_t)cz * ag->nc[1] + cy) * ag->nc[0];
+                        voxel_plain(ag, ag->cellstart[row + cx0], ag->cellstart[row + cx1 + 1],
+                                    (float)x, (float)y, (float)z, acc);
+                    }
+                s->dens[off + x] = acc[0];
+                if (ag->rgb)
+                    for (int k = 0; k < 3; k++) s->rgb[k][off + x] = acc[1 + k];
+            }
+        }
+}
+
+/* ---------------------------------------------------------------- the driver */
+
+int ms_qsurf_have_simd(void)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+    return 0;
+#endif
+}
+
+int ms_qsurf_cpu_kernel(void)
+{
+    const char *k = getenv("MOLSCOPE_QUICKSURF_KERNEL");
+    int kind = k && strcmp(k, "gather") == 0 ? MS_QSURF_K_GATHER : MS_QSURF_K_SCATTER;
+    int simd = !ms_env_flag("MOLSCOPE_NOSIMD") && ms_qsurf_have_simd();
+    return kind | (simd ? MS_QSURF_K_SIMD : MS_QSURF_K_PLAIN);
+}
+
+const char *ms_qsurf_kernel_name(int kernel)
+{
+    static const char *names[4] = {"plain-scatter", "plain-gather", "avx2-scatter",
+                                   "avx2-gather"};
+    return names[kernel & 3];
+}
+
+typedef struct density_job {
+    const ms_qsurf_atomgrid *ag;
+    ms_qsurf_slab *s;
+    int group, kernel;
+} density_job;
+
+static void density_groups(void *ctx, size_t begin, size_t end, int thread)
+{
+    density_job *j = ctx;
+    ms_qsurf_slab *s = j->s;
+    size_t plane = (size_t)s->nx * s->ny;
+    for (size_t t = begin; t < end; t++) {
+        int zlo = s->zb + (int)t * j->group, zhi = MS_MIN(s->ze, zlo + j->group - 1);
+        size_t off = (size_t)(zlo - s->zb) * plane, n = (size_t)(zhi - zlo + 1) * plane;
+        memset(s->dens + off, 0, n * sizeof(float));
+        for (int k = 0; s->rgb[0] && k < 3; k++) memset(s->rgb[k] + off, 0, n * sizeof(float));
+        switch (j->kernel) {
+        case MS_QSURF_K_SCATTER | MS_QSURF_K_SIMD: ms_qsurf_scatter_avx2(j->ag, s, zlo, zhi); break;
+        case MS_QSURF_K_GATHER | MS_QSURF_K_SIMD: ms_qsurf_gather_avx2(j->ag, s, zlo, zhi); break;
+        case MS_QSURF_K_GATHER: ms_qsurf_gather_plain(j->ag, s, zlo, zhi); break;
+        default: ms_qsurf_scatter_plain(j->ag, s, zlo, zhi); break;
+        }
+    }
+}
+
+void ms_qsurf_density_cpu_with(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int kernel)
+{
+    if ((kernel & MS_QSURF_K_SIMD) && !ms_qsurf_have_simd()) kernel &= ~MS_QSURF_K_SIMD;
+    int planes = s->ze - s->zb + 1, threads = ms_threads_count();
+    density_job j = {.ag = ag, .s = s, .kernel = kernel};
+    /* Groups of up to 4 planes, at least four per thread when the slab allows. */
+    j.group = MS_MAX(1, MS_MIN(4, planes / (4 * threads)));
+    ms_parallel_for((size_t)((planes + j.group - 1) / j.group), 1, density_groups, &j);
+}
+
+void ms_qsurf_density_cpu(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s)
+{
+    ms_qsurf_density_cpu_with(ag, s, ms_qsurf_cpu_kernel());
+}
