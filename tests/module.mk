@@ -13,6 +13,12 @@ tests_unit_test_qsurf_SOURCES = tests/unit/test_qsurf.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_qsurf_LDADD = $(TEST_CORE_LIBS)
 
+# The QuickSurf benchmark driver (scripts/bench/bench_qsurf.sh runs it).
+check_PROGRAMS += tests/tools/qsurfbench
+tests_tools_qsurfbench_SOURCES = tests/tools/qsurfbench.c plugins/pdb.c $(PLUGIN_UTIL)
+tests_tools_qsurfbench_LDADD = $(TEST_CORE_LIBS)
+tests_tools_qsurfbench_CFLAGS = $(AM_CFLAGS)
+
 EXTRA_DIST += tests/run-tests tests/tcl tests/data tests/python
 
 check-build: all $(check_PROGRAMS)

@@ -43,29 +43,38 @@ static void row_plain(float *d, float *const rgb[3], size_t off, int x0, int x1,
     }
 }
 
-void ms_qsurf_scatter_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi)
+/* Atom a (grid units, exponent factor a[3]) added to the block's voxels within its
+ * cutoff, row by row, skipping rows outside the cutoff sphere. */
+static void atom_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b,
+                      const float *a, const float *c)
 {
-    size_t layer = (size_t)ag->nc[0] * (size_t)ag->nc[1];
-    int cz0 = ms_qsurf_cell_of((float)zlo - ag->cutmax, ag->cw[2], ag->nc[2]);
-    int cz1 = ms_qsurf_cell_of((float)zhi + ag->cutmax, ag->cw[2], ag->nc[2]);
-    for (size_t i = ag->cellstart[cz0 * layer]; i < ag->cellstart[(cz1 + 1) * layer]; i++) {
-        const float *a = ag->xyzw + 4 * i, *c = ag->rgb ? ag->rgb + 4 * i : NULL;
-        float r2 = ag->elim / a[3], r = sqrtf(r2);
-        int z0 = MS_MAX(zlo, (int)floorf(a[2] - r) - 1), z1 = MS_MIN(zhi, (int)ceilf(a[2] + r) + 1);
-        int y0 = MS_MAX(0, (int)floorf(a[1] - r) - 1), y1 = MS_MIN(s->ny - 1, (int)ceilf(a[1] + r) + 1);
-        for (int z = z0; z <= z1; z++) {
-            float dz = (float)z - a[2];
-            for (int y = y0; y <= y1; y++) {
-                float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz * dz);
-                if (a[3] * dyz < ag->elim) continue;
-                float half = sqrtf(MS_MAX(r2 - dyz, 0.0f));
-                int x0 = MS_MAX(0, (int)floorf(a[0] - half) - 1);
-                int x1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + half) + 1);
-                size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
-                row_plain(s->dens, s->rgb, off, x0, x1, a, dyz, ag->elim, c);
-            }
+    float r2 = ag->elim / a[3], r = sqrtf(r2);
+    int z0 = MS_MAX(b->z0, (int)floorf(a[2] - r)), z1 = MS_MIN(b->z1, (int)ceilf(a[2] + r));
+    int y0 = MS_MAX(b->y0, (int)floorf(a[1] - r)), y1 = MS_MIN(b->y1, (int)ceilf(a[1] + r));
+    for (int z = z0; z <= z1; z++) {
+        float dz = (float)z - a[2];
+        for (int y = y0; y <= y1; y++) {
+            float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz * dz);
+            if (a[3] * dyz < ag->elim) continue;
+            float half = sqrtf(MS_MAX(r2 - dyz, 0.0f));
+            int x0 = MS_MAX(0, (int)floorf(a[0] - half));
+            int x1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + half));
+            size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
+            row_plain(s->dens, s->rgb, off, x0, x1, a, dyz, ag->elim, c);
         }
     }
+}
+
+void ms_qsurf_scatter_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b)
+{
+    int lo[2], hi[2];
+    ms_qsurf_block_cells(ag, b, lo, hi);
+    for (int cz = lo[1]; cz <= hi[1]; cz++)
+        for (int cy = lo[0]; cy <= hi[0]; cy++) {
+            size_t row = ((size_t)cz * ag->nc[1] + cy) * ag->nc[0];
+            for (size_t i = ag->cellstart[row]; i < ag->cellstart[row + ag->nc[0]]; i++)
+                atom_plain(ag, s, b, ag->xyzw + 4 * i, ag->rgb ? ag->rgb + 4 * i : NULL);
+        }
 }
 
 /* One voxel summed over atoms [b, e) of the table. */
@@ -91,10 +100,10 @@ static void cell_span(const ms_qsurf_atomgrid *ag, int d, float v0, float v1, in
     *hi = ms_qsurf_cell_of(v1 + ag->cutmax, ag->cw[d], ag->nc[d]);
 }
 
-void ms_qsurf_gather_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi)
+void ms_qsurf_gather_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b)
 {
-    for (int z = zlo; z <= zhi; z++)
-        for (int y = 0; y < s->ny; y++) {
+    for (int z = b->z0; z <= b->z1; z++)
+        for (int y = b->y0; y <= b->y1; y++) {
             int cz0, cz1, cy0, cy1;
             cell_span(ag, 2, (float)z, (float)z, &cz0, &cz1);
             cell_span(ag, 1, (float)y, (float)y, &cy0, &cy1);
@@ -146,36 +155,51 @@ const char *ms_qsurf_kernel_name(int kernel)
 typedef struct density_job {
     const ms_qsurf_atomgrid *ag;
     ms_qsurf_slab *s;
-    int group, kernel;
+    int group, band, nbands, kernel;
 } density_job;
 
-static void density_groups(void *ctx, size_t begin, size_t end, int thread)
+static void zero_block(ms_qsurf_slab *s, const ms_qsurf_block *b)
+{
+    size_t n = (size_t)(b->y1 - b->y0 + 1) * s->nx;
+    for (int z = b->z0; z <= b->z1; z++) {
+        size_t off = ((size_t)(z - s->zb) * s->ny + b->y0) * s->nx;
+        memset(s->dens + off, 0, n * sizeof(float));
+        for (int k = 0; s->rgb[0] && k < 3; k++) memset(s->rgb[k] + off, 0, n * sizeof(float));
+    }
+}
+
+static void density_blocks(void *ctx, size_t begin, size_t end, int thread)
 {
     density_job *j = ctx;
     ms_qsurf_slab *s = j->s;
-    size_t plane = (size_t)s->nx * s->ny;
     for (size_t t = begin; t < end; t++) {
-        int zlo = s->zb + (int)t * j->group, zhi = MS_MIN(s->ze, zlo + j->group - 1);
-        size_t off = (size_t)(zlo - s->zb) * plane, n = (size_t)(zhi - zlo + 1) * plane;
-        memset(s->dens + off, 0, n * sizeof(float));
-        for (int k = 0; s->rgb[0] && k < 3; k++) memset(s->rgb[k] + off, 0, n * sizeof(float));
+        ms_qsurf_block b;
+        b.z0 = s->zb + (int)(t / (size_t)j->nbands) * j->group;
+        b.z1 = MS_MIN(s->ze, b.z0 + j->group - 1);
+        b.y0 = (int)(t % (size_t)j->nbands) * j->band;
+        b.y1 = MS_MIN(s->ny - 1, b.y0 + j->band - 1);
+        zero_block(s, &b);
         switch (j->kernel) {
-        case MS_QSURF_K_SCATTER | MS_QSURF_K_SIMD: ms_qsurf_scatter_avx2(j->ag, s, zlo, zhi); break;
-        case MS_QSURF_K_GATHER | MS_QSURF_K_SIMD: ms_qsurf_gather_avx2(j->ag, s, zlo, zhi); break;
-        case MS_QSURF_K_GATHER: ms_qsurf_gather_plain(j->ag, s, zlo, zhi); break;
-        default: ms_qsurf_scatter_plain(j->ag, s, zlo, zhi); break;
+        case MS_QSURF_K_SCATTER | MS_QSURF_K_SIMD: ms_qsurf_scatter_avx2(j->ag, s, &b); break;
+        case MS_QSURF_K_GATHER | MS_QSURF_K_SIMD: ms_qsurf_gather_avx2(j->ag, s, &b); break;
+        case MS_QSURF_K_GATHER: ms_qsurf_gather_plain(j->ag, s, &b); break;
+        default: ms_qsurf_scatter_plain(j->ag, s, &b); break;
         }
     }
 }
 
+/* Blocks of up to 4 planes and as many rows as keep the block's voxels (density and colour)
+ * within about 1 MB, so that the atoms' writes hit the cache. */
 void ms_qsurf_density_cpu_with(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int kernel)
 {
     if ((kernel & MS_QSURF_K_SIMD) && !ms_qsurf_have_simd()) kernel &= ~MS_QSURF_K_SIMD;
-    int planes = s->ze - s->zb + 1, threads = ms_threads_count();
-    density_job j = {.ag = ag, .s = s, .kernel = kernel};
-    /* Groups of up to 4 planes, at least four per thread when the slab allows. */
-    j.group = MS_MAX(1, MS_MIN(4, planes / (4 * threads)));
-    ms_parallel_for((size_t)((planes + j.group - 1) / j.group), 1, density_groups, &j);
+    int planes = s->ze - s->zb + 1, groups;
+    size_t voxel = s->rgb[0] ? 16 : 4;
+    density_job j = {.ag = ag, .s = s, .kernel = kernel, .group = MS_MIN(4, planes)};
+    groups = (planes + j.group - 1) / j.group;
+    j.band = (int)MS_MAX(8, MS_MIN((size_t)s->ny, (1u << 20) / (voxel * s->nx * j.group)));
+    j.nbands = (s->ny + j.band - 1) / j.band;
+    ms_parallel_for((size_t)groups * j.nbands, 1, density_blocks, &j);
 }
 
 void ms_qsurf_density_cpu(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s)

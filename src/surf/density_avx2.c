@@ -65,29 +65,38 @@ static void row_avx2(ms_qsurf_slab *s, size_t off, int x0, int x1, const float *
     }
 }
 
-void ms_qsurf_scatter_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi)
+/* Atom a (grid units, exponent factor a[3]) added to the block's voxels within its
+ * cutoff, row by row, skipping rows outside the cutoff sphere. */
+static void atom_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b,
+                      const float *a, const float *c)
 {
-    size_t layer = (size_t)ag->nc[0] * (size_t)ag->nc[1];
-    int cz0 = ms_qsurf_cell_of((float)zlo - ag->cutmax, ag->cw[2], ag->nc[2]);
-    int cz1 = ms_qsurf_cell_of((float)zhi + ag->cutmax, ag->cw[2], ag->nc[2]);
-    for (size_t i = ag->cellstart[cz0 * layer]; i < ag->cellstart[(cz1 + 1) * layer]; i++) {
-        const float *a = ag->xyzw + 4 * i, *c = ag->rgb ? ag->rgb + 4 * i : NULL;
-        float r2 = ag->elim / a[3], r = sqrtf(r2);
-        int z0 = MS_MAX(zlo, (int)floorf(a[2] - r) - 1), z1 = MS_MIN(zhi, (int)ceilf(a[2] + r) + 1);
-        int y0 = MS_MAX(0, (int)floorf(a[1] - r) - 1), y1 = MS_MIN(s->ny - 1, (int)ceilf(a[1] + r) + 1);
-        for (int z = z0; z <= z1; z++) {
-            float dz = (float)z - a[2];
-            for (int y = y0; y <= y1; y++) {
-                float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz * dz);
-                if (a[3] * dyz < ag->elim) continue;
-                float half = sqrtf(MS_MAX(r2 - dyz, 0.0f));
-                int x0 = MS_MAX(0, (int)floorf(a[0] - half) - 1);
-                int x1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + half) + 1);
-                size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
-                row_avx2(s, off, x0, x1, a, dyz, ag->elim, c);
-            }
+    float r2 = ag->elim / a[3], r = sqrtf(r2);
+    int z0 = MS_MAX(b->z0, (int)floorf(a[2] - r)), z1 = MS_MIN(b->z1, (int)ceilf(a[2] + r));
+    int y0 = MS_MAX(b->y0, (int)floorf(a[1] - r)), y1 = MS_MIN(b->y1, (int)ceilf(a[1] + r));
+    for (int z = z0; z <= z1; z++) {
+        float dz = (float)z - a[2];
+        for (int y = y0; y <= y1; y++) {
+            float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz * dz);
+            if (a[3] * dyz < ag->elim) continue;
+            float half = sqrtf(MS_MAX(r2 - dyz, 0.0f));
+            int x0 = MS_MAX(0, (int)floorf(a[0] - half));
+            int x1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + half));
+            size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
+            row_avx2(s, off, x0, x1, a, dyz, ag->elim, c);
         }
     }
+}
+
+void ms_qsurf_scatter_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b)
+{
+    int lo[2], hi[2];
+    ms_qsurf_block_cells(ag, b, lo, hi);
+    for (int cz = lo[1]; cz <= hi[1]; cz++)
+        for (int cy = lo[0]; cy <= hi[0]; cy++) {
+            size_t row = ((size_t)cz * ag->nc[1] + cy) * ag->nc[0];
+            for (size_t i = ag->cellstart[row]; i < ag->cellstart[row + ag->nc[0]]; i++)
+                atom_avx2(ag, s, b, ag->xyzw + 4 * i, ag->rgb ? ag->rgb + 4 * i : NULL);
+        }
 }
 
 /* Eight voxels x..x+7 of row (y, z) summed over atoms [b, e). */
@@ -119,10 +128,10 @@ static void store_block(ms_qsurf_slab *s, size_t off, int n, __m256 acc[4])
     }
 }
 
-void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi)
+void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b)
 {
-    for (int z = zlo; z <= zhi; z++)
-        for (int y = 0; y < s->ny; y++) {
+    for (int z = b->z0; z <= b->z1; z++)
+        for (int y = b->y0; y <= b->y1; y++) {
             int c0[3], c1[3];
             c0[2] = ms_qsurf_cell_of((float)z - ag->cutmax, ag->cw[2], ag->nc[2]);
             c1[2] = ms_qsurf_cell_of((float)z + ag->cutmax, ag->cw[2], ag->nc[2]);
@@ -149,14 +158,14 @@ void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo
 
 #else
 
-void ms_qsurf_scatter_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi)
+void ms_qsurf_scatter_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b)
 {
-    ms_qsurf_scatter_plain(ag, s, zlo, zhi);
+    ms_qsurf_scatter_plain(ag, s, b);
 }
 
-void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi)
+void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b)
 {
-    ms_qsurf_gather_plain(ag, s, zlo, zhi);
+    ms_qsurf_gather_plain(ag, s, b);
 }
 
 #endif

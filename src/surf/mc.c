@@ -1,10 +1,13 @@
-/* mc.c: marching cubes over a volume streamed in slabs. Three passes over the rows of a
- * slab, each on all cores: count the crossing edges each grid point owns and the triangles
- * of each cell row; turn the counts into first indices (so the mesh grows to its exact
- * size, once per slab); then write the vertices (position interpolated on the edge,
- * normal from the density gradient by central differences, colour interpolated from the
- * colour texture) and the triangles, whose corners are looked up through the owning
- * point's first vertex. A vertex is made once and shared by every triangle around it. */
+/* mc.c: marching cubes over a volume streamed in slabs. Each row of grid points becomes
+ * bitsets, 64 points a word: which points are inside, and which of the edges each point
+ * owns (+x, +y, -z) cross the isovalue; so counting, finding the cells the surface passes
+ * through and ranking vertices work a word at a time. Passes over the rows, each on all
+ * cores: classify; count vertices and triangles; turn counts into first indices (the mesh
+ * grows to its exact size, once per slab); write the vertices (position interpolated on
+ * the edge, normal from the density gradient by central differences, colour interpolated
+ * in the colour texture), recording each point's first vertex; write the triangles, their
+ * corners found through the owning point. A vertex is made once and shared by every
+ * triangle around it. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 #include "base/threads.h"
@@ -12,11 +15,22 @@
 #include <stdlib.h>
 #include <string.h>
 
+enum { B_IN = 0, B_X = 1, B_Y = 2, B_Z = 3 };   /* the bitsets of a row */
+
+static inline int popcount64(uint64_t w)
+{
+    w = w - ((w >> 1) & 0x5555555555555555u);
+    w = (w & 0x3333333333333333u) + ((w >> 2) & 0x3333333333333333u);
+    w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+    return (int)((w * 0x0101010101010101u) >> 56);
+}
+
 size_t ms_qsurf_extract_bytes(int nx, int ny, int layers)
 {
-    size_t plane = (size_t)nx * (size_t)ny;
-    return plane * (size_t)(layers + 1) * (sizeof(uint32_t) + 1) + plane * sizeof(float) +
-           (size_t)ny * (size_t)(layers + 1) * 2 * sizeof(uint32_t);
+    size_t plane = (size_t)nx * (size_t)ny, planes = (size_t)layers + 1;
+    size_t rows = (size_t)ny * planes, words = ((size_t)nx + 63) / 64;
+    return plane * planes * sizeof(uint32_t) + rows * words * 4 * sizeof(uint64_t) +
+           plane * sizeof(float) + (rows + 1) * 2 * sizeof(uint32_t);
 }
 
 /* gradm = inverse transpose of the matrix whose columns are the axes. */
@@ -50,17 +64,19 @@ int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float ori
         for (int k = 0; k < 3; k++) mc->axis[d][k] = axis[d][k];
     }
     mc->iso = iso, mc->colored = colored, mc->maxlayers = maxlayers, mc->mesh = mesh;
+    mc->words = (n[0] + 63) / 64;
     if (gradient_matrix(mc) < 0) {
         ms_error_set(err, "the volume's axes are degenerate");
         return -1;
     }
     size_t plane = (size_t)n[0] * (size_t)n[1], planes = (size_t)maxlayers + 1;
+    size_t rows = (size_t)n[1] * planes;
     mc->vbase = ms_alloc_array(plane * planes, sizeof(uint32_t));
-    mc->flags = ms_alloc_array(plane * planes, 1);
+    mc->bits = ms_calloc_array(rows * (size_t)mc->words * 4, sizeof(uint64_t));
     mc->shared = ms_alloc_array(plane, sizeof(float));
-    mc->vrow = ms_alloc_array((size_t)n[1] * planes, sizeof(uint32_t));
-    mc->trow = ms_alloc_array((size_t)n[1] * planes, sizeof(uint32_t));
-    if (!mc->vbase || !mc->flags || !mc->shared || !mc->vrow || !mc->trow) {
+    mc->vrow = ms_alloc_array(rows + 1, sizeof(uint32_t));
+    mc->trow = ms_alloc_array(rows + 1, sizeof(uint32_t));
+    if (!mc->vbase || !mc->bits || !mc->shared || !mc->vrow || !mc->trow) {
         ms_qsurf_extract_end(mc);
         ms_error_set(err, "out of memory for marching cubes (%zu planes of %zu points)",
                      planes, plane);
@@ -73,11 +89,11 @@ int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float ori
 void ms_qsurf_extract_end(ms_qsurf_extract *mc)
 {
     free(mc->vbase);
-    free(mc->flags);
+    free(mc->bits);
     free(mc->shared);
     free(mc->vrow);
     free(mc->trow);
-    mc->vbase = NULL, mc->flags = NULL, mc->shared = NULL, mc->vrow = mc->trow = NULL;
+    mc->vbase = NULL, mc->bits = NULL, mc->shared = NULL, mc->vrow = mc->trow = NULL;
 }
 
 void ms_qsurf_extract_share(ms_qsurf_extract *mc, ms_qsurf_slab *s, int z0)
@@ -93,7 +109,7 @@ typedef struct ex_job {
     ms_qsurf_extract *mc;
     const ms_qsurf_slab *s;
     const ms_qsurf_mctab *tab;
-    int z0, z1, nx, ny;
+    int z0, z1, nx, ny, words;
 } ex_job;
 
 static inline const float *drow(const ex_job *j, int y, int z)
@@ -106,48 +122,92 @@ static inline size_t point(const ex_job *j, int x, int y, int z)
     return ((size_t)(z - j->z0) * j->ny + y) * j->nx + x;
 }
 
-/* Flags of the edges owned by the points of row (y, z); returns their number. */
-static uint32_t flag_row(const ex_job *j, int y, int z)
+static inline size_t row_of(const ex_job *j, int y, int z)
 {
-    const float *d = drow(j, y, z), *dy = y + 1 < j->ny ? drow(j, y + 1, z) : NULL;
-    const float *dz = z > 0 ? drow(j, y, z - 1) : NULL;
-    uint8_t *flags = j->mc->flags + point(j, 0, y, z);
+    return (size_t)(z - j->z0) * j->ny + y;
+}
+
+static inline uint64_t *bits(const ex_job *j, size_t row, int k)
+{
+    return j->mc->bits + (row * 4 + (size_t)k) * (size_t)j->words;
+}
+
+/* Points of word w that have a +x neighbour (x <= nx - 2). */
+static inline uint64_t has_next_x(const ex_job *j, int w)
+{
+    int last = j->nx - 2 - 64 * w;   /* highest valid bit */
+    return last >= 63 ? ~(uint64_t)0 : last < 0 ? 0 : ((uint64_t)2 << last) - 1;
+}
+
+/* Bits of word w shifted so that bit b tells about point x + 1. */
+static inline uint64_t next_x(const ex_job *j, const uint64_t *row, int w)
+{
+    return row[w] >> 1 | (w + 1 < j->words ? row[w + 1] << 63 : 0);
+}
+
+static void classify_rows(void *ctx, size_t begin, size_t end, int thread)
+{
+    ex_job *j = ctx;
     float iso = j->mc->iso;
+    for (size_t r = begin; r < end; r++) {
+        int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
+        const float *d = drow(j, y, z);
+        uint64_t *in = bits(j, r, B_IN);
+        for (int w = 0; w < j->words; w++) {
+            int x0 = 64 * w, n = MS_MIN(64, j->nx - x0);
+            uint64_t m = 0;
+            for (int b = 0; b < n; b++) m |= (uint64_t)(d[x0 + b] > iso) << b;
+            in[w] = m;
+        }
+    }
+}
+
+/* Crossing bits of the edges the points of row (y, z) own; returns their number. */
+static uint32_t cross_row(const ex_job *j, int y, int z)
+{
+    size_t r = row_of(j, y, z);
+    const uint64_t *in = bits(j, r, B_IN);
+    const uint64_t *iny = y + 1 < j->ny ? bits(j, r + 1, B_IN) : NULL;
+    const uint64_t *inz = z > j->z0 ? bits(j, r - (size_t)j->ny, B_IN) : NULL;
+    uint64_t *xb = bits(j, r, B_X), *yb = bits(j, r, B_Y), *zb = bits(j, r, B_Z);
     uint32_t n = 0;
-    for (int x = 0; x < j->nx; x++) {
-        int in = d[x] > iso, f = 0;
-        if (x + 1 < j->nx && in != (d[x + 1] > iso)) f |= 1;
-        if (dy && in != (dy[x] > iso)) f |= 2;
-        if (dz && in != (dz[x] > iso)) f |= 4;
-        flags[x] = (uint8_t)f;
-        n += (uint32_t)__builtin_popcount((unsigned)f);
+    for (int w = 0; w < j->words; w++) {
+        xb[w] = (in[w] ^ next_x(j, in, w)) & has_next_x(j, w);
+        yb[w] = iny ? in[w] ^ iny[w] : 0;
+        zb[w] = inz ? in[w] ^ inz[w] : 0;
+        n += (uint32_t)(popcount64(xb[w]) + popcount64(yb[w]) + popcount64(zb[w]));
     }
     return n;
 }
 
-/* The inside bits of the four points (y, z), (y+1, z), (y, z+1), (y+1, z+1) at x, spread
- * to the cube index bits of the cell's low-x corners. */
-static inline int column(const float *const r[4], int x, float iso)
+/* The cells of row (y, z) in word w that the surface passes through, with the inside bits
+ * of their eight corners (corner i = dx + 2 dy + 4 dz at bit b for the cell x = 64 w + b). */
+static inline uint64_t cell_word(const ex_job *j, int y, int z, int w, uint64_t c[8])
 {
-    return (r[0][x] > iso) | (r[1][x] > iso) << 2 | (r[2][x] > iso) << 4 | (r[3][x] > iso) << 6;
+    size_t r = row_of(j, y, z);
+    const uint64_t *rows[4] = {bits(j, r, B_IN), bits(j, r + 1, B_IN),
+                               bits(j, r + (size_t)j->ny, B_IN), bits(j, r + (size_t)j->ny + 1, B_IN)};
+    uint64_t any = 0, all = ~(uint64_t)0;
+    for (int k = 0; k < 4; k++) {
+        c[2 * k] = rows[k][w], c[2 * k + 1] = next_x(j, rows[k], w);
+        any |= c[2 * k] | c[2 * k + 1], all &= c[2 * k] & c[2 * k + 1];
+    }
+    return any & ~all & has_next_x(j, w);
 }
 
-static void cell_rows(const ex_job *j, int y, int z, const float *r[4])
+static inline int cube_at(const uint64_t c[8], int b)
 {
-    r[0] = drow(j, y, z), r[1] = drow(j, y + 1, z);
-    r[2] = drow(j, y, z + 1), r[3] = drow(j, y + 1, z + 1);
+    int cube = 0;
+    for (int i = 0; i < 8; i++) cube |= (int)(c[i] >> b & 1) << i;
+    return cube;
 }
 
-static uint32_t tri_count_row(const ex_job *j, int y, int z)
+static uint32_t count_triangles(const ex_job *j, int y, int z)
 {
-    const float *r[4];
-    cell_rows(j, y, z, r);
     uint32_t n = 0;
-    int lo = column(r, 0, j->mc->iso);
-    for (int x = 0; x + 1 < j->nx; x++) {
-        int hi = column(r, x + 1, j->mc->iso);
-        n += j->tab->ntri[lo | hi << 1];
-        lo = hi;
+    for (int w = 0; w < j->words; w++) {
+        uint64_t c[8], act = cell_word(j, y, z, w, c);
+        for (; act; act &= act - 1) n += j->tab->ntri[cube_at(c, __builtin_ctzll(act))];
     }
     return n;
 }
@@ -157,8 +217,8 @@ static void count_rows(void *ctx, size_t begin, size_t end, int thread)
     ex_job *j = ctx;
     for (size_t r = begin; r < end; r++) {
         int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
-        j->mc->vrow[r] = z > j->z0 || z == 0 ? flag_row(j, y, z) : 0;
-        j->mc->trow[r] = z < j->z1 && y + 1 < j->ny ? tri_count_row(j, y, z) : 0;
+        j->mc->vrow[r] = z > j->z0 || z == 0 ? cross_row(j, y, z) : 0;
+        j->mc->trow[r] = z < j->z1 && y + 1 < j->ny ? count_triangles(j, y, z) : 0;
     }
 }
 
@@ -171,14 +231,12 @@ static inline float dval(const ex_job *j, const float *grid, int x, int y, int z
  * volume's faces). */
 static void gradient(const ex_job *j, int x, int y, int z, float g[3])
 {
-    const int *n = j->mc->n;
-    int p[3] = {x, y, z};
+    const float *p = j->s->dens + ((size_t)(z - j->s->zb) * j->ny + y) * j->nx + x;
+    ptrdiff_t step[3] = {1, j->nx, (ptrdiff_t)j->nx * j->ny};
+    int c[3] = {x, y, z};
     for (int d = 0; d < 3; d++) {
-        int lo[3] = {x, y, z}, hi[3] = {x, y, z};
-        lo[d] = MS_MAX(p[d] - 1, 0), hi[d] = MS_MIN(p[d] + 1, n[d] - 1);
-        float a = dval(j, j->s->dens, lo[0], lo[1], lo[2]);
-        float b = dval(j, j->s->dens, hi[0], hi[1], hi[2]);
-        g[d] = hi[d] > lo[d] ? (b - a) / (float)(hi[d] - lo[d]) : 0.0f;
+        int lo = c[d] > 0, hi = c[d] + 1 < j->mc->n[d];
+        g[d] = lo + hi ? (p[hi * step[d]] - p[-lo * step[d]]) / (float)(lo + hi) : 0.0f;
     }
 }
 
@@ -227,21 +285,23 @@ static void emit(const ex_job *j, size_t v, int x, int y, int z, int axis)
     vertex_color(j, v, p, q, t);
 }
 
+/* Vertices in owner order: points by x, each point's edges x, y, z. */
 static void vertex_rows(void *ctx, size_t begin, size_t end, int thread)
 {
     ex_job *j = ctx;
     for (size_t r = begin; r < end; r++) {
-        int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
-        if (!(z > j->z0 || z == 0)) continue;
         uint32_t v = j->mc->vrow[r];
-        size_t p0 = point(j, 0, y, z);
-        for (int x = 0; x < j->nx; x++) {
-            int f = j->mc->flags[p0 + x];
-            if (!f) continue;
-            j->mc->vbase[p0 + x] = v;
-            for (int axis = 0; axis < 3; axis++)
-                if (f >> axis & 1) emit(j, v++, x, y, z, axis);
-        }
+        if (v == j->mc->vrow[r + 1]) continue;
+        int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
+        const uint64_t *xb = bits(j, r, B_X), *yb = bits(j, r, B_Y), *zb = bits(j, r, B_Z);
+        for (int w = 0; w < j->words; w++)
+            for (uint64_t m = xb[w] | yb[w] | zb[w]; m; m &= m - 1) {
+                int b = __builtin_ctzll(m), x = 64 * w + b;
+                j->mc->vbase[point(j, x, y, z)] = v;
+                if (xb[w] >> b & 1) emit(j, v++, x, y, z, 0);
+                if (yb[w] >> b & 1) emit(j, v++, x, y, z, 1);
+                if (zb[w] >> b & 1) emit(j, v++, x, y, z, 2);
+            }
     }
 }
 
@@ -251,9 +311,12 @@ static inline uint32_t edge_vertex(const ex_job *j, int x, int y, int z, int e)
 {
     int from = ms_qsurf_mc_edge_from[e], axis = e >> 2;
     int px = x + (from & 1), py = y + (from >> 1 & 1), pz = z + (from >> 2 & 1) + (axis == 2);
-    size_t p = point(j, px, py, pz);
-    unsigned below = (unsigned)j->mc->flags[p] & ((1u << axis) - 1u);
-    return j->mc->vbase[p] + (uint32_t)__builtin_popcount(below);
+    size_t r = row_of(j, py, pz);
+    int w = px >> 6, b = px & 63;
+    uint32_t rank = 0;
+    if (axis > 0) rank += (uint32_t)(bits(j, r, B_X)[w] >> b & 1);
+    if (axis > 1) rank += (uint32_t)(bits(j, r, B_Y)[w] >> b & 1);
+    return j->mc->vbase[point(j, px, py, pz)] + rank;
 }
 
 static void triangle_rows(void *ctx, size_t begin, size_t end, int thread)
@@ -261,17 +324,16 @@ static void triangle_rows(void *ctx, size_t begin, size_t end, int thread)
     ex_job *j = ctx;
     const ms_qsurf_mctab *tab = j->tab;
     for (size_t r = begin; r < end; r++) {
+        if (j->mc->trow[r] == j->mc->trow[r + 1]) continue;
         int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
-        if (z >= j->z1 || y + 1 >= j->ny) continue;
         uint32_t *out = j->mc->mesh->index + 3 * (size_t)j->mc->trow[r];
-        const float *rows[4];
-        cell_rows(j, y, z, rows);
-        int lo = column(rows, 0, j->mc->iso);
-        for (int x = 0; x + 1 < j->nx; x++) {
-            int hi = column(rows, x + 1, j->mc->iso), cube = lo | hi << 1;
-            lo = hi;
-            for (int k = 0; k < 3 * tab->ntri[cube]; k++)
-                *out++ = edge_vertex(j, x, y, z, tab->tri[cube][k]);
+        for (int w = 0; w < j->words; w++) {
+            uint64_t c[8], act = cell_word(j, y, z, w, c);
+            for (; act; act &= act - 1) {
+                int b = __builtin_ctzll(act), cube = cube_at(c, b), x = 64 * w + b;
+                for (int k = 0; k < 3 * tab->ntri[cube]; k++)
+                    *out++ = edge_vertex(j, x, y, z, tab->tri[cube][k]);
+            }
         }
     }
 }
@@ -281,8 +343,8 @@ static int make_room(ex_job *j, size_t rows, ms_error *err)
 {
     ms_qsurf_extract *mc = j->mc;
     size_t nv = mc->mesh->nv, nt = mc->mesh->nt;
-    for (size_t r = 0; r < rows; r++) {
-        uint32_t cv = mc->vrow[r], ct = mc->trow[r];
+    for (size_t r = 0; r <= rows; r++) {
+        uint32_t cv = r < rows ? mc->vrow[r] : 0, ct = r < rows ? mc->trow[r] : 0;
         if (nv + cv > UINT32_MAX || nt + ct > UINT32_MAX) {
             ms_error_set(err, "the surface has more than %u vertices or triangles", UINT32_MAX);
             return -1;
@@ -297,13 +359,14 @@ static int make_room(ex_job *j, size_t rows, ms_error *err)
     return 0;
 }
 
-/* Keep plane z1 (its first vertices, flags and density) for the next slab. */
+/* Keep plane z1 (its first vertices, crossing bits and density) for the next slab. */
 static void keep_top_plane(ex_job *j)
 {
     ms_qsurf_extract *mc = j->mc;
-    size_t plane = (size_t)j->nx * j->ny, top = (size_t)(j->z1 - j->z0) * plane;
-    memmove(mc->vbase, mc->vbase + top, plane * sizeof(uint32_t));
-    memmove(mc->flags, mc->flags + top, plane);
+    size_t plane = (size_t)j->nx * j->ny, top = (size_t)(j->z1 - j->z0);
+    size_t rowwords = 4 * (size_t)j->words * j->ny;
+    memmove(mc->vbase, mc->vbase + top * plane, plane * sizeof(uint32_t));
+    memmove(mc->bits, mc->bits + top * rowwords, rowwords * sizeof(uint64_t));
     memcpy(mc->shared, drow(j, 0, j->z1), plane * sizeof(float));
     mc->next_z0 = j->z1;
 }
@@ -319,9 +382,10 @@ int ms_qsurf_extract_slab(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0, 
         return -1;
     }
     ex_job j = {.mc = mc, .s = s, .tab = ms_qsurf_mc_table(), .z0 = z0, .z1 = z1,
-                .nx = mc->n[0], .ny = mc->n[1]};
+                .nx = mc->n[0], .ny = mc->n[1], .words = mc->words};
     size_t rows = (size_t)(z1 - z0 + 1) * (size_t)j.ny;
-    ms_parallel_for(rows, 8, count_rows, &j);
+    ms_parallel_for(rows, 16, classify_rows, &j);
+    ms_parallel_for(rows, 16, count_rows, &j);
     if (make_room(&j, rows, err) < 0) return -1;
     ms_parallel_for(rows, 8, vertex_rows, &j);
     ms_parallel_for(rows, 8, triangle_rows, &j);

@@ -71,8 +71,25 @@ size_t ms_qsurf_plan_bytes(const ms_qsurf_grid *g, int colored, int layers)
            ms_qsurf_extract_bytes(g->n[0], g->n[1], layers);
 }
 
+/* Slabs are kept near this working set even when memory allows more: a slab's density is
+ * then still in cache when marching cubes reads it, and its pages are reused slab after
+ * slab instead of faulted in once for the whole volume. */
+#define SLAB_TARGET ((size_t)192 << 20)
+
+static int plan_within(const ms_qsurf_grid *g, int colored, size_t budget, int maxlayers,
+                       ms_qsurf_plan *pl, ms_error *err);
+
 int ms_qsurf_plan_slabs(const ms_qsurf_grid *g, int colored, size_t budget, int maxlayers,
                         ms_qsurf_plan *pl, ms_error *err)
+{
+    size_t preferred = ms_qsurf_atomgrid_bytes(g, colored) + SLAB_TARGET;
+    if (preferred < budget && plan_within(g, colored, preferred, maxlayers, pl, NULL) == 0)
+        return 0;
+    return plan_within(g, colored, budget, maxlayers, pl, err);
+}
+
+static int plan_within(const ms_qsurf_grid *g, int colored, size_t budget, int maxlayers,
+                       ms_qsurf_plan *pl, ms_error *err)
 {
     int total = MS_MAX(g->n[2] - 1, 1), limit = total, layers = 0;
     if (maxlayers > 0 && maxlayers < total) limit = maxlayers;

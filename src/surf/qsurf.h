@@ -45,19 +45,25 @@ typedef MS_QSURF_POS_TYPE ms_qsurf_pos_t;
 typedef MS_QSURF_NORMAL_TYPE ms_qsurf_normal_t;
 typedef MS_QSURF_COLOR_TYPE ms_qsurf_color_t;
 
+/* Round to the nearest integer, halves away from zero (inline, no libm call). */
+static inline long ms_qsurf_round(float v)
+{
+    return v >= 0.0f ? (long)(v + 0.5f) : -(long)(0.5f - v);
+}
+
 /* Quantize f in [-1, 1] to a signed integer of half-range `half` (127.5 for 8 bits). */
 static inline long ms_qsurf_snorm(float f, float half)
 {
-    long c = lrintf(f * half - 0.5f);
     long hi = (long)(half - 0.5f), lo = -hi - 1;
-    return c < lo ? lo : c > hi ? hi : c;
+    float v = f * half - 0.5f;
+    return !(v > (float)lo) ? lo : v >= (float)hi ? hi : ms_qsurf_round(v);
 }
 
 /* Quantize f in [0, 1] to an unsigned integer of maximum `max`. */
 static inline long ms_qsurf_unorm(float f, float max)
 {
-    long c = lrintf(f * max);
-    return c < 0 ? 0 : c > (long)max ? (long)max : c;
+    float v = f * max;
+    return !(v > 0.0f) ? 0 : v >= max ? (long)max : ms_qsurf_round(v);
 }
 
 static inline ms_qsurf_normal_t ms_qsurf_pack_normal(float f)

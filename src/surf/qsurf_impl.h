@@ -87,12 +87,29 @@ const char *ms_qsurf_kernel_name(int kernel);
 /* 1 when this CPU runs the SIMD loops. */
 int ms_qsurf_have_simd(void);
 
-/* Loops of one kind over planes [zlo, zhi] of the slab (buffers already zeroed); the
- * drivers in density.c call them from the worker threads. */
-void ms_qsurf_scatter_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi);
-void ms_qsurf_gather_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi);
-void ms_qsurf_scatter_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi);
-void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int zlo, int zhi);
+/* A block of a slab, small enough to stay in cache while its atoms are added: planes
+ * z0..z1 and rows y0..y1, inclusive. */
+typedef struct ms_qsurf_block {
+    int z0, z1, y0, y1;
+} ms_qsurf_block;
+
+/* The cells whose atoms can reach the block: cz in [lo[1], hi[1]], cy in [lo[0], hi[0]],
+ * every cx (a contiguous run of the table per (cz, cy)). */
+static inline void ms_qsurf_block_cells(const ms_qsurf_atomgrid *ag, const ms_qsurf_block *b,
+                                        int lo[2], int hi[2])
+{
+    lo[0] = ms_qsurf_cell_of((float)b->y0 - ag->cutmax, ag->cw[1], ag->nc[1]);
+    hi[0] = ms_qsurf_cell_of((float)b->y1 + ag->cutmax, ag->cw[1], ag->nc[1]);
+    lo[1] = ms_qsurf_cell_of((float)b->z0 - ag->cutmax, ag->cw[2], ag->nc[2]);
+    hi[1] = ms_qsurf_cell_of((float)b->z1 + ag->cutmax, ag->cw[2], ag->nc[2]);
+}
+
+/* Loops of one kind over a block of the slab (already zeroed); the driver in density.c
+ * calls them from the worker threads. */
+void ms_qsurf_scatter_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b);
+void ms_qsurf_gather_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b);
+void ms_qsurf_scatter_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b);
+void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b);
 
 /* ---------------------------------------------------------------- memory planner */
 
@@ -108,8 +125,9 @@ typedef struct ms_qsurf_plan {
     size_t bytes;            /* planned working set */
 } ms_qsurf_plan;
 
-/* Largest slab (at most maxlayers, 0 = no limit) whose working set fits the budget. Fails
- * with a message giving the bytes an 8-layer slab needs when even that does not fit. */
+/* Largest slab (at most maxlayers, 0 = no limit) whose working set fits the budget, kept
+ * near 192 MB when the budget is larger. Fails with a message giving the bytes an 8-layer
+ * slab needs when even that does not fit. */
 int ms_qsurf_plan_slabs(const ms_qsurf_grid *g, int colored, size_t budget, int maxlayers,
                         ms_qsurf_plan *pl, ms_error *err);
 /* Bytes of the slab buffers alone (density, colour texture) holding `planes` planes. */
@@ -135,19 +153,19 @@ extern const uint8_t ms_qsurf_mc_edge_from[12];   /* corner where edge e starts 
  * edges to its +x and +y neighbours and to its -z neighbour; a slab of cell layers
  * [z0, z1) makes the vertices of the points in planes (z0, z1] (and plane 0 in the first
  * slab), so the plane two slabs share is made once and kept, with its density, for the
- * next slab. Output order depends only on the grid: vertices by owner point, triangles by
- * cell. */
+ * next slab. Rows of points are held as bitsets, 64 points a word. Output order depends
+ * only on the grid: vertices by owner point, triangles by cell. */
 typedef struct ms_qsurf_extract {
-    int n[3];
+    int n[3], words;         /* words: 64-bit words per row */
     float iso;
     double origin[3], axis[3][3], gradm[3][3];   /* gradm = inverse transpose of axis */
     int colored;
     float solid[3];
     int maxlayers;
-    uint32_t *vbase;         /* per point of planes z0..z1: index of its first vertex */
-    uint8_t *flags;          /* per point: which owned edges (x 1, y 2, -z 4) cross */
+    uint32_t *vbase;         /* per point of planes z0..z1 with crossing edges: first vertex */
+    uint64_t *bits;          /* per row of planes z0..z1: inside, then crossing x, y, -z */
     float *shared;           /* density of the plane shared with the next slab */
-    uint32_t *vrow, *trow;   /* per row: vertex and triangle counts, then first indices */
+    uint32_t *vrow, *trow;   /* per row (+1): vertex and triangle counts, then first indices */
     int next_z0;             /* the slab expected next */
     ms_qsurf_mesh *mesh;
 } ms_qsurf_extract;
