@@ -12,6 +12,13 @@ tests_unit_test_molecule_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_qsurf_SOURCES = tests/unit/test_qsurf.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_qsurf_LDADD = $(TEST_CORE_LIBS)
+# The QuickSurf sources again, built with other mesh storage types.
+check_PROGRAMS += tests/unit/test_qsurf_prec
+tests_unit_test_qsurf_prec_SOURCES = tests/unit/test_qsurf_prec.c tests/unit/ms_test.h \
+	$(QSURF_SOURCES)
+tests_unit_test_qsurf_prec_LDADD = $(TEST_CORE_LIBS)
+tests_unit_test_qsurf_prec_CFLAGS = $(AM_CFLAGS) -DMS_QSURF_POS_TYPE=double \
+	-DMS_QSURF_NORMAL_TYPE=float -DMS_QSURF_COLOR_TYPE=uint16_t
 
 # The QuickSurf benchmark driver (scripts/bench/bench_qsurf.sh runs it).
 check_PROGRAMS += tests/tools/qsurfbench

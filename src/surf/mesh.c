@@ -1,10 +1,21 @@
 /* mesh.c: the QuickSurf mesh: exact-size growth (realloc, which for large blocks remaps
- * pages instead of copying), release, memory and area. */
+ * pages instead of copying), release, memory and area; and the advice that large buffers
+ * be backed by huge pages, which spares most of their page faults. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+
+void ms_qsurf_advise_huge(void *p, size_t bytes)
+{
+#ifdef MADV_HUGEPAGE
+    const uintptr_t huge = (uintptr_t)2 << 20;
+    uintptr_t a = ((uintptr_t)p + huge - 1) & ~(huge - 1), e = ((uintptr_t)p + bytes) & ~(huge - 1);
+    if (p && e > a) madvise((void *)a, e - a, MADV_HUGEPAGE);
+#endif
+}
 
 static int resize(void **p, size_t n, size_t elsize)
 {

@@ -186,6 +186,8 @@ size_t ms_qsurf_extract_bytes(int nx, int ny, int layers);
 /* Resize the mesh arrays to nv vertices and nt triangles (contents kept). On failure the
  * mesh keeps its old sizes and stays valid. */
 int ms_qsurf_mesh_resize(ms_qsurf_mesh *m, size_t nv, size_t nt);
+/* Ask for huge pages under the 2 MB-aligned part of a large buffer (a hint; no error). */
+void ms_qsurf_advise_huge(void *p, size_t bytes);
 
 /* ---------------------------------------------------------------- OpenCL engine
  * One engine per process (device, context, queue, built program), shared by every surface
