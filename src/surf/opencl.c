@@ -96,7 +96,7 @@ struct ms_qsurf_cl {
 
 static pthread_mutex_t engine_lock = PTHREAD_MUTEX_INITIALIZER;
 static ms_qsurf_cl engine;
-static int engine_state;     /* 0 not started, 1 running, -1 failed */
+static int engine_state;     /* 0 not started, 1 device found, 2 running, -1 failed */
 static int engine_absent;
 static char engine_failure[sizeof(ms_error)];
 
@@ -219,11 +219,10 @@ static int build_program(ms_qsurf_cl *cl, ms_error *err)
     return 0;
 }
 
+/* The context, queue and kernel, made the first time the device is used. */
 static int start(ms_qsurf_cl *cl, ms_error *err)
 {
     cl_int e;
-    pocl_cache_dir();
-    if (pick_device(cl, err) < 0) return -1;
     cl->ctx = clCreateContext(NULL, 1, &cl->device, NULL, NULL, &e);
     if (e != CL_SUCCESS) return cl_fail(err, "clCreateContext", e);
     cl->queue = clCreateCommandQueue(cl->ctx, cl->device, 0, &e);
@@ -239,16 +238,19 @@ ms_qsurf_cl *ms_qsurf_cl_acquire(int any_type, int *absent, ms_error *err)
         return NULL;
     }
     pthread_mutex_lock(&engine_lock);
+    ms_error e = {{0}};
     if (engine_state == 0) {
-        ms_error e = {{0}};
-        engine_state = start(&engine, &e) == 0 ? 1 : -1;
-        snprintf(engine_failure, sizeof engine_failure, "%s", e.msg);
+        pocl_cache_dir();
+        engine_state = pick_device(&engine, &e) == 0 ? 1 : -1;
     }
+    int wanted = any_type || engine.named ||
+                 (engine.type & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR));
+    if (engine_state == 1 && wanted) engine_state = start(&engine, &e) == 0 ? 2 : -1;
+    if (e.msg[0]) snprintf(engine_failure, sizeof engine_failure, "%s", e.msg);
     if (engine_state < 0) {
         *absent = engine_absent;
         ms_error_set(err, "%s", engine_failure);
-    } else if (!any_type && !engine.named && !(engine.type & (CL_DEVICE_TYPE_GPU |
-                                                              CL_DEVICE_TYPE_ACCELERATOR))) {
+    } else if (!wanted) {
         ms_error_set(err, "the OpenCL device %s is a CPU", engine.name);
     } else {
         *absent = 0;

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 const ms_plugin *ms_plugin_entry(void);
 
@@ -68,6 +69,15 @@ static void reset_peak(void)
     }
 }
 
+/* CPU seconds this process has used (all threads). */
+static double cpu_seconds(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0) return 0.0;
+    return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec +
+           (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;
+}
+
 static void element_rgb(int z, float *c)
 {
     static const float cyan[3] = {0.25f, 0.75f, 0.75f}, blue[3] = {0, 0, 1}, red[3] = {1, 0, 0},
@@ -83,21 +93,21 @@ static void run_once(const ms_qsurf_atoms *a, const bench_opts *o)
     ms_error err = {{0}};
     size_t base = status_kb("VmRSS:");
     reset_peak();
-    double t0 = ms_now();
+    double t0 = ms_now(), c0 = cpu_seconds();
     if (ms_qsurf_surface(a, &o->p, &m, &st, &err) < 0) {
         printf("error=\"%s\"\n", err.msg);
         return;
     }
-    double total = ms_now() - t0;
+    double total = ms_now() - t0, cpu = cpu_seconds() - c0;
     size_t peak = status_kb("VmHWM:"), mesh = ms_qsurf_mesh_bytes(&m);
     size_t added = peak > base ? peak - base : 0;
     size_t slab = st.plan_bytes;
     printf("atoms=%zu h=%g grid=%dx%dx%d slabs=%d layers=%d kernel=%s opencl=%d setup_s=%.3f "
-           "density_s=%.3f mc_s=%.3f total_s=%.3f vertices=%zu triangles=%zu "
+           "density_s=%.3f mc_s=%.3f total_s=%.3f cpu_s=%.3f vertices=%zu triangles=%zu "
            "vertex_bytes=%zu mesh_bytes_per_vertex=%.1f mesh_mb=%.1f plan_mb=%.1f peak_mb=%.1f "
            "peak_over_target=%.2f\n",
            st.grid.natoms, st.grid.h, st.grid.n[0], st.grid.n[1], st.grid.n[2], st.nslabs,
-           st.slab_layers, st.kernel, st.opencl, st.t_setup, st.t_density, st.t_mc, total, m.nv,
+           st.slab_layers, st.kernel, st.opencl, st.t_setup, st.t_density, st.t_mc, total, cpu, m.nv,
            m.nt, (size_t)MS_QSURF_VERTEX_BYTES, m.nv ? (double)mesh / (double)m.nv : 0.0,
            mesh / 1048576.0, slab / 1048576.0, added / 1048576.0,
            (double)added / (1.5 * (double)mesh + (double)slab));
