@@ -174,7 +174,7 @@ static void density_blocks(void *ctx, size_t begin, size_t end, int thread)
     ms_qsurf_slab *s = j->s;
     for (size_t t = begin; t < end; t++) {
         ms_qsurf_block b;
-        b.z0 = s->zb + (int)(t / (size_t)j->nbands) * j->group;
+        b.z0 = s->cz + (int)(t / (size_t)j->nbands) * j->group;
         b.z1 = MS_MIN(s->ze, b.z0 + j->group - 1);
         b.y0 = (int)(t % (size_t)j->nbands) * j->band;
         b.y1 = MS_MIN(s->ny - 1, b.y0 + j->band - 1);
@@ -193,7 +193,7 @@ static void density_blocks(void *ctx, size_t begin, size_t end, int thread)
 void ms_qsurf_density_cpu_with(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int kernel)
 {
     if ((kernel & MS_QSURF_K_SIMD) && !ms_qsurf_have_simd()) kernel &= ~MS_QSURF_K_SIMD;
-    int planes = s->ze - s->zb + 1, groups;
+    int planes = s->ze - s->cz + 1, groups;
     size_t voxel = s->rgb[0] ? 16 : 4;
     density_job j = {.ag = ag, .s = s, .kernel = kernel, .group = MS_MIN(4, planes)};
     groups = (planes + j.group - 1) / j.group;

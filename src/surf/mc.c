@@ -30,7 +30,7 @@ size_t ms_qsurf_extract_bytes(int nx, int ny, int layers)
     size_t plane = (size_t)nx * (size_t)ny, planes = (size_t)layers + 1;
     size_t rows = (size_t)ny * planes, words = ((size_t)nx + 63) / 64;
     return plane * planes * sizeof(uint32_t) + rows * words * 4 * sizeof(uint64_t) +
-           plane * sizeof(float) + (rows + 1) * 2 * sizeof(uint32_t);
+           (rows + 1) * 2 * sizeof(uint32_t);
 }
 
 /* gradm = inverse transpose of the matrix whose columns are the axes. */
@@ -74,10 +74,9 @@ int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float ori
     mc->vbase = ms_alloc_array(plane * planes, sizeof(uint32_t));
     ms_qsurf_advise_huge(mc->vbase, plane * planes * sizeof(uint32_t));
     mc->bits = ms_calloc_array(rows * (size_t)mc->words * 4, sizeof(uint64_t));
-    mc->shared = ms_alloc_array(plane, sizeof(float));
     mc->vrow = ms_alloc_array(rows + 1, sizeof(uint32_t));
     mc->trow = ms_alloc_array(rows + 1, sizeof(uint32_t));
-    if (!mc->vbase || !mc->bits || !mc->shared || !mc->vrow || !mc->trow) {
+    if (!mc->vbase || !mc->bits || !mc->vrow || !mc->trow) {
         ms_qsurf_extract_end(mc);
         ms_error_set(err, "out of memory for marching cubes (%zu planes of %zu points)",
                      planes, plane);
@@ -91,17 +90,9 @@ void ms_qsurf_extract_end(ms_qsurf_extract *mc)
 {
     free(mc->vbase);
     free(mc->bits);
-    free(mc->shared);
     free(mc->vrow);
     free(mc->trow);
-    mc->vbase = NULL, mc->bits = NULL, mc->shared = NULL, mc->vrow = mc->trow = NULL;
-}
-
-void ms_qsurf_extract_share(ms_qsurf_extract *mc, ms_qsurf_slab *s, int z0)
-{
-    if (z0 == 0 || z0 != mc->next_z0) return;
-    size_t plane = (size_t)s->nx * s->ny;
-    memcpy(s->dens + (size_t)(z0 - s->zb) * plane, mc->shared, plane * sizeof(float));
+    mc->vbase = NULL, mc->bits = NULL, mc->vrow = mc->trow = NULL;
 }
 
 /* ---------------------------------------------------------------- one slab */
@@ -110,7 +101,7 @@ typedef struct ex_job {
     ms_qsurf_extract *mc;
     const ms_qsurf_slab *s;
     const ms_qsurf_mctab *tab;
-    int z0, z1, nx, ny, words;
+    int z0, z1, nx, ny, words, simd;
 } ex_job;
 
 static inline const float *drow(const ex_job *j, int y, int z)
@@ -146,20 +137,23 @@ static inline uint64_t next_x(const ex_job *j, const uint64_t *row, int w)
     return row[w] >> 1 | (w + 1 < j->words ? row[w + 1] << 63 : 0);
 }
 
+void ms_qsurf_inside_bits_plain(const float *d, int n, float iso, uint64_t *out)
+{
+    for (int w = 0; 64 * w < n; w++) {
+        int x0 = 64 * w, m = MS_MIN(64, n - x0);
+        uint64_t bitsw = 0;
+        for (int b = 0; b < m; b++) bitsw |= (uint64_t)(d[x0 + b] > iso) << b;
+        out[w] = bitsw;
+    }
+}
+
 static void classify_rows(void *ctx, size_t begin, size_t end, int thread)
 {
     ex_job *j = ctx;
-    float iso = j->mc->iso;
     for (size_t r = begin; r < end; r++) {
         int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
-        const float *d = drow(j, y, z);
-        uint64_t *in = bits(j, r, B_IN);
-        for (int w = 0; w < j->words; w++) {
-            int x0 = 64 * w, n = MS_MIN(64, j->nx - x0);
-            uint64_t m = 0;
-            for (int b = 0; b < n; b++) m |= (uint64_t)(d[x0 + b] > iso) << b;
-            in[w] = m;
-        }
+        if (j->simd) ms_qsurf_inside_bits_avx2(drow(j, y, z), j->nx, j->mc->iso, bits(j, r, B_IN));
+        else ms_qsurf_inside_bits_plain(drow(j, y, z), j->nx, j->mc->iso, bits(j, r, B_IN));
     }
 }
 
@@ -286,6 +280,20 @@ static void emit(const ex_job *j, size_t v, int x, int y, int z, int axis)
     vertex_color(j, v, p, q, t);
 }
 
+/* Ask for the cache lines the vertices of word w of row (y, z) will read. */
+static void prefetch_word(const ex_job *j, int y, int z, int w)
+{
+    int zl = MS_MAX(z - 1, j->s->zb), zh = MS_MIN(z + 1, j->s->ze);
+    int yl = MS_MAX(y - 1, 0), yh = MS_MIN(y + 1, j->ny - 1);
+    const float *rows[8] = {drow(j, y, z), drow(j, yl, z), drow(j, yh, z), drow(j, y, zl),
+                            drow(j, y, zh), NULL, NULL, NULL};
+    size_t off = ((size_t)(z - j->s->zb) * j->ny + y) * j->nx;
+    for (int k = 0; k < 3 && j->mc->colored; k++) rows[5 + k] = j->s->rgb[k] + off;
+    int x0 = 64 * w, n = MS_MIN(64, j->nx - x0);
+    for (int r = 0; r < 8; r++)
+        for (int x = 0; rows[r] && x < n; x += 16) __builtin_prefetch(rows[r] + x0 + x);
+}
+
 /* Vertices in owner order: points by x, each point's edges x, y, z. */
 static void vertex_rows(void *ctx, size_t begin, size_t end, int thread)
 {
@@ -295,7 +303,8 @@ static void vertex_rows(void *ctx, size_t begin, size_t end, int thread)
         if (v == j->mc->vrow[r + 1]) continue;
         int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
         const uint64_t *xb = bits(j, r, B_X), *yb = bits(j, r, B_Y), *zb = bits(j, r, B_Z);
-        for (int w = 0; w < j->words; w++)
+        for (int w = 0; w < j->words; w++) {
+            if (w + 1 < j->words && (xb[w + 1] | yb[w + 1] | zb[w + 1])) prefetch_word(j, y, z, w + 1);
             for (uint64_t m = xb[w] | yb[w] | zb[w]; m; m &= m - 1) {
                 int b = __builtin_ctzll(m), x = 64 * w + b;
                 j->mc->vbase[point(j, x, y, z)] = v;
@@ -303,6 +312,7 @@ static void vertex_rows(void *ctx, size_t begin, size_t end, int thread)
                 if (yb[w] >> b & 1) emit(j, v++, x, y, z, 1);
                 if (zb[w] >> b & 1) emit(j, v++, x, y, z, 2);
             }
+        }
     }
 }
 
@@ -360,7 +370,7 @@ static int make_room(ex_job *j, size_t rows, ms_error *err)
     return 0;
 }
 
-/* Keep plane z1 (its first vertices, crossing bits and density) for the next slab. */
+/* Keep plane z1 (its first vertices and crossing bits) for the next slab. */
 static void keep_top_plane(ex_job *j)
 {
     ms_qsurf_extract *mc = j->mc;
@@ -368,7 +378,6 @@ static void keep_top_plane(ex_job *j)
     size_t rowwords = 4 * (size_t)j->words * j->ny;
     memmove(mc->vbase, mc->vbase + top * plane, plane * sizeof(uint32_t));
     memmove(mc->bits, mc->bits + top * rowwords, rowwords * sizeof(uint64_t));
-    memcpy(mc->shared, drow(j, 0, j->z1), plane * sizeof(float));
     mc->next_z0 = j->z1;
 }
 
@@ -383,7 +392,8 @@ int ms_qsurf_extract_slab(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0, 
         return -1;
     }
     ex_job j = {.mc = mc, .s = s, .tab = ms_qsurf_mc_table(), .z0 = z0, .z1 = z1,
-                .nx = mc->n[0], .ny = mc->n[1], .words = mc->words};
+                .nx = mc->n[0], .ny = mc->n[1], .words = mc->words,
+                .simd = ms_qsurf_cpu_kernel() & MS_QSURF_K_SIMD};
     size_t rows = (size_t)(z1 - z0 + 1) * (size_t)j.ny;
     ms_parallel_for(rows, 16, classify_rows, &j);
     ms_parallel_for(rows, 16, count_rows, &j);

@@ -339,7 +339,7 @@ static cl_int set_args(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, const ms_qs
     e |= clSetKernelArg(cl->kernel, a++, sizeof(float), &ag->elim);
     e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->nx);
     e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->ny);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->zb);
+    e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->cz);
     e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->ze);
     e |= clSetKernelArg(cl->kernel, a++, sizeof(cl_int), &colored);
     e |= clSetKernelArg(cl->kernel, a++, sizeof(cl_mem), &cl->dens);
@@ -352,7 +352,8 @@ int ms_qsurf_cl_density(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, ms_qsurf_s
 {
     if (ms_qsurf_cl_fail_after >= 0 && ms_qsurf_cl_fail_after-- == 0)
         return cl_fail(err, "the density kernel (injected fault)", CL_OUT_OF_RESOURCES);
-    size_t planes = (size_t)(s->ze - s->zb + 1), bytes = (size_t)s->nx * s->ny * planes * 4;
+    size_t planes = (size_t)(s->ze - s->cz + 1), bytes = (size_t)s->nx * s->ny * planes * 4;
+    size_t off = (size_t)s->nx * s->ny * (size_t)(s->cz - s->zb);
     size_t local[3] = {8, 8, 2};
     size_t global[3] = {((size_t)s->nx + 7) / 8 * 8, ((size_t)s->ny + 7) / 8 * 8,
                         (planes + 7) / 8 * 2};
@@ -360,9 +361,10 @@ int ms_qsurf_cl_density(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, ms_qsurf_s
     if (e != CL_SUCCESS) return cl_fail(err, "clSetKernelArg", e);
     e = clEnqueueNDRangeKernel(cl->queue, cl->kernel, 3, NULL, global, local, 0, NULL, NULL);
     if (e != CL_SUCCESS) return cl_fail(err, "clEnqueueNDRangeKernel", e);
-    e = clEnqueueReadBuffer(cl->queue, cl->dens, CL_TRUE, 0, bytes, s->dens, 0, NULL, NULL);
+    e = clEnqueueReadBuffer(cl->queue, cl->dens, CL_TRUE, 0, bytes, s->dens + off, 0, NULL, NULL);
     for (int k = 0; e == CL_SUCCESS && ag->rgb && k < 3; k++)
-        e = clEnqueueReadBuffer(cl->queue, cl->rgb[k], CL_TRUE, 0, bytes, s->rgb[k], 0, NULL, NULL);
+        e = clEnqueueReadBuffer(cl->queue, cl->rgb[k], CL_TRUE, 0, bytes, s->rgb[k] + off, 0, NULL,
+                                NULL);
     if (e != CL_SUCCESS) return cl_fail(err, "running the density kernel", e);
     return 0;
 }

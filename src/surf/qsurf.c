@@ -254,15 +254,30 @@ static void slab_density(run *r)
     ms_qsurf_density_cpu(&r->ag, &r->slab);
 }
 
+/* Move the planes the next slab [z0, z1) shares with the current one to the start of the
+ * buffers; the next slab computes only the planes after them. Both slabs then see the very
+ * same density on their shared plane, whichever device computed it. */
+static void next_slab(ms_qsurf_slab *s, int z0, int z1, int nz)
+{
+    int zb = MS_MAX(z0 - 1, 0), kept = z0 > 0 ? s->ze - zb + 1 : 0;
+    size_t plane = (size_t)s->nx * s->ny;
+    if (kept > 0) {
+        size_t from = (size_t)(zb - s->zb) * plane, n = (size_t)kept * plane;
+        memmove(s->dens, s->dens + from, n * sizeof(float));
+        for (int k = 0; s->rgb[0] && k < 3; k++)
+            memmove(s->rgb[k], s->rgb[k] + from, n * sizeof(float));
+    }
+    s->zb = zb, s->ze = MS_MIN(z1 + 1, nz - 1), s->cz = zb + kept;
+}
+
 static int slabs(run *r, ms_error *err)
 {
     int nz = r->g->n[2];
     for (int z0 = 0, z1; z0 < nz - 1; z0 = z1) {
         z1 = MS_MIN(z0 + r->plan.layers, nz - 1);
-        r->slab.zb = MS_MAX(z0 - 1, 0), r->slab.ze = MS_MIN(z1 + 1, nz - 1);
+        next_slab(&r->slab, z0, z1, nz);
         double t = ms_now();
-        slab_density(r);
-        ms_qsurf_extract_share(&r->mc, &r->slab, z0);
+        if (r->slab.cz <= r->slab.ze) slab_density(r);
         double t2 = ms_now();
         r->st->t_density += t2 - t;
         if (ms_qsurf_extract_slab(&r->mc, &r->slab, z0, z1, err) < 0) return -1;
@@ -315,7 +330,7 @@ int ms_qsurf_density(const ms_qsurf_atoms *a, const ms_qsurf_params *p, ms_qsurf
         ms_error_set(err, "out of memory for a %d x %d x %d map", g.n[0], g.n[1], g.n[2]);
         return -1;
     }
-    s.zb = 0, s.ze = g.n[2] - 1;
+    s.zb = s.cz = 0, s.ze = g.n[2] - 1;
     ms_qsurf_density_cpu(&ag, &s);
     ms_qsurf_atomgrid_free(&ag);
     for (int d = 0; d < 3; d++) {
@@ -346,7 +361,7 @@ int ms_qsurf_mc(const ms_qsurf_volume *v, float iso, ms_qsurf_mesh *out, ms_erro
     }
     if (v->n[2] < 2) return 0;
     ms_qsurf_extract mc;
-    ms_qsurf_slab s = {.nx = v->n[0], .ny = v->n[1], .zb = 0, .ze = v->n[2] - 1,
+    ms_qsurf_slab s = {.nx = v->n[0], .ny = v->n[1], .zb = 0, .ze = v->n[2] - 1, .cz = 0,
                        .dens = v->data, .rgb = {v->rgb[0], v->rgb[1], v->rgb[2]}};
     int colored = v->rgb[0] && v->rgb[1] && v->rgb[2];
     if (ms_qsurf_extract_begin(&mc, v->n, v->origin, v->axis, iso, colored, v->solid,

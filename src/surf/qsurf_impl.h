@@ -59,9 +59,10 @@ static inline int ms_qsurf_cell_of(float x, float w, int n)
 }
 
 /* ---------------------------------------------------------------- slab buffers
- * Planes zb..ze of the density map and colour texture, x fastest. */
+ * Planes zb..ze of the density map and colour texture, x fastest. Planes zb..cz-1 were
+ * kept from the previous slab; the density loops compute planes cz..ze. */
 typedef struct ms_qsurf_slab {
-    int nx, ny, zb, ze;
+    int nx, ny, zb, ze, cz;
     float *dens;
     float *rgb[3];           /* NULL when solid */
 } ms_qsurf_slab;
@@ -74,7 +75,7 @@ enum {
     MS_QSURF_K_SIMD = 2      /* AVX2 + FMA (x86-64, chosen at run time) */
 };
 
-/* Zero planes zb..ze of the slab and sum the atoms' Gaussians into them, on all cores,
+/* Zero planes cz..ze of the slab and sum the atoms' Gaussians into them, on all cores,
  * with the loop chosen by ms_qsurf_cpu_kernel(). */
 void ms_qsurf_density_cpu(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s);
 /* The same with an explicit loop (MS_QSURF_K_* flags); SIMD falls back to plain where the
@@ -110,6 +111,10 @@ void ms_qsurf_scatter_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const
 void ms_qsurf_gather_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b);
 void ms_qsurf_scatter_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b);
 void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b);
+
+/* Marching cubes' inside bits of a row: bit b of out[w] = d[64 w + b] > iso. */
+void ms_qsurf_inside_bits_plain(const float *d, int n, float iso, uint64_t *out);
+void ms_qsurf_inside_bits_avx2(const float *d, int n, float iso, uint64_t *out);
 
 /* ---------------------------------------------------------------- memory planner */
 
@@ -152,8 +157,8 @@ extern const uint8_t ms_qsurf_mc_edge_from[12];   /* corner where edge e starts 
 /* Marching cubes over a volume delivered in slabs, bottom to top. Each grid point owns the
  * edges to its +x and +y neighbours and to its -z neighbour; a slab of cell layers
  * [z0, z1) makes the vertices of the points in planes (z0, z1] (and plane 0 in the first
- * slab), so the plane two slabs share is made once and kept, with its density, for the
- * next slab. Rows of points are held as bitsets, 64 points a word. Output order depends
+ * slab), so the vertices of the plane two slabs share are made once and kept for the
+ * next slab (whose buffers keep that plane's density too, see qsurf.c). Rows of points are held as bitsets, 64 points a word. Output order depends
  * only on the grid: vertices by owner point, triangles by cell. */
 typedef struct ms_qsurf_extract {
     int n[3], words;         /* words: 64-bit words per row */
@@ -164,7 +169,6 @@ typedef struct ms_qsurf_extract {
     int maxlayers;
     uint32_t *vbase;         /* per point of planes z0..z1 with crossing edges: first vertex */
     uint64_t *bits;          /* per row of planes z0..z1: inside, then crossing x, y, -z */
-    float *shared;           /* density of the plane shared with the next slab */
     uint32_t *vrow, *trow;   /* per row (+1): vertex and triangle counts, then first indices */
     int next_z0;             /* the slab expected next */
     ms_qsurf_mesh *mesh;
@@ -173,9 +177,6 @@ typedef struct ms_qsurf_extract {
 int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float origin[3],
                       const float axis[3][3], float iso, int colored, const float solid[3],
                       int maxlayers, ms_qsurf_mesh *mesh, ms_error *err);
-/* Overwrite plane z0 of the slab with the shared plane kept from the previous slab, so
- * both slabs classify it alike whichever device computed them. */
-void ms_qsurf_extract_share(ms_qsurf_extract *mc, ms_qsurf_slab *s, int z0);
 /* Extract layers [z0, z1): the slab must hold planes max(z0-1, 0) .. min(z1+1, nz-1). */
 int ms_qsurf_extract_slab(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0, int z1,
                           ms_error *err);
@@ -202,7 +203,7 @@ ms_qsurf_cl *ms_qsurf_cl_acquire(int any_type, int *absent, ms_error *err);
 void ms_qsurf_cl_release(ms_qsurf_cl *cl);
 /* Most cell layers per slab the device memory holds for this grid (0: none). */
 int ms_qsurf_cl_max_layers(ms_qsurf_cl *cl, const ms_qsurf_grid *g, int colored);
-/* Upload the atom table; then compute planes zb..ze of slabs on the device. */
+/* Upload the atom table; then compute planes cz..ze of slabs on the device. */
 int ms_qsurf_cl_upload(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, int nx, int ny,
                        int maxplanes, ms_error *err);
 int ms_qsurf_cl_density(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s,

@@ -1,7 +1,8 @@
-/* density_avx2.c: the density loops with AVX2 and FMA, eight voxels of a row at a time:
- * scatter (an atom's run of a row in full vectors and one masked tail) and gather (eight
- * voxels summing the atoms of the cells around them in registers). The arithmetic is that
- * of the plain loops lane by lane, so the results are bit for bit the same. Built for every
+/* simd_avx2.c: the loops that run with AVX2 and FMA, eight voxels of a row at a time: the
+ * density scatter (an atom's run of a row in full vectors and one masked tail), the
+ * density gather (eight voxels summing the atoms of the cells around them in registers),
+ * and marching cubes' inside bits (compare and movemask). The arithmetic is that of the
+ * plain loops lane by lane, so the results are bit for bit the same. Built for every
  * x86-64 compiler and called only when the CPU has AVX2 and FMA; elsewhere these fall back
  * to the plain loops. */
 #include "config.h"
@@ -154,9 +155,31 @@ void ms_qsurf_gather_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const m
         }
 }
 
+/* Bit b of out[w] = d[64 w + b] > iso, for n values. */
+void ms_qsurf_inside_bits_avx2(const float *d, int n, float iso, uint64_t *out)
+{
+    __m256 viso = _mm256_set1_ps(iso);
+    int x = 0;
+    for (; x + 64 <= n; x += 64) {
+        uint64_t m = 0;
+        for (int k = 0; k < 8; k++) {
+            __m256 v = _mm256_loadu_ps(d + x + 8 * k);
+            m |= (uint64_t)(unsigned)_mm256_movemask_ps(_mm256_cmp_ps(v, viso, _CMP_GT_OQ))
+                 << (8 * k);
+        }
+        out[x / 64] = m;
+    }
+    if (x < n) ms_qsurf_inside_bits_plain(d + x, n - x, iso, out + x / 64);
+}
+
 #pragma GCC pop_options
 
 #else
+
+void ms_qsurf_inside_bits_avx2(const float *d, int n, float iso, uint64_t *out)
+{
+    ms_qsurf_inside_bits_plain(d, n, iso, out);
+}
 
 void ms_qsurf_scatter_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b)
 {
