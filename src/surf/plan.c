@@ -107,9 +107,9 @@ static int plan_within(const ms_qsurf_grid *g, int colored, size_t budget, int m
     }
     if (layers == 0) {
         int want = MS_MIN(8, total);
-        ms_error_set(err, "a slab of %d planes of %d x %d voxels needs %zu bytes, more than "
+        ms_error_set(err, "a slab of %d layers of %d x %d voxels needs %zu bytes, more than "
                      "the memory budget of %zu bytes (MOLSCOPE_QUICKSURF_MEMLIMIT)",
-                     want + 1, g->n[0], g->n[1], ms_qsurf_plan_bytes(g, colored, want), budget);
+                     want, g->n[0], g->n[1], ms_qsurf_plan_bytes(g, colored, want), budget);
         return -1;
     }
     pl->layers = layers;

@@ -386,7 +386,7 @@ static void test_1tii_density(const sys *s)
     ms_qsurf_grid_setup(&s->a, &p, &g, &err);
     ms_qsurf_atomgrid_build(&s->a, &g, &ag, &err);
     ms_qsurf_slab_alloc(&sl, g.n[0], g.n[1], g.n[2], 1);
-    sl.zb = 0, sl.ze = g.n[2] - 1;
+    sl.zb = sl.cz = 0, sl.ze = g.n[2] - 1;
     for (int k = 0; k < 4; k++) {
         ms_qsurf_density_cpu_with(&ag, &sl, k);
         int same = !memcmp(sl.dens, v.data, nvox * sizeof(float));
@@ -397,6 +397,33 @@ static void test_1tii_density(const sys *s)
     ms_qsurf_slab_free(&sl);
     ms_qsurf_atomgrid_free(&ag);
     ms_qsurf_volume_free(&v);
+}
+
+/* The environment switches choose the paths. */
+static void test_switches(const sys *s)
+{
+    ms_qsurf_mesh m = {0};
+    ms_qsurf_stats st;
+    setenv("MOLSCOPE_NOSIMD", "1", 1);
+    setenv("MOLSCOPE_QUICKSURF_KERNEL", "gather", 1);
+    t_ok(!strcmp(ms_qsurf_kernel_name(ms_qsurf_cpu_kernel()), "plain-gather"),
+         "MOLSCOPE_NOSIMD and MOLSCOPE_QUICKSURF_KERNEL=gather: %s",
+         ms_qsurf_kernel_name(ms_qsurf_cpu_kernel()));
+    unsetenv("MOLSCOPE_QUICKSURF_KERNEL");
+    if (surface(s, MS_QSURF_CPU, &m, &st) == 0)
+        t_ok(!strcmp(st.kernel, "plain-scatter") && mesh_defects(&m) == 0,
+             "MOLSCOPE_NOSIMD: the plain loops make the surface (%s, %zu vertices)", st.kernel,
+             m.nv);
+    unsetenv("MOLSCOPE_NOSIMD");
+    if (ms_qsurf_have_simd())
+        t_ok(!strcmp(ms_qsurf_kernel_name(ms_qsurf_cpu_kernel()), "avx2-scatter"),
+             "by default: the AVX2 scatter loop");
+    setenv("MOLSCOPE_NOOPENCL", "1", 1);
+    if (surface(s, MS_QSURF_OPENCL, &m, &st) == 0)
+        t_ok(st.opencl == 0 && strstr(st.note, "MOLSCOPE_NOOPENCL"),
+             "MOLSCOPE_NOOPENCL: the CPU path (%s)", st.note);
+    unsetenv("MOLSCOPE_NOOPENCL");
+    ms_qsurf_mesh_free(&m);
 }
 
 /* Vertices near an oxygen that no other atom comes close to (the water oxygens of 1tii)
@@ -483,6 +510,7 @@ static void test_1tii(void)
     test_1tii_slabs(&s);
     test_1tii_opencl(&s);
     test_1tii_density(&s);
+    test_switches(&s);
     test_1tii_colors(&s);
     test_1tii_beads(&s);
     free(s.rgb);
