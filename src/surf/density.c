@@ -11,32 +11,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-static inline float exp2_plain(float e)
-{
-    float fl = floorf(e), f = e - fl;
-    float p = fmaf(fmaf(fmaf(fmaf(MS_QSURF_EXP2_C4, f, MS_QSURF_EXP2_C3), f,
-                             MS_QSURF_EXP2_C2), f, MS_QSURF_EXP2_C1), f, MS_QSURF_EXP2_C0);
-    int32_t bits;
-    memcpy(&bits, &p, sizeof bits);
-    bits += (int32_t)fl * (1 << 23);
-    memcpy(&p, &bits, sizeof p);
-    return p;
-}
-
 float ms_qsurf_exp2(float e)
 {
-    return exp2_plain(e < -126.0f ? -126.0f : e);
+    return ms_qsurf_exp2_1(e);
 }
 
-/* Add atom (a, w, c) to the voxels x0..x1 of one row, dyz = dy^2 + dz^2. */
+/* Add atom (a, w, c) to the voxels x0..x1 of one row: dyz = dy^2 + dz^2, ex the x factors
+ * from x0, eyz the row's y and z factors. */
 static void row_plain(float *d, float *const rgb[3], size_t off, int x0, int x1, const float *a,
-                      float dyz, float elim, const float *c)
+                      float dyz, float elim, const float *c, const float *ex, float eyz)
 {
     for (int x = x0; x <= x1; x++) {
         float dx = (float)x - a[0];
         float e = a[3] * fmaf(dx, dx, dyz);
         if (e < elim) continue;
-        float g = exp2_plain(e);
+        float g = ex[x - x0] * eyz;
         d[off + x] += g;
         if (!c) continue;
         for (int k = 0; k < 3; k++) rgb[k][off + x] = fmaf(g, c[k], rgb[k][off + x]);
@@ -48,19 +37,25 @@ static void row_plain(float *d, float *const rgb[3], size_t off, int x0, int x1,
 static void atom_plain(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b,
                       const float *a, const float *c)
 {
-    float r2 = ag->elim / a[3], r = sqrtf(r2);
+    float r2 = ag->elim / a[3], r = ms_qsurf_reach(r2);
     int z0 = MS_MAX(b->z0, (int)floorf(a[2] - r)), z1 = MS_MIN(b->z1, (int)ceilf(a[2] + r));
     int y0 = MS_MAX(b->y0, (int)floorf(a[1] - r)), y1 = MS_MIN(b->y1, (int)ceilf(a[1] + r));
+    int bx0 = MS_MAX(0, (int)floorf(a[0] - r)), bx1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + r));
+    if (z0 > z1 || y0 > y1 || bx0 > bx1) return;
+    float *ex = b->scratch, *ey = b->scratch + s->nx + 16;
+    for (int x = bx0; x <= bx1; x++) ex[x - bx0] = ms_qsurf_factor(a[3], (float)x - a[0]);
+    for (int y = y0; y <= y1; y++) ey[y - y0] = ms_qsurf_factor(a[3], (float)y - a[1]);
     for (int z = z0; z <= z1; z++) {
-        float dz = (float)z - a[2];
+        float dz = (float)z - a[2], ez = ms_qsurf_factor(a[3], dz);
         for (int y = y0; y <= y1; y++) {
             float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz * dz);
             if (a[3] * dyz < ag->elim) continue;
-            float half = sqrtf(MS_MAX(r2 - dyz, 0.0f));
-            int x0 = MS_MAX(0, (int)floorf(a[0] - half));
-            int x1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + half));
+            float half = ms_qsurf_reach(MS_MAX(r2 - dyz, 0.0f));
+            int x0 = MS_MAX(bx0, (int)floorf(a[0] - half));
+            int x1 = MS_MIN(bx1, (int)ceilf(a[0] + half));
             size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
-            row_plain(s->dens, s->rgb, off, x0, x1, a, dyz, ag->elim, c);
+            row_plain(s->dens, s->rgb, off, x0, x1, a, dyz, ag->elim, c, ex + (x0 - bx0),
+                      ey[y - y0] * ez);
         }
     }
 }
@@ -84,9 +79,10 @@ static void voxel_plain(const ms_qsurf_atomgrid *ag, size_t b, size_t e, float x
     for (size_t i = b; i < e; i++) {
         const float *a = ag->xyzw + 4 * i;
         float dx = x - a[0], dy = y - a[1], dz = z - a[2];
-        float ex = a[3] * fmaf(dx, dx, fmaf(dy, dy, dz * dz));
-        if (ex < ag->elim) continue;
-        float g = exp2_plain(ex);
+        float e = a[3] * fmaf(dx, dx, fmaf(dy, dy, dz * dz));
+        if (e < ag->elim) continue;
+        float g = ms_qsurf_factor(a[3], dx) *
+                  (ms_qsurf_factor(a[3], dy) * ms_qsurf_factor(a[3], dz));
         acc[0] += g;
         if (!ag->rgb) continue;
         for (int k = 0; k < 3; k++) acc[1 + k] = fmaf(g, ag->rgb[4 * i + k], acc[1 + k]);
@@ -178,6 +174,7 @@ static void density_blocks(void *ctx, size_t begin, size_t end, int thread)
         b.z1 = MS_MIN(s->ze, b.z0 + j->group - 1);
         b.y0 = (int)(t % (size_t)j->nbands) * j->band;
         b.y1 = MS_MIN(s->ny - 1, b.y0 + j->band - 1);
+        b.scratch = j->ag->scratch + (size_t)thread * j->ag->scratch_n;
         zero_block(s, &b);
         switch (j->kernel) {
         case MS_QSURF_K_SCATTER | MS_QSURF_K_SIMD: ms_qsurf_scatter_avx2(j->ag, s, &b); break;
@@ -197,7 +194,7 @@ void ms_qsurf_density_cpu_with(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, in
     size_t voxel = s->rgb[0] ? 16 : 4;
     density_job j = {.ag = ag, .s = s, .kernel = kernel, .group = MS_MIN(4, planes)};
     groups = (planes + j.group - 1) / j.group;
-    j.band = (int)MS_MAX(8, MS_MIN((size_t)s->ny, (1u << 20) / (voxel * s->nx * j.group)));
+    j.band = (int)MS_MAX(8, MS_MIN((size_t)s->ny, (1u << 18) / (voxel * s->nx * j.group)));
     j.nbands = (s->ny + j.band - 1) / j.band;
     ms_parallel_for((size_t)groups * j.nbands, 1, density_blocks, &j);
 }

@@ -83,8 +83,12 @@ int ms_qsurf_plan_slabs(const ms_qsurf_grid *g, int colored, size_t budget, int 
                         ms_qsurf_plan *pl, ms_error *err)
 {
     size_t preferred = ms_qsurf_atomgrid_bytes(g, colored) + SLAB_TARGET;
-    if (preferred < budget && plan_within(g, colored, preferred, maxlayers, pl, NULL) == 0)
-        return 0;
+    if (preferred < budget) {
+        if (plan_within(g, colored, preferred, maxlayers, pl, NULL) == 0) return 0;
+        /* Planes too large for the target: the smallest slab, if the budget holds it. */
+        int smallest = maxlayers > 0 ? MS_MIN(maxlayers, 8) : 8;
+        if (plan_within(g, colored, budget, smallest, pl, NULL) == 0) return 0;
+    }
     return plan_within(g, colored, budget, maxlayers, pl, err);
 }
 

@@ -7,6 +7,8 @@
 
 #include "surf/qsurf.h"
 
+#include <string.h>
+
 /* ---------------------------------------------------------------- fast exp2
  * 2^e for e <= 0 as 2^floor(e) * p(f), f = e - floor(e) in [0, 1), p a degree-4 polynomial
  * fitted to 2^f for minimum relative error (2.6e-6; VMD's is 1.3e-3). The CPU loops and
@@ -18,8 +20,29 @@
 #define MS_QSURF_EXP2_C4 0.0135341212f
 #define MS_QSURF_LOG2E 1.44269504088896340736f
 
-/* Scalar reference of the approximation (valid for -126 <= e <= 0). */
+/* The approximation for one value (e below -126 counts as -126). */
+static inline float ms_qsurf_exp2_1(float e)
+{
+    e = e < -126.0f ? -126.0f : e;
+    float fl = floorf(e), f = e - fl;
+    float p = fmaf(fmaf(fmaf(fmaf(MS_QSURF_EXP2_C4, f, MS_QSURF_EXP2_C3), f,
+                             MS_QSURF_EXP2_C2), f, MS_QSURF_EXP2_C1), f, MS_QSURF_EXP2_C0);
+    int32_t bits;
+    memcpy(&bits, &p, sizeof bits);
+    bits += (int32_t)fl * (1 << 23);
+    memcpy(&p, &bits, sizeof p);
+    return p;
+}
 float ms_qsurf_exp2(float e);
+
+/* The Gaussian is separable: an atom's value at a voxel is the product of its factors
+ * along the three axes, exp2(w dx^2) * (exp2(w dy^2) * exp2(w dz^2)), in that order in every
+ * loop. Per-axis factors are computed once per atom and row, leaving a multiply per voxel;
+ * the cutoff is tested on the full squared distance w (dx^2 + dy^2 + dz^2) >= elim. */
+static inline float ms_qsurf_factor(float w, float d)
+{
+    return ms_qsurf_exp2_1(w * (d * d));
+}
 
 /* ---------------------------------------------------------------- acceleration grid
  * The atoms in grid units (voxel index space), sorted by cell, cells z-major, so the atoms
@@ -32,6 +55,8 @@ typedef struct ms_qsurf_atomgrid {
     int nc[3];
     float cw[3];             /* cell width (grid units) */
     float cutmax;            /* the largest cutoff radius (grid units) */
+    float *scratch;          /* per thread: scratch_n floats for the per-axis factors */
+    size_t scratch_n;
     float elim;              /* w d^2 below this is beyond the cutoff: -gausslim^2 log2(e) / 2 */
 } ms_qsurf_atomgrid;
 
@@ -51,6 +76,13 @@ static inline size_t ms_qsurf_atom_index(const ms_qsurf_atoms *a, size_t k)
 {
     return a->index ? a->index[k] : k;
 }
+/* The reach (grid units) along one axis of a squared radius r2: its square root, a hair
+ * larger so that rounding never leaves out a voxel the cutoff test would take. */
+static inline float ms_qsurf_reach(float r2)
+{
+    return sqrtf(r2) * 1.0001f + 1e-4f;
+}
+
 /* Cell index of atom coordinates (grid units). */
 static inline int ms_qsurf_cell_of(float x, float w, int n)
 {
@@ -92,6 +124,7 @@ int ms_qsurf_have_simd(void);
  * z0..z1 and rows y0..y1, inclusive. */
 typedef struct ms_qsurf_block {
     int z0, z1, y0, y1;
+    float *scratch;          /* the running thread's scratch (ms_qsurf_atomgrid) */
 } ms_qsurf_block;
 
 /* The cells whose atoms can reach the block: cz in [lo[1], hi[1]], cy in [lo[0], hi[0]],

@@ -26,13 +26,17 @@ static inline __m256 exp2_avx2(__m256 e)
     return _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(p), sh));
 }
 
-/* The Gaussian of an atom (exponent factor w) at squared distances d2, zero beyond the
- * cutoff. */
-static inline __m256 gauss_avx2(__m256 d2, __m256 w, __m256 elim)
+/* Per-axis factors exp2(w d^2) of eight distances (ms_qsurf_factor lane by lane). */
+static inline __m256 factor_avx2(__m256 w, __m256 d)
 {
-    __m256 e = _mm256_mul_ps(w, d2);
-    __m256 in = _mm256_cmp_ps(e, elim, _CMP_GE_OQ);
-    return _mm256_and_ps(exp2_avx2(_mm256_max_ps(e, elim)), in);
+    __m256 e = _mm256_mul_ps(w, _mm256_mul_ps(d, d));
+    return exp2_avx2(_mm256_max_ps(e, _mm256_set1_ps(-126.0f)));
+}
+
+/* The lanes within the cutoff: w d2 >= elim. */
+static inline __m256 inside_avx2(__m256 d2, __m256 w, __m256 elim)
+{
+    return _mm256_cmp_ps(_mm256_mul_ps(w, d2), elim, _CMP_GE_OQ);
 }
 
 static inline __m256 lanes_from(int x)
@@ -41,7 +45,8 @@ static inline __m256 lanes_from(int x)
                                                _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
 }
 
-/* Add g * c to n (1..8) floats at p. */
+/* Add g * c to the 8 floats at p (lanes where g is 0 keep their value exactly); through a
+ * masked load and store when only n < 8 of them may be touched. */
 static inline void add_run(float *p, int n, __m256i mask, __m256 g, const float *c, int k)
 {
     __m256 v = n == 8 ? _mm256_loadu_ps(p) : _mm256_maskload_ps(p, mask);
@@ -50,19 +55,32 @@ static inline void add_run(float *p, int n, __m256i mask, __m256 g, const float 
     else _mm256_maskstore_ps(p, mask, v);
 }
 
+/* Add atom (a, c) to the voxels x0..x1 of one row: dyz = dy^2 + dz^2, ex the x factors
+ * (ex[i] for voxel ex0 + i, readable 8 past x1), eyz the row's y and z factors. Vectors are
+ * whole 8-voxel runs of the row (the row belongs to this thread), the last one shifted left
+ * to end at the row's end, so that stores are plain and forward to the next atom's loads;
+ * voxels outside x0..x1 or the cutoff get 0. */
 static void row_avx2(ms_qsurf_slab *s, size_t off, int x0, int x1, const float *a, float dyz,
-                     float elim, const float *c)
+                     float elim, const float *c, const float *ex, int ex0, float eyz)
 {
     __m256 ax = _mm256_set1_ps(a[0]), w = _mm256_set1_ps(a[3]), vdyz = _mm256_set1_ps(dyz);
-    __m256 vel = _mm256_set1_ps(elim);
+    __m256 vel = _mm256_set1_ps(elim), veyz = _mm256_set1_ps(eyz);
+    __m256i lo = _mm256_set1_epi32(x0 - 1), hi = _mm256_set1_epi32(x1 + 1);
+    int full = s->nx >= 8;
     for (int x = x0; x <= x1; x += 8) {
-        int n = MS_MIN(8, x1 - x + 1);
+        int base = full ? MS_MIN(x, s->nx - 8) : x, n = full ? 8 : MS_MIN(8, x1 - x + 1);
+        __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(base),
+                                       _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+        __m256i mine = _mm256_and_si256(_mm256_cmpgt_epi32(idx, lo), _mm256_cmpgt_epi32(hi, idx));
+        mine = _mm256_and_si256(mine, _mm256_cmpgt_epi32(idx, _mm256_set1_epi32(x - 1)));
+        __m256 dx = _mm256_sub_ps(_mm256_cvtepi32_ps(idx), ax);
+        __m256 in = _mm256_and_ps(inside_avx2(_mm256_fmadd_ps(dx, dx, vdyz), w, vel),
+                                  _mm256_castsi256_ps(mine));
+        __m256 g = _mm256_and_ps(_mm256_mul_ps(_mm256_loadu_ps(ex + (base - ex0)), veyz), in);
         __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(n),
                                           _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-        __m256 dx = _mm256_sub_ps(lanes_from(x), ax);
-        __m256 g = gauss_avx2(_mm256_fmadd_ps(dx, dx, vdyz), w, vel);
-        add_run(s->dens + off + x, n, mask, g, NULL, 0);
-        for (int k = 0; c && k < 3; k++) add_run(s->rgb[k] + off + x, n, mask, g, c, k);
+        add_run(s->dens + off + base, n, mask, g, NULL, 0);
+        for (int k = 0; c && k < 3; k++) add_run(s->rgb[k] + off + base, n, mask, g, c, k);
     }
 }
 
@@ -71,19 +89,28 @@ static void row_avx2(ms_qsurf_slab *s, size_t off, int x0, int x1, const float *
 static void atom_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b,
                       const float *a, const float *c)
 {
-    float r2 = ag->elim / a[3], r = sqrtf(r2);
+    float r2 = ag->elim / a[3], r = ms_qsurf_reach(r2);
     int z0 = MS_MAX(b->z0, (int)floorf(a[2] - r)), z1 = MS_MIN(b->z1, (int)ceilf(a[2] + r));
     int y0 = MS_MAX(b->y0, (int)floorf(a[1] - r)), y1 = MS_MIN(b->y1, (int)ceilf(a[1] + r));
+    int bx0 = MS_MAX(0, (int)floorf(a[0] - r)), bx1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + r));
+    if (z0 > z1 || y0 > y1 || bx0 > bx1) return;
+    /* x factors for the whole vectors row_avx2 may use: from bx0 - 7 (or 0) on. */
+    int ex0 = MS_MAX(0, bx0 - 7);
+    float *ex = b->scratch, *ey = b->scratch + s->nx + 16;
+    __m256 w = _mm256_set1_ps(a[3]), ax = _mm256_set1_ps(a[0]);
+    for (int x = ex0; x <= bx1; x += 8)
+        _mm256_storeu_ps(ex + (x - ex0), factor_avx2(w, _mm256_sub_ps(lanes_from(x), ax)));
+    for (int y = y0; y <= y1; y++) ey[y - y0] = ms_qsurf_factor(a[3], (float)y - a[1]);
     for (int z = z0; z <= z1; z++) {
-        float dz = (float)z - a[2];
+        float dz = (float)z - a[2], ez = ms_qsurf_factor(a[3], dz);
         for (int y = y0; y <= y1; y++) {
             float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz * dz);
             if (a[3] * dyz < ag->elim) continue;
-            float half = sqrtf(MS_MAX(r2 - dyz, 0.0f));
-            int x0 = MS_MAX(0, (int)floorf(a[0] - half));
-            int x1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + half));
+            float half = ms_qsurf_reach(MS_MAX(r2 - dyz, 0.0f));
+            int x0 = MS_MAX(bx0, (int)floorf(a[0] - half));
+            int x1 = MS_MIN(bx1, (int)ceilf(a[0] + half));
             size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
-            row_avx2(s, off, x0, x1, a, dyz, ag->elim, c);
+            row_avx2(s, off, x0, x1, a, dyz, ag->elim, c, ex, ex0, ey[y - y0] * ez);
         }
     }
 }
@@ -108,9 +135,10 @@ static void block_avx2(const ms_qsurf_atomgrid *ag, size_t b, size_t e, int x, f
     for (size_t i = b; i < e; i++) {
         const float *a = ag->xyzw + 4 * i;
         float dy = y - a[1], dz = z - a[2], dyz = fmaf(dy, dy, dz * dz);
-        __m256 dx = _mm256_sub_ps(xs, _mm256_set1_ps(a[0]));
-        __m256 g = gauss_avx2(_mm256_fmadd_ps(dx, dx, _mm256_set1_ps(dyz)),
-                              _mm256_set1_ps(a[3]), vel);
+        __m256 dx = _mm256_sub_ps(xs, _mm256_set1_ps(a[0])), w = _mm256_set1_ps(a[3]);
+        __m256 in = inside_avx2(_mm256_fmadd_ps(dx, dx, _mm256_set1_ps(dyz)), w, vel);
+        float eyz = ms_qsurf_factor(a[3], dy) * ms_qsurf_factor(a[3], dz);
+        __m256 g = _mm256_and_ps(_mm256_mul_ps(factor_avx2(w, dx), _mm256_set1_ps(eyz)), in);
         acc[0] = _mm256_add_ps(acc[0], g);
         if (!ag->rgb) continue;
         for (int k = 0; k < 3; k++)
