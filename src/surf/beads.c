@@ -37,7 +37,8 @@ static void make_bead(const ms_qsurf_atoms *a, size_t k, size_t e, ms_qsurf_bead
     }
     for (int d = 0; d < 3; d++) b->pos[3 * i + d] = (float)c[d];
     b->radius[i] = (float)sqrt(r2) + 1.0f;
-    if (b->rgb) memcpy(b->rgb + 3 * i, a->rgb + 3 * ms_qsurf_atom_index(a, e - 1), 3 * sizeof(float));
+    if (b->rgb)
+        memcpy(b->rgb + 3 * i, a->rgb + 3 * ms_qsurf_atom_index(a, e - 1), 3 * sizeof(float));
 }
 
 int ms_qsurf_beads_build(const ms_qsurf_atoms *a, const int32_t *residue, ms_qsurf_beads *out,

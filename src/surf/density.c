@@ -1,9 +1,11 @@
-/* density.c: the CPU density map: the fast exp2, the plain C loops (scatter: each atom
- * adds its Gaussian to the voxels within its cutoff, skipping rows outside the cutoff
- * sphere; gather: each voxel sums the atoms of the cells around it), and the driver that
- * splits a slab into groups of planes handed to all cores. A plane is written by one
- * thread only, and every voxel sums its atoms in cell order, so the result does not depend
- * on the thread count, the slab boundaries or the loop chosen. */
+/* density.c: the CPU density map: the plain C loops (scatter: each atom adds its Gaussian
+ * to the voxels within its cutoff, skipping rows outside the cutoff sphere, from per-axis
+ * factors computed once per atom; gather: each voxel sums the atoms of the cells around
+ * it), and the driver that splits a slab into cache-sized blocks of planes and rows handed
+ * to all cores. A block is written by one thread only, and every voxel sums its atoms in
+ * cell order, so the result does not depend on the thread count, the slab boundaries or
+ * the loop chosen (scatter is the default: on 1M atoms at 1 A it took 0.6x the gather's
+ * time). */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 #include "base/threads.h"

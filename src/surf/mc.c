@@ -180,8 +180,9 @@ static uint32_t cross_row(const ex_job *j, int y, int z)
 static inline uint64_t cell_word(const ex_job *j, int y, int z, int w, uint64_t c[8])
 {
     size_t r = row_of(j, y, z);
-    const uint64_t *rows[4] = {bits(j, r, B_IN), bits(j, r + 1, B_IN),
-                               bits(j, r + (size_t)j->ny, B_IN), bits(j, r + (size_t)j->ny + 1, B_IN)};
+    size_t up = r + (size_t)j->ny;
+    const uint64_t *rows[4] = {bits(j, r, B_IN), bits(j, r + 1, B_IN), bits(j, up, B_IN),
+                               bits(j, up + 1, B_IN)};
     uint64_t any = 0, all = ~(uint64_t)0;
     for (int k = 0; k < 4; k++) {
         c[2 * k] = rows[k][w], c[2 * k + 1] = next_x(j, rows[k], w);
@@ -304,7 +305,8 @@ static void vertex_rows(void *ctx, size_t begin, size_t end, int thread)
         int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
         const uint64_t *xb = bits(j, r, B_X), *yb = bits(j, r, B_Y), *zb = bits(j, r, B_Z);
         for (int w = 0; w < j->words; w++) {
-            if (w + 1 < j->words && (xb[w + 1] | yb[w + 1] | zb[w + 1])) prefetch_word(j, y, z, w + 1);
+            if (w + 1 < j->words && (xb[w + 1] | yb[w + 1] | zb[w + 1]))
+                prefetch_word(j, y, z, w + 1);
             for (uint64_t m = xb[w] | yb[w] | zb[w]; m; m &= m - 1) {
                 int b = __builtin_ctzll(m), x = 64 * w + b;
                 j->mc->vbase[point(j, x, y, z)] = v;

@@ -3,9 +3,10 @@
  * and queue, and the kernel program built once (PoCL keeps compiled kernels in
  * POCL_CACHE_DIR, set here to a per-user cache when unset). The kernel sums the atoms of
  * the cells around each 8x8x8 block of voxels, each work-item computing four planes, with
- * the CPU loops' arithmetic (same exp2 polynomial, same fused multiply-adds, same atom
- * order), so its slabs agree with the CPU's. Every error is returned as a message; the
- * caller falls back to the CPU. Without OpenCL at build time these report its absence. */
+ * the CPU loops' arithmetic (same exp2 polynomial and per-axis factors, same fused
+ * multiply-adds, same atom order), so its slabs agree with the CPU's bit for bit; marching
+ * cubes runs on the host. Every error is returned as a message; the caller falls back to
+ * the CPU. Without OpenCL at build time these report its absence. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 
@@ -33,7 +34,8 @@ static const char *kernel_source =
     "{\n"
     "    float fl = floor(e), f = e - fl;\n"
     "    float p = fma(fma(fma(fma(" STR(MS_QSURF_EXP2_C4) ", f, " STR(MS_QSURF_EXP2_C3) "), f,\n"
-    "        " STR(MS_QSURF_EXP2_C2) "), f, " STR(MS_QSURF_EXP2_C1) "), f, " STR(MS_QSURF_EXP2_C0) ");\n"
+    "        " STR(MS_QSURF_EXP2_C2) "), f, " STR(MS_QSURF_EXP2_C1) "), f,\n"
+    "        " STR(MS_QSURF_EXP2_C0) ");\n"
     "    return as_float(as_int(p) + (int)fl * 8388608);\n"
     "}\n"
     "static float qs_factor(float w, float d)\n"
@@ -57,7 +59,8 @@ static const char *kernel_source =
     "    int cx0 = qs_cell(bx - cut, cw.x, nc.x), cx1 = qs_cell(bx + 7 + cut, cw.x, nc.x);\n"
     "    int cy0 = qs_cell(by - cut, cw.y, nc.y), cy1 = qs_cell(by + 7 + cut, cw.y, nc.y);\n"
     "    int cz0 = qs_cell(bz - cut, cw.z, nc.z), cz1 = qs_cell(bz + 7 + cut, cw.z, nc.z);\n"
-    "    float d[4] = {0, 0, 0, 0}, r[4] = {0, 0, 0, 0}, g[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0};\n"
+    "    float d[4] = {0, 0, 0, 0}, r[4] = {0, 0, 0, 0};\n"
+    "    float g[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0};\n"
     "    for (int cz = cz0; cz <= cz1; cz++)\n"
     "        for (int cy = cy0; cy <= cy1; cy++) {\n"
     "            int row = (cz * nc.y + cy) * nc.x;\n"
@@ -73,7 +76,8 @@ static const char *kernel_source =
     "                    if (e < elim) continue;\n"
     "                    float v = ex * (ey * qs_factor(a.w, dz));\n"
     "                    d[k] += v;\n"
-    "                    r[k] = fma(v, c.x, r[k]), g[k] = fma(v, c.y, g[k]), b[k] = fma(v, c.z, b[k]);\n"
+    "                    r[k] = fma(v, c.x, r[k]), g[k] = fma(v, c.y, g[k]);\n"
+    "                    b[k] = fma(v, c.z, b[k]);\n"
     "                }\n"
     "            }\n"
     "        }\n"
@@ -201,8 +205,10 @@ static int pick_device(ms_qsurf_cl *cl, ms_error *err)
                                         : "OpenCL: no device%s", want && *want ? want : "");
         return -1;
     }
-    clGetDeviceInfo(cl->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof cl->globalmem, &cl->globalmem, NULL);
-    clGetDeviceInfo(cl->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof cl->maxalloc, &cl->maxalloc, NULL);
+    clGetDeviceInfo(cl->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof cl->globalmem, &cl->globalmem,
+                    NULL);
+    clGetDeviceInfo(cl->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof cl->maxalloc, &cl->maxalloc,
+                    NULL);
     return 0;
 }
 
@@ -293,7 +299,8 @@ int ms_qsurf_cl_max_layers(ms_qsurf_cl *cl, const ms_qsurf_grid *g, int colored)
 {
     int nc[3];
     ms_qsurf_atomgrid_cells(g, nc);
-    double fixed = (double)g->natoms * (colored ? 32 : 16) + ((double)nc[0] * nc[1] * nc[2] + 1) * 4;
+    double cells = (double)nc[0] * nc[1] * nc[2] + 1;
+    double fixed = (double)g->natoms * (colored ? 32 : 16) + cells * 4;
     double plane = (double)g->n[0] * g->n[1] * sizeof(float);
     double room = (double)cl->globalmem * 0.75 - fixed;
     double planes = MS_MIN(room / (plane * (colored ? 4 : 1)), (double)cl->maxalloc / plane);

@@ -71,7 +71,8 @@ static void bounds_range(void *ctx, size_t begin, size_t end, int thread)
         const float *p = j->a->pos + 3 * i;
         float r = j->a->radius[i];
         if (!ms_qsurf_atom_ok(p, r)) continue;
-        for (int d = 0; d < 3; d++) b->lo[d] = MS_MIN(b->lo[d], p[d]), b->hi[d] = MS_MAX(b->hi[d], p[d]);
+        for (int d = 0; d < 3; d++)
+            b->lo[d] = MS_MIN(b->lo[d], p[d]), b->hi[d] = MS_MAX(b->hi[d], p[d]);
         b->rmin = MS_MIN(b->rmin, r), b->rmax = MS_MAX(b->rmax, r);
         b->n++;
     }
@@ -90,8 +91,10 @@ static int atom_bounds(const ms_qsurf_atoms *a, bounds *out)
     bounds_job j = {.a = a, .part = part};
     ms_parallel_for(a->n, 65536, bounds_range, &j);
     for (int t = 0; t < nt; t++) {
-        for (int d = 0; d < 3; d++)
-            out->lo[d] = MS_MIN(out->lo[d], part[t].lo[d]), out->hi[d] = MS_MAX(out->hi[d], part[t].hi[d]);
+        for (int d = 0; d < 3; d++) {
+            out->lo[d] = MS_MIN(out->lo[d], part[t].lo[d]);
+            out->hi[d] = MS_MAX(out->hi[d], part[t].hi[d]);
+        }
         out->rmin = MS_MIN(out->rmin, part[t].rmin), out->rmax = MS_MAX(out->rmax, part[t].rmax);
         out->n += part[t].n;
     }

@@ -107,8 +107,8 @@ static void run_once(const ms_qsurf_atoms *a, const bench_opts *o)
            "vertex_bytes=%zu mesh_bytes_per_vertex=%.1f mesh_mb=%.1f plan_mb=%.1f peak_mb=%.1f "
            "peak_over_target=%.2f\n",
            st.grid.natoms, st.grid.h, st.grid.n[0], st.grid.n[1], st.grid.n[2], st.nslabs,
-           st.slab_layers, st.kernel, st.opencl, st.t_setup, st.t_density, st.t_mc, total, cpu, m.nv,
-           m.nt, (size_t)MS_QSURF_VERTEX_BYTES, m.nv ? (double)mesh / (double)m.nv : 0.0,
+           st.slab_layers, st.kernel, st.opencl, st.t_setup, st.t_density, st.t_mc, total, cpu,
+           m.nv, m.nt, (size_t)MS_QSURF_VERTEX_BYTES, m.nv ? (double)mesh / (double)m.nv : 0.0,
            mesh / 1048576.0, slab / 1048576.0, added / 1048576.0,
            (double)added / (1.5 * (double)mesh + (double)slab));
     if (st.note[0]) printf("note=\"%s\"\n", st.note);

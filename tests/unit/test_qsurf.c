@@ -55,8 +55,9 @@ static double signed_volume(const ms_qsurf_mesh *m)
 {
     double v = 0.0;
     for (size_t t = 0; t < m->nt; t++) {
-        const ms_qsurf_pos_t *a = m->pos + 3 * m->index[3 * t], *b = m->pos + 3 * m->index[3 * t + 1],
-                             *c = m->pos + 3 * m->index[3 * t + 2];
+        const ms_qsurf_pos_t *a = m->pos + 3 * m->index[3 * t];
+        const ms_qsurf_pos_t *b = m->pos + 3 * m->index[3 * t + 1];
+        const ms_qsurf_pos_t *c = m->pos + 3 * m->index[3 * t + 2];
         v += (a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) +
               a[1] * ((double)b[2] * c[0] - (double)b[0] * c[2]) +
               a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0])) / 6.0;
@@ -152,7 +153,8 @@ static void check_sphere(float h, int quality, float radius, float iso)
     }
     t_ok(worst <= h, "one atom (h %g, q %d): every vertex within one spacing of R = %.4f "
          "(worst %.4f, mean %.4f)", h, quality, want, worst, mean);
-    t_ok(fabs(mean - want) < 0.02 * want, "one atom (h %g): mean radius within 2%% (%.4f)", h, mean);
+    t_ok(fabs(mean - want) < 0.02 * want, "one atom (h %g): mean radius within 2%% (%.4f)", h,
+         mean);
     t_ok(mindot > 0.95, "one atom (h %g): normals point outwards (min cos %.3f)", h, mindot);
     double vol = signed_volume(&m), ball = 4.0 / 3.0 * M_PI * want * want * want;
     double lo = 4.0 / 3.0 * M_PI * pow(want - h, 3), hi = 4.0 / 3.0 * M_PI * pow(want + h, 3);
@@ -209,8 +211,9 @@ static void test_mc_skewed(void)
     t_ok(rc == 0 && m.nv > 0 && worst < 0.02, "marching cubes on skewed axes: sphere radius "
          "within 0.02 (worst %.4f, %zu vertices)", worst, m.nv);
     t_ok(mindot > 0.98, "skewed axes: normals along the true gradient (min cos %.4f)", mindot);
-    t_ok(mesh_defects(&m) == 0 && fabs(signed_volume(&m) / (4.0 / 3.0 * M_PI * R * R * R) - 1) < 0.02,
-         "skewed axes: closed, volume %.3f", signed_volume(&m));
+    double ball = 4.0 / 3.0 * M_PI * R * R * R;
+    t_ok(mesh_defects(&m) == 0 && fabs(signed_volume(&m) / ball - 1) < 0.02,
+         "skewed axes: closed, volume %.3f (4/3 pi R^3 %.3f)", signed_volume(&m), ball);
     t_ok(m.nv > 0 && m.color[0] == 255 && m.color[1] == 128 && m.color[2] == 0 && m.color[3] == 255,
          "solid colour without colour grids");
     v.n[2] = 1;
@@ -390,7 +393,8 @@ static void test_1tii_density(const sys *s)
     for (int k = 0; k < 4; k++) {
         ms_qsurf_density_cpu_with(&ag, &sl, k);
         int same = !memcmp(sl.dens, v.data, nvox * sizeof(float));
-        for (int c = 0; c < 3; c++) same = same && !memcmp(sl.rgb[c], v.rgb[c], nvox * sizeof(float));
+        for (int c = 0; c < 3; c++)
+            same = same && !memcmp(sl.rgb[c], v.rgb[c], nvox * sizeof(float));
         t_ok(same, "%s density and colour texture equal the default loop's bit for bit",
              ms_qsurf_kernel_name(k));
     }
@@ -452,7 +456,8 @@ static void test_1tii_colors(const sys *s)
             if (s->m->atoms.atomicnumber[k] == 8) wo += w;
         }
         const uint8_t *c = m.color + 4 * v;
-        if (fabs(wall - 0.5) < 0.05 && wo > 0.8 * wall) oxy++, oxy_red += c[0] > c[1] && c[0] > c[2];
+        if (fabs(wall - 0.5) < 0.05 && wo > 0.8 * wall)
+            oxy++, oxy_red += c[0] > c[1] && c[0] > c[2];
         if (s->m->atoms.atomicnumber[who] == 8 && sqrt(second) - sqrt(best) > 3.0)
             lone++, lone_red += c[0] == 255 && c[1] == 0 && c[2] == 0;
     }
