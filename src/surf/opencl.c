@@ -244,10 +244,6 @@ static int start(ms_qsurf_cl *cl, ms_error *err)
 ms_qsurf_cl *ms_qsurf_cl_acquire(int any_type, int *absent, ms_error *err)
 {
     *absent = 1;
-    if (ms_env_flag("MOLSCOPE_NOOPENCL")) {
-        ms_error_set(err, "MOLSCOPE_NOOPENCL is set");
-        return NULL;
-    }
     pthread_mutex_lock(&engine_lock);
     ms_error e = {{0}};
     if (engine_state == 0) {

@@ -208,6 +208,10 @@ static void open_device(run *r)
     if (r->p->backend == MS_QSURF_CPU) return;
     int absent = 0;
     ms_error e = {{0}};
+    if (ms_env_flag("MOLSCOPE_NOOPENCL")) {
+        fallback(r->p, r->st, "MOLSCOPE_NOOPENCL is set", r->p->backend == MS_QSURF_OPENCL);
+        return;
+    }
     r->cl = ms_qsurf_cl_acquire(r->p->backend == MS_QSURF_OPENCL, &absent, &e);
     if (!r->cl) fallback(r->p, r->st, e.msg, !absent || r->p->backend == MS_QSURF_OPENCL);
 }

@@ -232,7 +232,7 @@ typedef struct ms_qsurf_cl ms_qsurf_cl;
 
 /* Lock the engine, starting it on first use. any_type: accept a CPU device; otherwise
  * only a GPU or accelerator (unless MOLSCOPE_OPENCL_DEVICE names one). NULL with the
- * reason in err when there is none; *absent is then 1 when OpenCL is off, missing or has
+ * reason in err when there is none; *absent is then 1 when OpenCL is missing or has
  * no suitable device, 0 when a device failed. */
 ms_qsurf_cl *ms_qsurf_cl_acquire(int any_type, int *absent, ms_error *err);
 void ms_qsurf_cl_release(ms_qsurf_cl *cl);

@@ -132,6 +132,7 @@ int main(int argc, char **argv)
     ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
     ms_load_opts_default(&lo);
     lo.autobonds = 0;
+    lo.waitfor = -1;
     double t0 = ms_now();
     ms_molecule *mol = ms_load_new(&reg, o.path, &lo, &err);
     if (!mol) {

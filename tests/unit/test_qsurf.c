@@ -247,6 +247,7 @@ static int load_1tii(sys *s)
     memset(s, 0, sizeof *s);
     snprintf(path, sizeof path, "%s/1tii.pdb", t_data());
     ms_load_opts_default(&o);
+    o.waitfor = -1;
     s->m = ms_load_new(&reg, path, &o, &err);
     if (!t_ok(s->m != NULL, "load 1tii.pdb (%s)", err.msg)) return -1;
     size_t n = s->m->atoms.n;
