@@ -135,7 +135,7 @@ static int grid_axes(ms_qsurf_grid *g, const bounds *b, ms_error *err)
         g->n[d] = n < 1.0 ? 1 : (int)n;
         voxels *= g->n[d];
     }
-    if (voxels > 1e15) {
+    if (voxels > 1e12) {
         ms_error_set(err, "the grid would have %g points", voxels);
         return -1;
     }

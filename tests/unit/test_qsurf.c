@@ -173,6 +173,41 @@ static void test_one_atom(void)
     check_sphere(0.5f, 1, 2.0f, 0.2f);
 }
 
+/* Bad input gives an error or is left out, never a crash. */
+static void test_bad_input(void)
+{
+    t_suite = "qsurf";
+    float pos[9] = {0, 0, 0, NAN, 1, 2, 1.0f, 0.5f, 0}, rad[3] = {1.5f, 1.5f, 1.5f};
+    ms_qsurf_atoms a = {.n = 3, .pos = pos, .radius = rad};
+    ms_qsurf_params p;
+    ms_qsurf_mesh m = {0}, ref = {0};
+    ms_qsurf_stats st;
+    ms_error err = {{0}};
+    ms_qsurf_params_default(&p);
+    p.backend = MS_QSURF_CPU;
+    uint32_t valid[2] = {0, 2};
+    ms_qsurf_atoms b = a;
+    b.index = valid, b.n = 2;
+    int rc = ms_qsurf_surface(&a, &p, &m, &st, &err);
+    ms_qsurf_surface(&b, &p, &ref, NULL, &err);
+    t_ok(rc == 0 && st.grid.natoms == 2 && m.nv == ref.nv && m.nv > 0,
+         "an atom with a NaN coordinate is left out (%zu atoms used, %zu vertices)",
+         st.grid.natoms, m.nv);
+    pos[3] = 1e6f, pos[4] = -1e6f, pos[5] = 1e6f;
+    p.gridspacing = 0.01f;
+    t_ok(ms_qsurf_surface(&a, &p, &m, &st, &err) < 0 && m.nv == 0 && strstr(err.msg, "grid"),
+         "atoms 1e6 A apart at spacing 0.01: refused (%s)", err.msg);
+    a.n = 0;
+    t_ok(ms_qsurf_surface(&a, &p, &m, &st, &err) < 0 && strstr(err.msg, "no atoms"),
+         "no atoms: an error (%s)", err.msg);
+    p.isovalue = NAN;
+    a.n = 1;
+    t_ok(ms_qsurf_surface(&a, &p, &m, &st, &err) < 0 && strstr(err.msg, "isovalue"),
+         "a NaN isovalue is refused (%s)", err.msg);
+    ms_qsurf_mesh_free(&m);
+    ms_qsurf_mesh_free(&ref);
+}
+
 /* ---------------------------------------------------------------- marching cubes alone */
 
 static void test_mc_skewed(void)
@@ -530,6 +565,7 @@ int main(void)
     test_exp2();
     test_grid_rules();
     test_one_atom();
+    test_bad_input();
     test_mc_skewed();
     test_1tii();
     ms_registry_free(&reg);
