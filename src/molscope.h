@@ -13,6 +13,7 @@
  *   parallel/   MPI: start-up and shutdown, collectives, the dynamic for-loop, loading a
  *               file on rank 0 and broadcasting the molecule (also the core of the
  *               molscope::parallel Tcl package, ../tcl/parallel)
+ *   surf/       QuickSurf: Gaussian density maps, marching cubes, the surface engine
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
  *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
@@ -46,6 +47,7 @@
 #include "vecmath/vecmath.h"
 #include "measure/measure.h"
 #include "parallel/parallel.h"
+#include "surf/qsurf.h"
 #include "app/app.h"
 #include "commands/commands.h"
 #include "select/atomsel.h"

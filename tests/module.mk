@@ -9,6 +9,7 @@ tests_unit_test_image_LDADD = $(TEST_CORE_LIBS)
 check_PROGRAMS += tests/unit/test_measure
 check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_serialize
 check_PROGRAMS += tests/unit/test_select
+check_PROGRAMS += tests/unit/test_qsurf
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h $(PLUGIN_UTIL)
 tests_unit_test_base_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h \
@@ -26,6 +27,22 @@ tests_unit_test_measure_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_serialize_SOURCES = tests/unit/test_serialize.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_serialize_LDADD = $(TEST_CORE_LIBS)
+tests_unit_test_qsurf_SOURCES = tests/unit/test_qsurf.c tests/unit/ms_test.h \
+	plugins/pdb.c $(PLUGIN_UTIL)
+tests_unit_test_qsurf_LDADD = $(TEST_CORE_LIBS)
+# The QuickSurf sources again, built with other mesh storage types.
+check_PROGRAMS += tests/unit/test_qsurf_prec
+tests_unit_test_qsurf_prec_SOURCES = tests/unit/test_qsurf_prec.c tests/unit/ms_test.h \
+	$(QSURF_SOURCES)
+tests_unit_test_qsurf_prec_LDADD = $(TEST_CORE_LIBS)
+tests_unit_test_qsurf_prec_CFLAGS = $(AM_CFLAGS) -DMS_QSURF_POS_TYPE=double \
+	-DMS_QSURF_NORMAL_TYPE=float -DMS_QSURF_COLOR_TYPE=uint16_t
+
+# The QuickSurf benchmark driver (scripts/bench/bench_qsurf.sh runs it).
+check_PROGRAMS += tests/tools/qsurfbench
+tests_tools_qsurfbench_SOURCES = tests/tools/qsurfbench.c plugins/pdb.c $(PLUGIN_UTIL)
+tests_tools_qsurfbench_LDADD = $(TEST_CORE_LIBS)
+tests_tools_qsurfbench_CFLAGS = $(AM_CFLAGS)
 
 # Every plugin linked into one program (tests/tools/plugin_*.c rename their entry points).
 BUILTIN_PLUGINS = tests/tools/builtin.h tests/tools/plugin_pdb.c tests/tools/plugin_psf.c \
@@ -135,3 +152,4 @@ tests_unit_test_molecule_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_measure_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_serialize_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_select_CFLAGS = $(AM_CFLAGS)
+tests_unit_test_qsurf_CFLAGS = $(AM_CFLAGS)

@@ -1,0 +1,70 @@
+/* mesh.c: the QuickSurf mesh: exact-size growth (realloc, which for large blocks remaps
+ * pages instead of copying), release, memory and area; and the advice that large buffers
+ * be backed by huge pages, which spares most of their page faults. */
+#include "config.h"
+#include "surf/qsurf_impl.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+
+void ms_qsurf_advise_huge(void *p, size_t bytes)
+{
+#ifdef MADV_HUGEPAGE
+    const uintptr_t huge = (uintptr_t)2 << 20;
+    uintptr_t a = ((uintptr_t)p + huge - 1) & ~(huge - 1), e = ((uintptr_t)p + bytes) & ~(huge - 1);
+    if (p && e > a) madvise((void *)a, e - a, MADV_HUGEPAGE);
+#endif
+}
+
+static int resize(void **p, size_t n, size_t elsize)
+{
+    size_t bytes;
+    if (ms_mul_size(n, elsize, &bytes)) return -1;
+    void *q = realloc(*p, bytes ? bytes : 1);
+    if (!q) return -1;
+    *p = q;
+    return 0;
+}
+
+int ms_qsurf_mesh_resize(ms_qsurf_mesh *m, size_t nv, size_t nt)
+{
+    if (resize((void **)&m->pos, nv, 3 * sizeof *m->pos) < 0 ||
+        resize((void **)&m->normal, nv, 3 * sizeof *m->normal) < 0 ||
+        resize((void **)&m->color, nv, 4 * sizeof *m->color) < 0 ||
+        resize((void **)&m->index, nt, 3 * sizeof *m->index) < 0)
+        return -1;
+    m->nv = nv, m->nt = nt;
+    return 0;
+}
+
+void ms_qsurf_mesh_free(ms_qsurf_mesh *m)
+{
+    free(m->pos);
+    free(m->normal);
+    free(m->color);
+    free(m->index);
+    memset(m, 0, sizeof *m);
+}
+
+size_t ms_qsurf_mesh_bytes(const ms_qsurf_mesh *m)
+{
+    return m->nv * MS_QSURF_VERTEX_BYTES + m->nt * 3 * sizeof(uint32_t);
+}
+
+double ms_qsurf_mesh_area(const ms_qsurf_mesh *m)
+{
+    double area = 0.0;
+    for (size_t t = 0; t < m->nt; t++) {
+        const uint32_t *i = m->index + 3 * t;
+        double e1[3], e2[3];
+        for (int d = 0; d < 3; d++) {
+            e1[d] = (double)m->pos[3 * i[1] + d] - (double)m->pos[3 * i[0] + d];
+            e2[d] = (double)m->pos[3 * i[2] + d] - (double)m->pos[3 * i[0] + d];
+        }
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+               cz = e1[0] * e2[1] - e1[1] * e2[0];
+        area += 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+    }
+    return area;
+}

@@ -1,0 +1,11 @@
+# src/surf: QuickSurf, the Gaussian density surface engine (density map, slab planner,
+# marching cubes, OpenCL path, bead reduction).
+QSURF_SOURCES = \
+	src/surf/qsurf.h src/surf/qsurf_impl.h src/surf/qsurf.c \
+	src/surf/atomgrid.c src/surf/density.c src/surf/simd_avx2.c \
+	src/surf/plan.c src/surf/mctable.c src/surf/mc.c src/surf/mesh.c \
+	src/surf/opencl.c src/surf/beads.c
+src_libmscore_la_SOURCES += $(QSURF_SOURCES)
+if HAVE_OPENCL
+src_libmscore_la_LIBADD += $(OPENCL_LIBS)
+endif
