@@ -114,8 +114,8 @@ static int gather(const ms_molecule *m, const float *pos, backbone *b, ms_error 
         uint32_t first = m->res_start[r];
         if (!(a->flags[first] & MS_AF_PROTEIN)) continue;
         if (residue_backbone(m, &nm, pos, r, b->bb + 12 * b->n)) continue;
-        if (b->n > 0 && (a->chain[first] != a->chain[prev] || a->segname[first] != a->segname[prev]))
-            seg++;
+        int same = a->chain[first] == a->chain[prev] && a->segname[first] == a->segname[prev];
+        if (b->n > 0 && !same) seg++;
         b->seg[b->n] = seg;
         b->residue[b->n] = (uint32_t)r;
         b->proline[b->n] = a->resname[first] == nm.pro;
@@ -129,7 +129,7 @@ static int gather(const ms_molecule *m, const float *pos, backbone *b, ms_error 
 
 int ms_ss_compute(ms_molecule *m, long frame, ms_error *err)
 {
-    if (frame < 0) frame = m->frame;
+    if (frame < 0) frame = m->frame >= 0 ? m->frame : (long)m->nframes - 1;
     if (m->nframes == 0 || frame < 0) {
         ms_error_set(err, "molecule %d has no coordinates", m->id);
         return -1;
@@ -147,7 +147,7 @@ int ms_ss_compute(ms_molecule *m, long frame, ms_error *err)
     }
     if (rc == 0) rc = ms_ss_dssp(b.n, b.bb, b.seg, b.proline, codes, err);
     if (rc == 0) {
-        memset(m->atoms.ss, MS_SS_COIL_CODE, m->atoms.n);
+        if (m->atoms.n) memset(m->atoms.ss, MS_SS_COIL_CODE, m->atoms.n);
         for (size_t k = 0; k < b.n; k++) {
             uint32_t r = b.residue[k];
             memset(m->atoms.ss + m->res_start[r], codes[k], m->res_start[r + 1] - m->res_start[r]);
