@@ -4,6 +4,7 @@
  *   base/       utilities: errors, interned strings, worker threads
  *   molecule/   the Molecule (atoms, bonds, frames), structure analysis, the molecule set,
  *               serialisation (a molecule as bytes for other ranks)
+ *   ss/         secondary structure computed from the backbone (DSSP), on demand
  *   select/     the atom selection language (compiled to a tree, evaluated to bit sets) and
  *               the atomselect command
  *   fileio/     the plugin registry, loading files into molecules, writing them out
@@ -32,6 +33,7 @@
 #include "molecule/analysis.h"
 #include "molecule/molset.h"
 #include "molecule/serialize.h"
+#include "ss/ss.h"
 #include "select/select.h"
 #include "fileio/registry.h"
 #include "fileio/load.h"

@@ -8,8 +8,11 @@ tests_unit_test_image_SOURCES = tests/unit/test_image.c tests/unit/ms_test.h
 tests_unit_test_image_LDADD = $(TEST_CORE_LIBS)
 check_PROGRAMS += tests/unit/test_measure
 check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_serialize
-check_PROGRAMS += tests/unit/test_select
 check_PROGRAMS += tests/unit/test_qsurf
+check_PROGRAMS += tests/unit/test_select tests/unit/test_ss
+tests_unit_test_ss_SOURCES = tests/unit/test_ss.c tests/unit/ms_test.h plugins/pdb.c $(PLUGIN_UTIL)
+tests_unit_test_ss_LDADD = $(TEST_CORE_LIBS)
+tests_unit_test_ss_CFLAGS = $(AM_CFLAGS)
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h $(PLUGIN_UTIL)
 tests_unit_test_base_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h \
@@ -121,13 +124,13 @@ CLEANFILES += $(FUZZ_FORMATS:%=tests/fuzz/lf_%)
 # run by its own smoke driver (select_driver.c) over tests/fuzz/corpus/select.
 check_PROGRAMS += tests/fuzz/fuzz_select
 tests_fuzz_fuzz_select_SOURCES = tests/fuzz/fuzz_select.c tests/fuzz/select_driver.c \
-	$(SELECT_CORE_SOURCES)
+	$(SELECT_CORE_SOURCES) $(SS_CORE_SOURCES)
 tests_fuzz_fuzz_select_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
 tests_fuzz_fuzz_select_LDFLAGS = $(SAN_CFLAGS)
 tests_fuzz_fuzz_select_LDADD = $(FUZZ_LIBS)
 if HAVE_LIBFUZZER
 fuzz: tests/fuzz/lf_select
-LF_SELECT = $(filter %.c,$(SELECT_CORE_SOURCES:%=$(srcdir)/%))
+LF_SELECT = $(filter %.c,$(SELECT_CORE_SOURCES:%=$(srcdir)/%) $(SS_CORE_SOURCES:%=$(srcdir)/%))
 tests/fuzz/lf_select: $(srcdir)/tests/fuzz/fuzz_select.c $(LF_SELECT) $(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
 		-o $@ $(srcdir)/tests/fuzz/fuzz_select.c $(LF_SELECT) $(LF_CORE) -lpthread -lm -ldl

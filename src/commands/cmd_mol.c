@@ -1,5 +1,6 @@
 /* cmd_mol.c: the `mol` command (alias `molecule`): loading and managing molecules. The
- * representation subcommands (addrep, modstyle, ...) are added by the rep module.
+ * representation subcommands (addrep, modstyle, ...) are added by the rep module, ssrecalc by
+ * cmd_ss.c.
  *
  *   mol new [file [options]] | mol new atoms N       -> molid
  *   mol addfile file [options] [molid]                -> molid

@@ -366,6 +366,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
 void ms_commands_register(ms_app *app)
 {
     ms_cmd_mol_register(app);
+    ms_cmd_ss_register(app);
     ms_cmd_molinfo_register(app);
     ms_cmd_animate_register(app);
     ms_cmd_vmdinfo_register(app);

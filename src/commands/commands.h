@@ -69,6 +69,8 @@ void ms_cmd_scene_register(ms_app *app);
 void ms_cmd_measure_register(ms_app *app);
 void ms_cmd_measure_geom_register(ms_app *app);
 void ms_cmd_vector_register(ms_app *app);
+/* mol ssrecalc (cmd_ss.c): secondary structure recomputed on request. */
+void ms_cmd_ss_register(ms_app *app);
 
 /* Shared by mol and animate: load a file as `mol new` (new molecule) or into mol. */
 typedef struct ms_load_opts ms_load_opts;

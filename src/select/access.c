@@ -57,6 +57,10 @@ int ms_sel_get_strings(const ms_selkw *k, ms_molecule *m, long frame, const uint
     if (check_indices(m, idx, n, err)) return -1;
     ms_selctx c;
     if (ms_selctx_init(&c, m, frame, err)) return -1;
+    if (ms_selkw_prepare(k, &c)) {
+        ms_selctx_free(&c);
+        return -1;
+    }
     for (size_t j = 0; j < n; j++) {
         uint32_t buf;
         const uint32_t *cls = ms_selkw_classes(k, &c, idx[j], 1, &buf);

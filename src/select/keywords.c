@@ -5,6 +5,7 @@
 #include "select/selint.h"
 #include "molecule/analysis.h"
 #include "molecule/elements.h"
+#include "ss/ss.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -144,8 +145,15 @@ void ms_selctx_free(ms_selctx *c)
     free(c->sidechain);
 }
 
+/* Does k read atoms.ss (the structure keyword and the secondary structure singlewords)? */
+static int reads_structure(const ms_selkw *k)
+{
+    return k->field == F_STRUCTURE || (k->field >= S_HELIX && k->field <= S_COIL);
+}
+
 int ms_selkw_prepare(const ms_selkw *k, ms_selctx *c)
 {
+    if (reads_structure(k)) return ms_ss_ensure(c->m, c->frame, c->err);
     if (k->kind == SK_SINGLE) return k->field == S_SIDECHAIN ? ms_sel_sidechain(c) : 0;
     if (k->kind != SK_INT && k->kind != SK_FLOAT) return 0;
     if (k->field == F_PFRAG || k->field == F_NFRAG)

@@ -73,7 +73,8 @@ int ms_selctx_init(ms_selctx *c, ms_molecule *m, long frame, ms_error *err);
 void ms_selctx_free(ms_selctx *c);
 
 /* Compute what keyword k needs before atoms are read in parallel (polymer fragments,
- * phi/psi, sidechain). Returns 0 or -1 with c->err set. */
+ * phi/psi, sidechain; secondary structure through ms_ss_ensure when the molecule has none
+ * yet). Returns 0 or -1 with c->err set. */
 int ms_selkw_prepare(const ms_selkw *k, ms_selctx *c);
 /* Values derived from the whole structure (derived.c): per-residue phi and psi from the
  * backbone atoms and bonds, and VMD's sidechain atoms grown from each CA. Computed into the
