@@ -26,7 +26,8 @@ static int push(frame_list *l, long f)
     return 0;
 }
 
-/* An integer field of an item; an empty field takes `empty` (LONG_MIN: not allowed). */
+/* An integer field of an item (clamped to +-1e9); an empty field takes `empty` (LONG_MIN: not
+ * allowed). */
 static int field(const char *s, size_t len, long empty, long *out)
 {
     if (len == 0) {
@@ -39,7 +40,9 @@ static int field(const char *s, size_t len, long empty, long *out)
     memcpy(buf, s, len);
     buf[len] = '\0';
     char *end;
-    *out = strtol(buf, &end, 10);
+    long v = strtol(buf, &end, 10);
+    /* frames past a billion are never there; the bound keeps the arithmetic below safe */
+    *out = v < -1000000000L ? -1000000000L : v > 1000000000L ? 1000000000L : v;
     return *end ? -1 : 0;
 }
 

@@ -5,6 +5,7 @@
  * tubes of the thickness; nucleic backbones as tubes through P. */
 #include "config.h"
 #include "rep/rep_int.h"
+#include "base/threads.h"
 
 #include <string.h>
 
@@ -31,6 +32,25 @@ static void residue(const ms_rep_build *b, const ms_rep_backbone *bb, const ms_r
     }
 }
 
+typedef struct chain_job {
+    const ms_rep_build *b;
+    const ms_rep_backbone *bb;
+    float *cp, *perp, *w, *h;
+} chain_job;
+
+static void chains(void *ctxp, size_t begin, size_t end, int thread)
+{
+    const chain_job *j = ctxp;
+    for (size_t c = begin; c < end; c++) {
+        const ms_rep_chain *ch = &j->bb->chains[c];
+        for (size_t q = 0; q < ch->n; q++) {
+            size_t r = ch->first + q;
+            residue(j->b, j->bb, ch, q, j->b->p[0], j->b->p[2], j->cp + 3 * r, j->w + r, j->h + r);
+        }
+        ms_rep_chain_perps(j->b, j->bb, ch, j->perp + 3 * ch->first);
+    }
+}
+
 static int build(const ms_rep_build *b, ms_displaylist *dl, ms_error *err)
 {
     ms_rep_backbone bb;
@@ -39,16 +59,9 @@ static int build(const ms_rep_build *b, ms_displaylist *dl, ms_error *err)
     int rc = -1;
     float *geo = ms_rep_scratch_get(b->scratch, MS_SCR_PATH, (bb.n + 1) * 8 * sizeof(float), err);
     if (!geo) goto done;
-    float *cp = geo, *perp = geo + 3 * bb.n, *w = geo + 6 * bb.n, *h = geo + 7 * bb.n;
-    for (size_t c = 0; c < bb.nchains; c++) {
-        const ms_rep_chain *ch = &bb.chains[c];
-        for (size_t q = 0; q < ch->n; q++) {
-            size_t r = ch->first + q;
-            residue(b, &bb, ch, q, b->p[0], b->p[2], cp + 3 * r, w + r, h + r);
-        }
-        ms_rep_chain_perps(b, &bb, ch, perp + 3 * ch->first);
-    }
-    ms_rep_ribbon rib = {&bb, cp, perp, w, h, b->p[3] != 0, ms_rep_res(b->p[1]),
+    chain_job j = {b, &bb, geo, geo + 3 * bb.n, geo + 6 * bb.n, geo + 7 * bb.n};
+    ms_parallel_for(bb.nchains, 16, chains, &j);
+    ms_rep_ribbon rib = {&bb, j.cp, j.perp, j.w, j.h, b->p[3] != 0, ms_rep_res(b->p[1]),
                          ms_rep_ribbon_divs(b->p[1])};
     rc = ms_rep_ribbon_build(b, &rib, dl, err);
 done:

@@ -146,12 +146,21 @@ static void shape_set(shape *sh, const ribbon_job *j, float w, float h)
     }
 }
 
+/* ms_normal_quantize for a component of a unit vector (no clamping needed), rounding to
+ * nearest with one instruction. */
+static inline int8_t quantize(float f)
+{
+    return (int8_t)lrintf(f * 127.5f - 0.5f);
+}
+
 static void emit_ring(const ribbon_job *j, const segment *g, const ring_in *in, shape *sh,
                       ms_rgba8 col, size_t v)
 {
     float pos[3], tan[3], e1[3], e2[3];
     segment_at(g, in->t, pos, tan);
     frame(tan, in->perp, e1, e2);
+    if (!isfinite(pos[0] + pos[1] + pos[2] + e1[0] + e1[1] + e1[2] + e2[0] + e2[1] + e2[2]))
+        for (int k = 0; k < 3; k++) pos[k] = e1[k] = e2[k] = 0;   /* bad coordinates */
     shape_set(sh, j, in->w, in->h);
     ms_dl_mesh *m = j->mesh;
     float *xyz = m->xyz + 3 * v;
@@ -160,7 +169,7 @@ static void emit_ring(const ribbon_job *j, const segment *g, const ring_in *in, 
         float a = sh->a[p], b = sh->b[p], nx = sh->nx[p], ny = sh->ny[p];
         for (int k = 0; k < 3; k++) {
             xyz[3 * p + k] = pos[k] + a * e1[k] + b * e2[k];
-            nrm[3 * p + k] = ms_normal_quantize(nx * e1[k] + ny * e2[k]);
+            nrm[3 * p + k] = quantize(nx * e1[k] + ny * e2[k]);
         }
         m->color[v + (size_t)p] = col;
     }

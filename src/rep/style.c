@@ -43,7 +43,7 @@ static int parse_number(const char *w, float *out)
 {
     char *end;
     double v = strtod(w, &end);
-    if (end == w || *end || !isfinite(v)) return -1;
+    if (end == w || *end || !isfinite(v) || !isfinite((float)v)) return -1;
     *out = (float)v;
     return 0;
 }

@@ -153,9 +153,14 @@ static void make_key(ms_app *app, const ms_molecule *m, const ms_replist *l, con
 
 int ms_rep_update(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
 {
+    ms_rep_cache *c = r->cache;
+    if (m->nframes == 0 || m->frame < 0) {   /* nothing to draw (VMD needs a frame too) */
+        ms_dl_clear(&c->dl);
+        c->dl_valid = 0;
+        return 0;
+    }
     if (ms_rep_update_data(app, m, r, err)) return -1;
     ms_replist *l = ms_replist_of(app, m);
-    ms_rep_cache *c = r->cache;
     ms_rep_key key;
     make_key(app, m, l, r, &key);
     if (c->dl_valid && !memcmp(&key, &c->key, sizeof key)) return 0;
