@@ -125,14 +125,25 @@ static int m_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 /* ---------------------------------------------------------------- adding and editing */
 
+/* As VMD, a rep's selection and colours are evaluated when they are set (so a coordinate
+ * selection or a colour range comes from the frame current then). */
+static int settle(ms_app *app, Tcl_Interp *interp, ms_molecule *m, ms_rep *r, const char *cmd)
+{
+    ms_error err = {{0}};
+    if (m->nframes && ms_rep_update_data(app, m, r, &err))
+        return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
+    return TCL_OK;
+}
+
 static int m_addrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     if (objc != 3) return ms_cmd_error(interp, "mol addrep: usage: mol addrep <molid>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol addrep");
     if (!m) return TCL_ERROR;
     ms_error err = {{0}};
-    if (!ms_rep_add(app, m, &err)) return ms_cmd_error(interp, "mol addrep: %s", err.msg);
-    return TCL_OK;
+    ms_rep *r = ms_rep_add(app, m, &err);
+    if (!r) return ms_cmd_error(interp, "mol addrep: %s", err.msg);
+    return settle(app, interp, m, r, "mol addrep");
 }
 
 static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
@@ -148,11 +159,12 @@ static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 static int m_modrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     if (objc != 4) return ms_cmd_error(interp, "mol modrep: usage: mol modrep <repid> <molid>");
-    ms_rep *r = target(app, interp, objv, 1, "mol modrep", NULL, NULL);
+    ms_molecule *m;
+    ms_rep *r = target(app, interp, objv, 1, "mol modrep", &m, NULL);
     ms_error err = {{0}};
     if (!r) return TCL_ERROR;
     if (ms_rep_apply_current(app, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
-    return TCL_OK;
+    return settle(app, interp, m, r, "mol modrep");
 }
 
 /* mol modstyle|modselect|modcolor|modmaterial <repid> <molid> <value...> */
@@ -163,14 +175,16 @@ static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     cmd_name(objv, cmd, sizeof cmd);
     what_of(Tcl_GetString(objv[1]), &what);
     if (objc < 5) return ms_cmd_error(interp, "%s: usage: %s <repid> <molid> <value>", cmd, cmd);
-    ms_rep *r = target(app, interp, objv, 1, cmd, NULL, NULL);
+    ms_molecule *m;
+    ms_rep *r = target(app, interp, objv, 1, cmd, &m, NULL);
     if (!r) return TCL_ERROR;
     Tcl_Obj *text = joined(objc, objv, 4);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
     int rc = ms_rep_modify(app, r, what, Tcl_GetString(text), &err);
     Tcl_DecrRefCount(text);
-    return rc ? ms_cmd_error(interp, "%s: %s", cmd, err.msg) : TCL_OK;
+    if (rc) return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
+    return what == MS_REP_SELECTION || what == MS_REP_COLOR ? settle(app, interp, m, r, cmd) : TCL_OK;
 }
 
 /* ---------------------------------------------------------------- per-rep switches */
@@ -447,7 +461,7 @@ static const ms_subcmd rep_table[] = {
 
 void ms_cmd_rep_register(ms_app *app)
 {
-    if (ms_rep_register(app)) {
+    if (!app->colors || !app->materials || ms_rep_register(app)) {
         fprintf(stderr, "molscope: cannot create the representation state (out of memory)\n");
         return;
     }
