@@ -31,7 +31,7 @@ static int needs_ss(const ms_rep *r)
 /* Secondary structure for a molecule whose file had none, computed once. */
 static int ensure_ss(ms_molecule *m, ms_replist *l, const ms_rep *r, ms_error *err)
 {
-    if (m->ss_known || !ms_rep_ss_hook || !needs_ss(r)) return 0;
+    if (m->ss_known || !ms_rep_ss_hook || m->nframes == 0 || !needs_ss(r)) return 0;
     if (ms_rep_ss_hook(m, m->frame, err)) return -1;
     m->ss_known = 1;
     l->struct_gen++;
@@ -43,7 +43,7 @@ static int ensure_ss(ms_molecule *m, ms_replist *l, const ms_rep *r, ms_error *e
 static int same_bits(const ms_bitset *a, const ms_bitset *b)
 {
     return a->nbits == b->nbits &&
-           !memcmp(a->words, b->words, ms_bitset_nwords(a) * sizeof *a->words);
+           (a->nbits == 0 || !memcmp(a->words, b->words, ms_bitset_nwords(a) * sizeof *a->words));
 }
 
 /* Evaluate r's selection on frame f into bits and an index list. */
