@@ -11,6 +11,8 @@
  *   scene/      display lists, colours, materials, user graphics, the Scene devices draw
  *   view/       camera and display settings, lights, axes, stage, rotate/translate/scale
  *   render/     the render devices by VMD name and the file exporters (Tachyon, POV3, OBJ)
+ *   rep/        representations: selection + drawing method + colouring + material, cached
+ *               display lists; one file per drawing method (lines.c ... newcartoon.c)
  *   parallel/   MPI: start-up and shutdown, collectives, the dynamic for-loop, loading a
  *               file on rank 0 and broadcasting the molecule (also the core of the
  *               molscope::parallel Tcl package, ../tcl/parallel)
@@ -46,6 +48,7 @@
 #include "scene/scene.h"
 #include "view/view.h"
 #include "render/render.h"
+#include "rep/rep.h"
 #include "vecmath/vecmath.h"
 #include "measure/measure.h"
 #include "parallel/parallel.h"

@@ -24,6 +24,9 @@ tests_unit_test_select_LDADD = $(TEST_CORE_LIBS)
 check_PROGRAMS += tests/unit/test_scene
 tests_unit_test_scene_SOURCES = tests/unit/test_scene.c tests/unit/ms_test.h
 tests_unit_test_scene_LDADD = $(TEST_CORE_LIBS)
+check_PROGRAMS += tests/unit/test_rep
+tests_unit_test_rep_SOURCES = tests/unit/test_rep.c tests/unit/ms_test.h
+tests_unit_test_rep_LDADD = $(TEST_CORE_LIBS) -lm
 tests_unit_test_measure_SOURCES = tests/unit/test_measure.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_measure_LDADD = $(TEST_CORE_LIBS)

@@ -27,6 +27,7 @@ typedef struct ms_app {
     struct ms_view *view;            /* view/view.h: camera, display settings, lights */
     struct ms_renderers *renderers;  /* render/render.h: per-device settings */
     int ugraphics_slot;              /* molecule attachment of user graphics, -1 if none */
+    struct ms_rep_state *reps;       /* rep/rep.h: current rep settings, per-molecule reps */
 } ms_app;
 
 /* Create the application: interpreter, plugins, molecule set, commands. NULL on failure

@@ -12,6 +12,7 @@
 #include <strings.h>
 
 ms_sel_resolver ms_cmd_sel_resolver = NULL;
+void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m) = NULL;
 
 struct ms_cmdset {
     char *name;
@@ -339,6 +340,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
             return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
         }
         if (m->nframes) ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
+        if (m->atoms.n && ms_cmd_structure_hook) ms_cmd_structure_hook(app, m);
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
         if (m->pending) ms_app_schedule_loading(app);
         else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, m, path);
@@ -351,6 +353,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
     if (atoms_before == 0 && into->atoms.n > 0) {
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE, into, NULL);
+        if (ms_cmd_structure_hook) ms_cmd_structure_hook(app, into);
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
     }
     if (into->nframes != frames_before) {
@@ -372,6 +375,7 @@ void ms_commands_register(ms_app *app)
     ms_cmd_vmdinfo_register(app);
     ms_atomsel_register(app);
     ms_cmd_scene_register(app);
+    ms_cmd_rep_register(app);
     ms_cmd_vector_register(app);
     ms_cmd_measure_register(app);
     ms_cmd_measure_geom_register(app);

@@ -56,6 +56,11 @@ extern ms_sel_resolver ms_cmd_sel_resolver;
  * centre and scale); the view module may replace this. */
 extern void (*ms_cmd_reset_view)(ms_app *app);
 
+/* Called by ms_cmd_load when a file gives a molecule its first atoms (a new molecule, or
+ * addfile into an empty one), before the view is reset: the rep commands add VMD's default
+ * rep there. NULL: nothing happens. */
+extern void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m);
+
 /* Register every command of this module. */
 void ms_commands_register(ms_app *app);
 void ms_cmd_mol_register(ms_app *app);
@@ -71,6 +76,9 @@ void ms_cmd_measure_geom_register(ms_app *app);
 void ms_cmd_vector_register(ms_app *app);
 /* mol ssrecalc (cmd_ss.c): secondary structure recomputed on request. */
 void ms_cmd_ss_register(ms_app *app);
+/* The rep subcommands of mol (addrep, modstyle, ...) and molinfo's rep keywords
+ * (cmd_rep.c); creates the rep module's state. */
+void ms_cmd_rep_register(ms_app *app);
 
 /* Shared by mol and animate: load a file as `mol new` (new molecule) or into mol. */
 typedef struct ms_load_opts ms_load_opts;

@@ -187,19 +187,23 @@ void ms_view_rock_step(ms_app *app)
 
 /* ---------------------------------------------------------------- resetview */
 
-/* Mean position and VMD's scale of the atoms of one frame. */
-static void atoms_cov(const float *pos, size_t n, float center[3], float *scale)
+/* Mean position and VMD's scale of atoms idx[0..n) (all n atoms when idx is NULL). */
+static void atoms_cov(const float *pos, const uint32_t *idx, size_t n, float center[3],
+                      float *scale)
 {
     double c[3] = {0, 0, 0};
     float lo[3], hi[3];
-    for (int k = 0; k < 3; k++) lo[k] = hi[k] = pos[k];
-    for (size_t i = 0; i < n; i++)
+    size_t i0 = idx ? idx[0] : 0;
+    for (int k = 0; k < 3; k++) lo[k] = hi[k] = pos[3 * i0 + k];
+    for (size_t j = 0; j < n; j++) {
+        size_t i = idx ? idx[j] : j;
         for (int k = 0; k < 3; k++) {
             float x = pos[3 * i + k];
             c[k] += x;
             if (x < lo[k]) lo[k] = x;
             if (x > hi[k]) hi[k] = x;
         }
+    }
     for (int k = 0; k < 3; k++) center[k] = (float)(c[k] / (double)n);
     /* VMD starts from the x extent (3 when it is zero, so one atom gets 0.5), then takes the
      * larger of the y and z extents. */
@@ -210,12 +214,18 @@ static void atoms_cov(const float *pos, size_t n, float center[3], float *scale)
     *scale = 1.5f / ext;
 }
 
+void ms_view_points_cov(const float *pos, const uint32_t *idx, size_t n, float center[3],
+                        float *scale)
+{
+    atoms_cov(pos, idx, n, center, scale);
+}
+
 int ms_view_mol_cov(ms_app *app, ms_molecule *m, float center[3], float *scale)
 {
     if (ms_view_cov_hook && ms_view_cov_hook(app, m, center, scale)) return 1;
     const float *pos = ms_mol_pos(m);
     if (pos && m->atoms.n) {
-        atoms_cov(pos, m->atoms.n, center, scale);
+        atoms_cov(pos, NULL, m->atoms.n, center, scale);
         return 1;
     }
     if (app->ugraphics_slot >= 0 && m->ext[app->ugraphics_slot])

@@ -82,6 +82,9 @@ void ms_view_rock_step(ms_app *app);
  * (single atom: 0.5), or of its user graphics when it has no coordinates. Returns 0 when the
  * molecule has neither. The representation module may replace the atom choice. */
 int ms_view_mol_cov(ms_app *app, ms_molecule *m, float center[3], float *scale);
+/* The same centre and scale for the atoms idx[0..n) (n > 0) of coordinates pos. */
+void ms_view_points_cov(const float *pos, const uint32_t *idx, size_t n, float center[3],
+                        float *scale);
 extern int (*ms_view_cov_hook)(ms_app *app, ms_molecule *m, float center[3], float *scale);
 /* display resetview: reset the axes and every molecule's transform, centred on the top
  * molecule (or on the last centre when it has nothing to centre on). */

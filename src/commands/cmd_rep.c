@@ -1,0 +1,475 @@
+/* cmd_rep.c: the representation subcommands of `mol` and molinfo's rep keywords, with VMD's
+ * argument orders (modstyle, modselect, modcolor, modmaterial, modrep, delrep, selupdate and
+ * colupdate take <repid> <molid>; showrep, drawframes, smoothrep, scaleminmax, repname and
+ * repindex take <molid> <repid>):
+ *
+ *   mol representation|rep ?style...?   mol selection ?text...?   mol color ?method...?
+ *   mol material ?name?                 (set the current settings; with no value, get them)
+ *   mol addrep molid                    mol modrep repid molid      mol delrep repid molid
+ *   mol modstyle|modselect|modcolor|modmaterial repid molid value...
+ *   mol showrep molid repid ?on|off?    mol drawframes molid repid ?spec|now?
+ *   mol smoothrep molid repid ?n?       mol scaleminmax molid repid ?min max|auto?
+ *   mol selupdate|colupdate repid molid ?on|off?
+ *   mol repname molid repid             mol repindex molid name      (-1 when none)
+ *   mol default color|style|selection|material ?value?
+ *   mol repinfo molid repid ?kind?      (molscope: what a rep draws, for tests and scripts)
+ *   molinfo <molid> get {numreps "rep i" "selection i" "color i" "material i"}
+ *
+ * A new structure loaded by mol new / mol addfile resets the current settings to the
+ * defaults and gets one rep made from them (VMD's rule). Every error names the command and
+ * the bad value, and changes nothing. */
+#include "config.h"
+#include "commands/commands.h"
+#include "commands/molinfo.h"
+#include "rep/rep.h"
+#include "scene/material.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+/* The words objv[from..] joined with spaces, as VMD's combine_arguments (refcount 0). */
+static Tcl_Obj *joined(int objc, Tcl_Obj *const objv[], int from)
+{
+    Tcl_Obj *s = Tcl_NewObj();
+    for (int i = from; i < objc; i++) {
+        if (i > from) Tcl_AppendToObj(s, " ", 1);
+        Tcl_AppendObjToObj(s, objv[i]);
+    }
+    return s;
+}
+
+static const char *cmd_name(Tcl_Obj *const objv[], char *buf, size_t size)
+{
+    snprintf(buf, size, "mol %s", Tcl_GetString(objv[1]));
+    return buf;
+}
+
+/* Rep `w` of molecule m; NULL with an error naming cmd, the word and the molecule. */
+static ms_rep *get_rep(ms_app *app, Tcl_Interp *interp, ms_molecule *m, Tcl_Obj *w, const char *cmd,
+                       long *repid)
+{
+    long id;
+    if (Tcl_GetLongFromObj(NULL, w, &id) != TCL_OK) {
+        ms_cmd_error(interp, "%s: '%s' is not a rep id", cmd, Tcl_GetString(w));
+        return NULL;
+    }
+    ms_rep *r = ms_rep_get(app, m, id);
+    if (!r)
+        ms_cmd_error(interp, "%s: molecule %d has no rep %ld (it has %zu)", cmd, m->id, id,
+                     ms_rep_count(app, m));
+    if (repid) *repid = id;
+    return r;
+}
+
+/* The molecule and rep of "<repid> <molid>" (rep_first) or "<molid> <repid>" at objv[2..3]. */
+static ms_rep *target(ms_app *app, Tcl_Interp *interp, Tcl_Obj *const objv[], int rep_first,
+                      const char *cmd, ms_molecule **mp, long *repid)
+{
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[rep_first ? 3 : 2], cmd);
+    if (!m) return NULL;
+    if (mp) *mp = m;
+    return get_rep(app, interp, m, objv[rep_first ? 2 : 3], cmd, repid);
+}
+
+static int what_of(const char *w, ms_rep_what *what)
+{
+    if (ms_word_eq(w, "representation") || ms_word_eq(w, "rep") || ms_word_eq(w, "style") ||
+        ms_word_eq(w, "modstyle"))
+        *what = MS_REP_STYLE;
+    else if (ms_word_eq(w, "selection") || ms_word_eq(w, "modselect")) *what = MS_REP_SELECTION;
+    else if (ms_word_eq(w, "color") || ms_word_eq(w, "modcolor")) *what = MS_REP_COLOR;
+    else if (ms_word_eq(w, "material") || ms_word_eq(w, "modmaterial")) *what = MS_REP_MATERIAL;
+    else return -1;
+    return 0;
+}
+
+/* ---------------------------------------------------------------- current settings */
+
+/* mol representation|rep|selection|color|material ?value...? */
+static int m_current(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    char cmd[64];
+    ms_rep_what what;
+    what_of(Tcl_GetString(objv[1]), &what);
+    cmd_name(objv, cmd, sizeof cmd);
+    if (objc == 2) {
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_text(app, NULL, what), -1));
+        return TCL_OK;
+    }
+    Tcl_Obj *text = joined(objc, objv, 2);
+    Tcl_IncrRefCount(text);
+    ms_error err = {{0}};
+    int rc = ms_rep_set_current(app, what, Tcl_GetString(text), &err);
+    Tcl_DecrRefCount(text);
+    return rc ? ms_cmd_error(interp, "%s: %s", cmd, err.msg) : TCL_OK;
+}
+
+/* mol default color|style|representation|selection|material ?value? */
+static int m_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    ms_rep_what what;
+    if ((objc != 3 && objc != 4) || what_of(Tcl_GetString(objv[2]), &what))
+        return ms_cmd_error(interp, "mol default: usage: mol default color|style|selection|"
+                                    "material ?<value>?");
+    if (objc == 3) {
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_get_default(app, what), -1));
+        return TCL_OK;
+    }
+    ms_error err = {{0}};
+    if (ms_rep_set_default(app, what, Tcl_GetString(objv[3]), &err))
+        return ms_cmd_error(interp, "mol default %s: %s", Tcl_GetString(objv[2]), err.msg);
+    return TCL_OK;
+}
+
+/* ---------------------------------------------------------------- adding and editing */
+
+/* As VMD, a rep's selection and colours are evaluated when they are set (so a coordinate
+ * selection or a colour range comes from the frame current then). */
+static int settle(ms_app *app, Tcl_Interp *interp, ms_molecule *m, ms_rep *r, const char *cmd)
+{
+    ms_error err = {{0}};
+    if (m->nframes && ms_rep_update_data(app, m, r, &err))
+        return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
+    return TCL_OK;
+}
+
+static int m_addrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 3) return ms_cmd_error(interp, "mol addrep: usage: mol addrep <molid>");
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol addrep");
+    if (!m) return TCL_ERROR;
+    ms_error err = {{0}};
+    ms_rep *r = ms_rep_add(app, m, &err);
+    if (!r) return ms_cmd_error(interp, "mol addrep: %s", err.msg);
+    return settle(app, interp, m, r, "mol addrep");
+}
+
+static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 4) return ms_cmd_error(interp, "mol delrep: usage: mol delrep <repid> <molid>");
+    ms_molecule *m;
+    long id;
+    if (!target(app, interp, objv, 1, "mol delrep", &m, &id)) return TCL_ERROR;
+    ms_rep_delete(app, m, (size_t)id);
+    return TCL_OK;
+}
+
+static int m_modrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 4) return ms_cmd_error(interp, "mol modrep: usage: mol modrep <repid> <molid>");
+    ms_molecule *m;
+    ms_rep *r = target(app, interp, objv, 1, "mol modrep", &m, NULL);
+    ms_error err = {{0}};
+    if (!r) return TCL_ERROR;
+    if (ms_rep_apply_current(app, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
+    return settle(app, interp, m, r, "mol modrep");
+}
+
+/* mol modstyle|modselect|modcolor|modmaterial <repid> <molid> <value...> */
+static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    char cmd[64];
+    ms_rep_what what;
+    cmd_name(objv, cmd, sizeof cmd);
+    what_of(Tcl_GetString(objv[1]), &what);
+    if (objc < 5) return ms_cmd_error(interp, "%s: usage: %s <repid> <molid> <value>", cmd, cmd);
+    ms_molecule *m;
+    ms_rep *r = target(app, interp, objv, 1, cmd, &m, NULL);
+    if (!r) return TCL_ERROR;
+    Tcl_Obj *text = joined(objc, objv, 4);
+    Tcl_IncrRefCount(text);
+    ms_error err = {{0}};
+    int rc = ms_rep_modify(app, r, what, Tcl_GetString(text), &err);
+    Tcl_DecrRefCount(text);
+    if (rc) return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
+    return what == MS_REP_SELECTION || what == MS_REP_COLOR ? settle(app, interp, m, r, cmd) : TCL_OK;
+}
+
+/* ---------------------------------------------------------------- per-rep switches */
+
+/* mol showrep <molid> <repid> ?bool?; mol selupdate|colupdate <repid> <molid> ?bool? */
+static int m_flag(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    char cmd[64];
+    const char *w = Tcl_GetString(objv[1]);
+    int show = ms_word_eq(w, "showrep"), sel = ms_word_eq(w, "selupdate");
+    cmd_name(objv, cmd, sizeof cmd);
+    if (objc != 4 && objc != 5)
+        return ms_cmd_error(interp, "%s: usage: %s %s ?on|off?", cmd, cmd,
+                            show ? "<molid> <repid>" : "<repid> <molid>");
+    ms_rep *r = target(app, interp, objv, !show, cmd, NULL, NULL);
+    if (!r) return TCL_ERROR;
+    int *flag = show ? &r->shown : sel ? &r->selupdate : &r->colupdate, v;
+    if (objc == 4) {
+        Tcl_SetObjResult(interp, Tcl_NewIntObj(*flag));
+        return TCL_OK;
+    }
+    if (Tcl_GetBooleanFromObj(NULL, objv[4], &v) != TCL_OK)
+        return ms_cmd_error(interp, "%s: expected on or off, got '%s'", cmd, Tcl_GetString(objv[4]));
+    *flag = v;
+    return TCL_OK;
+}
+
+static int m_drawframes(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc < 4)
+        return ms_cmd_error(interp, "mol drawframes: usage: mol drawframes <molid> <repid> ?<frames>|now?");
+    ms_rep *r = target(app, interp, objv, 0, "mol drawframes", NULL, NULL);
+    if (!r) return TCL_ERROR;
+    if (objc == 4) {
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(r->frames, -1));
+        return TCL_OK;
+    }
+    Tcl_Obj *spec = joined(objc, objv, 4);
+    Tcl_IncrRefCount(spec);
+    ms_error err = {{0}};
+    int rc = ms_rep_set_frames(r, Tcl_GetString(spec), &err);
+    Tcl_DecrRefCount(spec);
+    return rc ? ms_cmd_error(interp, "mol drawframes: %s", err.msg) : TCL_OK;
+}
+
+static int m_smoothrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 4 && objc != 5)
+        return ms_cmd_error(interp, "mol smoothrep: usage: mol smoothrep <molid> <repid> ?<n>?");
+    ms_rep *r = target(app, interp, objv, 0, "mol smoothrep", NULL, NULL);
+    if (!r) return TCL_ERROR;
+    if (objc == 4) {
+        Tcl_SetObjResult(interp, Tcl_NewIntObj(r->smooth));
+        return TCL_OK;
+    }
+    long n;
+    if (ms_cmd_get_count(interp, objv[4], 100000, "mol smoothrep", &n)) return TCL_ERROR;
+    ms_rep_set_smooth(r, (int)n);
+    return TCL_OK;
+}
+
+static int m_scaleminmax(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc < 4 || objc > 6)
+        return ms_cmd_error(interp, "mol scaleminmax: usage: mol scaleminmax <molid> <repid> ?<min> <max>|auto?");
+    ms_molecule *m;
+    ms_rep *r = target(app, interp, objv, 0, "mol scaleminmax", &m, NULL);
+    if (!r) return TCL_ERROR;
+    if (objc == 4) {
+        ms_error err = {{0}};
+        if (ms_rep_update_data(app, m, r, &err))
+            return ms_cmd_error(interp, "mol scaleminmax: %s", err.msg);
+        Tcl_SetObjResult(interp, Tcl_ObjPrintf("%f %f", r->cmin, r->cmax));
+        return TCL_OK;
+    }
+    if (objc == 5) {
+        if (!ms_word_eq(Tcl_GetString(objv[4]), "auto"))
+            return ms_cmd_error(interp, "mol scaleminmax: expected <min> <max> or auto, got '%s'",
+                                Tcl_GetString(objv[4]));
+        ms_rep_auto_range(r);
+        return TCL_OK;
+    }
+    double lo, hi;
+    if (Tcl_GetDoubleFromObj(NULL, objv[4], &lo) != TCL_OK ||
+        Tcl_GetDoubleFromObj(NULL, objv[5], &hi) != TCL_OK)
+        return ms_cmd_error(interp, "mol scaleminmax: expected two numbers, got '%s %s'",
+                            Tcl_GetString(objv[4]), Tcl_GetString(objv[5]));
+    ms_rep_set_range(r, (float)lo, (float)hi);
+    return TCL_OK;
+}
+
+/* ---------------------------------------------------------------- names */
+
+static int m_repname(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 4) return ms_cmd_error(interp, "mol repname: usage: mol repname <molid> <repid>");
+    ms_rep *r = target(app, interp, objv, 0, "mol repname", NULL, NULL);
+    if (!r) return TCL_ERROR;
+    Tcl_SetObjResult(interp, Tcl_NewStringObj(r->name, -1));
+    return TCL_OK;
+}
+
+static int m_repindex(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 4) return ms_cmd_error(interp, "mol repindex: usage: mol repindex <molid> <name>");
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol repindex");
+    if (!m) return TCL_ERROR;
+    Tcl_SetObjResult(interp, Tcl_NewLongObj(ms_rep_find(app, m, Tcl_GetString(objv[3]))));
+    return TCL_OK;
+}
+
+/* ---------------------------------------------------------------- repinfo */
+
+static Tcl_Obj *floats(const float *v, int n)
+{
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (int i = 0; i < n; i++) Tcl_ListObjAppendElement(NULL, l, Tcl_NewDoubleObj(v[i]));
+    return l;
+}
+
+static void add_rgb(Tcl_Obj *l, ms_rgba8 c)
+{
+    Tcl_ListObjAppendElement(NULL, l, Tcl_NewIntObj(c.r));
+    Tcl_ListObjAppendElement(NULL, l, Tcl_NewIntObj(c.g));
+    Tcl_ListObjAppendElement(NULL, l, Tcl_NewIntObj(c.b));
+}
+
+static Tcl_Obj *counts(ms_app *app, const ms_rep *r)
+{
+    const ms_displaylist *dl = ms_rep_list(r);
+    size_t natoms;
+    ms_rep_atoms(r, &natoms);
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    const struct {
+        const char *k;
+        size_t v;
+    } c[] = {{"spheres", dl->spheres.n}, {"cylinders", dl->cylinders.n}, {"cones", dl->cones.n},
+             {"lines", dl->lines.n}, {"points", dl->points.n}, {"triangles", dl->mesh.ntris},
+             {"vertices", dl->mesh.nverts}, {"atoms", natoms}, {"builds", ms_rep_builds(r)},
+             {"lit", (size_t)dl->lit}};
+    for (size_t i = 0; i < MS_COUNTOF(c); i++) {
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(c[i].k, -1));
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewWideIntObj((Tcl_WideInt)c[i].v));
+    }
+    Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj("material", -1));
+    Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_material_by_id(app->materials, r->material)->name, -1));
+    return l;
+}
+
+/* One primitive of a kind as a flat list of numbers. */
+static Tcl_Obj *primitive(const ms_displaylist *dl, int kind, size_t i)
+{
+    Tcl_Obj *e;
+    switch (kind) {
+    case 0:
+        e = floats(dl->spheres.xyz + 3 * i, 3);
+        Tcl_ListObjAppendElement(NULL, e, Tcl_NewDoubleObj(dl->spheres.radius[i]));
+        add_rgb(e, dl->spheres.color[i]);
+        Tcl_ListObjAppendElement(NULL, e, Tcl_NewIntObj(dl->spheres.res[i]));
+        return e;
+    case 1:
+        e = floats(dl->cylinders.base + 3 * i, 3);
+        Tcl_ListObjAppendList(NULL, e, floats(dl->cylinders.apex + 3 * i, 3));
+        Tcl_ListObjAppendElement(NULL, e, Tcl_NewDoubleObj(dl->cylinders.radius[i]));
+        add_rgb(e, dl->cylinders.color[i]);
+        Tcl_ListObjAppendElement(NULL, e, Tcl_NewIntObj(dl->cylinders.res[i]));
+        return e;
+    case 2:
+        e = floats(dl->lines.a + 3 * i, 3);
+        Tcl_ListObjAppendList(NULL, e, floats(dl->lines.b + 3 * i, 3));
+        Tcl_ListObjAppendElement(NULL, e, Tcl_NewDoubleObj(dl->lines.width[i]));
+        add_rgb(e, dl->lines.color[i]);
+        Tcl_ListObjAppendElement(NULL, e, Tcl_NewStringObj(dl->lines.style[i] ? "dashed" : "solid", -1));
+        return e;
+    case 3:
+        e = floats(dl->points.xyz + 3 * i, 3);
+        Tcl_ListObjAppendElement(NULL, e, Tcl_NewDoubleObj(dl->points.size[i]));
+        add_rgb(e, dl->points.color[i]);
+        return e;
+    case 4: {
+        float n[3];
+        for (int k = 0; k < 3; k++) n[k] = ms_normal_dequantize(dl->mesh.normal[3 * i + k]);
+        e = floats(dl->mesh.xyz + 3 * i, 3);
+        Tcl_ListObjAppendList(NULL, e, floats(n, 3));
+        add_rgb(e, dl->mesh.color[i]);
+        return e;
+    }
+    default:
+        e = Tcl_NewListObj(0, NULL);
+        for (int k = 0; k < 3; k++)
+            Tcl_ListObjAppendElement(NULL, e, Tcl_NewWideIntObj(dl->mesh.tri[3 * i + k]));
+        return e;
+    }
+}
+
+static int m_repinfo(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const char *const kinds[] = {"spheres", "cylinders", "lines", "points", "vertices",
+                                        "triangles"};
+    if (objc != 4 && objc != 5)
+        return ms_cmd_error(interp, "mol repinfo: usage: mol repinfo <molid> <repid> ?spheres|"
+                                    "cylinders|lines|points|vertices|triangles?");
+    ms_molecule *m;
+    ms_rep *r = target(app, interp, objv, 0, "mol repinfo", &m, NULL);
+    ms_error err = {{0}};
+    if (!r) return TCL_ERROR;
+    if (ms_rep_update(app, m, r, &err)) return ms_cmd_error(interp, "mol repinfo: %s", err.msg);
+    if (objc == 4) {
+        Tcl_SetObjResult(interp, counts(app, r));
+        return TCL_OK;
+    }
+    int kind = -1;
+    for (int k = 0; k < (int)MS_COUNTOF(kinds); k++)
+        if (ms_word_eq(Tcl_GetString(objv[4]), kinds[k])) kind = k;
+    if (kind < 0)
+        return ms_cmd_error(interp, "mol repinfo: unknown kind '%s': must be spheres, cylinders, "
+                                    "lines, points, vertices or triangles", Tcl_GetString(objv[4]));
+    const ms_displaylist *dl = ms_rep_list(r);
+    size_t n = kind == 0 ? dl->spheres.n : kind == 1 ? dl->cylinders.n : kind == 2 ? dl->lines.n
+               : kind == 3 ? dl->points.n : kind == 4 ? dl->mesh.nverts : dl->mesh.ntris;
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (size_t i = 0; i < n; i++) Tcl_ListObjAppendElement(NULL, l, primitive(dl, kind, i));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+/* ---------------------------------------------------------------- molinfo keywords */
+
+/* "rep i", "selection i", "color i", "material i" */
+static int info_get(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char *keyword,
+                    long frame, Tcl_Obj **out)
+{
+    ms_rep_what what = MS_REP_STYLE;
+    const char *sp = strchr(keyword, ' ');
+    char word[32];
+    snprintf(word, sizeof word, "%.*s", sp ? (int)(sp - keyword) : 0, keyword);
+    what_of(word, &what);
+    char *end;
+    long i = sp ? strtol(sp + 1, &end, 10) : -1;
+    ms_rep *r = sp && end != sp + 1 && !*end ? ms_rep_get(app, m, i) : NULL;
+    if (!r)
+        return ms_cmd_error(interp, "molinfo: %s: molecule %d has no rep '%s' (it has %zu)",
+                            keyword, m->id, sp ? sp + 1 : "", ms_rep_count(app, m));
+    *out = Tcl_NewStringObj(ms_rep_text(app, r, what), -1);
+    return TCL_OK;
+}
+
+static int info_numreps(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char *keyword,
+                        long frame, Tcl_Obj **out)
+{
+    *out = Tcl_NewWideIntObj((Tcl_WideInt)ms_rep_count(app, m));
+    return TCL_OK;
+}
+
+/* ---------------------------------------------------------------- registration */
+
+/* A structure's first atoms: VMD resets the current settings to the defaults and adds a rep. */
+static void new_structure(ms_app *app, ms_molecule *m)
+{
+    ms_error err = {{0}};
+    if (ms_rep_reset_current(app, &err) || !ms_rep_add(app, m, &err))
+        fprintf(stderr, "molscope: molecule %d: no default rep: %s\n", m->id, err.msg);
+}
+
+static const ms_subcmd rep_table[] = {
+    {"representation", m_current}, {"rep", m_current},        {"selection", m_current},
+    {"color", m_current},          {"material", m_current},   {"default", m_default},
+    {"addrep", m_addrep},          {"delrep", m_delrep},      {"modrep", m_modrep},
+    {"modstyle", m_modify},        {"modselect", m_modify},   {"modcolor", m_modify},
+    {"modmaterial", m_modify},     {"showrep", m_flag},       {"selupdate", m_flag},
+    {"colupdate", m_flag},         {"drawframes", m_drawframes}, {"smoothrep", m_smoothrep},
+    {"scaleminmax", m_scaleminmax}, {"repname", m_repname},   {"repindex", m_repindex},
+    {"repinfo", m_repinfo},        {NULL, NULL}};
+
+void ms_cmd_rep_register(ms_app *app)
+{
+    if (!app->colors || !app->materials || ms_rep_register(app)) {
+        fprintf(stderr, "molscope: cannot create the representation state (out of memory)\n");
+        return;
+    }
+    ms_cmdset_extend(app, "mol", rep_table);
+    static const ms_molinfo_keyword keys[] = {
+        {"rep ", 1, info_get, NULL},      {"selection ", 1, info_get, NULL},
+        {"color ", 1, info_get, NULL},    {"material ", 1, info_get, NULL},
+        {"numreps", 0, info_numreps, NULL}};
+    for (size_t i = 0; i < MS_COUNTOF(keys); i++) ms_molinfo_add_keyword(&keys[i]);
+    ms_cmd_structure_hook = new_structure;
+}

@@ -1,0 +1,409 @@
+/* rep.c: rep objects and the lists of them molecules carry; VMD's "current" settings new reps
+ * take and the defaults a new structure resets them to; the edits the `mol` subcommands make
+ * (all or nothing); the molecule events that invalidate caches; the scene source giving the
+ * shown reps' display lists; and resetview's centre on the displayed reps' atoms. */
+#include "config.h"
+#include "rep/rep_int.h"
+#include "scene/mat4.h"
+#include "scene/material.h"
+#include "scene/scene.h"
+#include "view/view.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const default_text[4] = {"Lines", "Name", "all", "Opaque"};
+
+static ms_rep_state *state_of(const ms_app *app) { return app->reps; }
+
+static ms_replist *list_get(const ms_app *app, ms_molecule *m, int create)
+{
+    ms_rep_state *st = state_of(app);
+    if (!st || st->slot < 0) return NULL;
+    if (!m->ext[st->slot] && create) {
+        ms_replist *l = calloc(1, sizeof *l);
+        if (l) l->last_frame = m->frame;
+        m->ext[st->slot] = l;
+    }
+    return m->ext[st->slot];
+}
+
+ms_replist *ms_replist_of(const ms_app *app, const ms_molecule *m)
+{
+    return list_get(app, (ms_molecule *)m, 0);
+}
+
+/* ---------------------------------------------------------------- rep objects */
+
+ms_rep_cache *ms_rep_cache_new(void)
+{
+    ms_rep_cache *c = calloc(1, sizeof *c);
+    if (c) ms_dl_init(&c->dl);
+    return c;
+}
+
+void ms_rep_cache_free(ms_rep_cache *c)
+{
+    if (!c) return;
+    ms_bitset_free(&c->on);
+    free(c->idx);
+    free(c->col);
+    free(c->pos);
+    ms_dl_free(&c->dl);
+    ms_rep_scratch_free(&c->scratch);
+    free(c);
+}
+
+void ms_rep_free(ms_rep *r)
+{
+    if (!r) return;
+    free(r->seltext);
+    ms_sel_free(r->sel);
+    free(r->frames);
+    ms_rep_cache_free(r->cache);
+    free(r);
+}
+
+static void free_list(void *p)
+{
+    ms_replist *l = p;
+    for (size_t i = 0; i < l->n; i++) ms_rep_free(l->reps[i]);
+    free(l->reps);
+    free(l);
+}
+
+size_t ms_rep_count(const ms_app *app, const ms_molecule *m)
+{
+    ms_replist *l = ms_replist_of(app, m);
+    return l ? l->n : 0;
+}
+
+ms_rep *ms_rep_get(const ms_app *app, const ms_molecule *m, long i)
+{
+    ms_replist *l = ms_replist_of(app, m);
+    return l && i >= 0 && (size_t)i < l->n ? l->reps[i] : NULL;
+}
+
+long ms_rep_find(const ms_app *app, const ms_molecule *m, const char *name)
+{
+    ms_replist *l = ms_replist_of(app, m);
+    for (size_t i = 0; l && i < l->n; i++)
+        if (!strcmp(l->reps[i]->name, name)) return (long)i;
+    return -1;
+}
+
+ms_rep *ms_rep_add(ms_app *app, ms_molecule *m, ms_error *err)
+{
+    const ms_rep_settings *cur = ms_rep_current(app);
+    ms_replist *l = list_get(app, m, 1);
+    ms_rep *r = calloc(1, sizeof *r);
+    if (!l || !r || !(r->cache = ms_rep_cache_new()) || !(r->seltext = ms_strdup(cur->selection)) ||
+        !(r->frames = ms_strdup("now")) || ms_grow((void **)&l->reps, &l->cap, l->n + 1, sizeof *l->reps)) {
+        ms_rep_free(r);
+        ms_error_set(err, "out of memory");
+        return NULL;
+    }
+    if (!(r->sel = ms_sel_compile(cur->selection, err))) {
+        ms_rep_free(r);
+        return NULL;
+    }
+    snprintf(r->name, sizeof r->name, "rep%u", l->next_name++);
+    r->style = cur->style;
+    r->coloring = cur->coloring;
+    r->material = cur->material;
+    r->shown = 1;
+    r->range_auto = 1;
+    l->reps[l->n++] = r;
+    return r;
+}
+
+void ms_rep_delete(ms_app *app, ms_molecule *m, size_t i)
+{
+    ms_replist *l = list_get(app, m, 0);
+    if (!l || i >= l->n) return;
+    ms_rep_free(l->reps[i]);
+    memmove(l->reps + i, l->reps + i + 1, (l->n - i - 1) * sizeof *l->reps);
+    l->n--;
+}
+
+/* ---------------------------------------------------------------- edits */
+
+static int material_id(const ms_app *app, const char *name, ms_error *err)
+{
+    int k = ms_material_index(app->materials, name);
+    if (k < 0) {
+        ms_error_set(err, "unknown material '%s'", name);
+        return -1;
+    }
+    return app->materials->list[k].id;
+}
+
+static int replace_selection(char **text, ms_selexpr **expr, const char *src, ms_error *err)
+{
+    ms_selexpr *e = NULL;
+    if (expr && !(e = ms_sel_compile(src, err))) return -1;
+    char *t = ms_strdup(src);
+    if (!t) {
+        ms_sel_free(e);
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    free(*text);
+    *text = t;
+    if (expr) {
+        ms_sel_free(*expr);
+        *expr = e;
+    }
+    return 0;
+}
+
+int ms_rep_modify(ms_app *app, ms_rep *r, ms_rep_what what, const char *text, ms_error *err)
+{
+    ms_rep_cache *c = r->cache;
+    if (what == MS_REP_STYLE) {
+        ms_rep_style s = r->style;
+        if (ms_rep_style_parse(&s, text, err)) return -1;
+        r->style = s;
+        c->style_gen++;
+    } else if (what == MS_REP_COLOR) {
+        ms_rep_coloring k = r->coloring;
+        if (ms_rep_coloring_parse(&k, text, err)) return -1;
+        r->coloring = k;
+        r->range_auto = 1;   /* VMD retakes the range whenever a colouring is applied */
+        c->col_valid = 0;
+    } else if (what == MS_REP_SELECTION) {
+        if (replace_selection(&r->seltext, &r->sel, text, err)) return -1;
+        c->sel_valid = 0;
+    } else {
+        int id = material_id(app, text, err);
+        if (id < 0) return -1;
+        r->material = id;
+    }
+    return 0;
+}
+
+int ms_rep_apply_current(ms_app *app, ms_rep *r, ms_error *err)
+{
+    const ms_rep_settings *cur = ms_rep_current(app);
+    ms_rep_style s = r->style;
+    ms_rep_coloring k = r->coloring;
+    ms_selexpr *e = ms_sel_compile(cur->selection, err);
+    char *t = e ? ms_strdup(cur->selection) : NULL;
+    if (!e || !t || ms_rep_style_parse(&s, cur->style.text, err) ||
+        ms_rep_coloring_parse(&k, cur->coloring.text, err)) {
+        if (e && !t) ms_error_set(err, "out of memory");
+        ms_sel_free(e);
+        free(t);
+        return -1;
+    }
+    r->style = s;
+    r->coloring = k;
+    r->range_auto = 1;
+    ms_sel_free(r->sel);
+    free(r->seltext);
+    r->sel = e;
+    r->seltext = t;
+    r->material = cur->material;
+    r->cache->style_gen++;
+    r->cache->col_valid = r->cache->sel_valid = 0;
+    return 0;
+}
+
+int ms_rep_set_frames(ms_rep *r, const char *spec, ms_error *err)
+{
+    while (*spec == ' ' || *spec == '\t' || *spec == '\n') spec++;
+    if (ms_rep_frames_check(spec, err) || replace_selection(&r->frames, NULL, spec, err)) return -1;
+    r->cache->style_gen++;
+    return 0;
+}
+
+void ms_rep_set_smooth(ms_rep *r, int n)
+{
+    r->smooth = n < 0 ? 0 : n;
+    r->cache->style_gen++;
+}
+
+void ms_rep_set_range(ms_rep *r, float min, float max)
+{
+    r->cmin = min;
+    r->cmax = max;
+    r->range_auto = 0;
+    r->cache->col_valid = 0;
+}
+
+void ms_rep_auto_range(ms_rep *r)
+{
+    r->range_auto = 1;
+    r->cache->col_valid = 0;
+}
+
+/* ---------------------------------------------------------------- current settings */
+
+const ms_rep_settings *ms_rep_current(const ms_app *app)
+{
+    return &state_of(app)->current;
+}
+
+int ms_rep_set_current(ms_app *app, ms_rep_what what, const char *text, ms_error *err)
+{
+    ms_rep_settings *cur = &state_of(app)->current;
+    if (what == MS_REP_STYLE) {
+        ms_rep_style s = cur->style;
+        if (ms_rep_style_parse(&s, text, err)) return -1;
+        cur->style = s;
+    } else if (what == MS_REP_COLOR) {
+        ms_rep_coloring k = cur->coloring;
+        if (ms_rep_coloring_parse(&k, text, err)) return -1;
+        cur->coloring = k;
+    } else if (what == MS_REP_SELECTION) {
+        ms_selexpr *e = ms_sel_compile(text, err);
+        if (!e) return -1;
+        ms_sel_free(e);
+        return replace_selection(&cur->selection, NULL, text, err);
+    } else {
+        int id = material_id(app, text, err);
+        if (id < 0) return -1;
+        cur->material = id;
+    }
+    return 0;
+}
+
+const char *ms_rep_get_default(const ms_app *app, ms_rep_what what)
+{
+    return state_of(app)->defaults[what];
+}
+
+int ms_rep_set_default(ms_app *app, ms_rep_what what, const char *text, ms_error *err)
+{
+    ms_rep_style s;
+    ms_rep_coloring k;
+    ms_selexpr *e;
+    ms_rep_style_init(&s);
+    ms_rep_coloring_init(&k);
+    if (what == MS_REP_STYLE && ms_rep_style_parse(&s, text, err)) return -1;
+    if (what == MS_REP_COLOR && ms_rep_coloring_parse(&k, text, err)) return -1;
+    if (what == MS_REP_MATERIAL && material_id(app, text, err) < 0) return -1;
+    if (what == MS_REP_SELECTION) {
+        if (!(e = ms_sel_compile(text, err))) return -1;
+        ms_sel_free(e);
+    }
+    return replace_selection(&state_of(app)->defaults[what], NULL, text, err);
+}
+
+int ms_rep_reset_current(ms_app *app, ms_error *err)
+{
+    ms_rep_state *st = state_of(app);
+    for (int w = MS_REP_STYLE; w <= MS_REP_MATERIAL; w++)
+        if (ms_rep_set_current(app, (ms_rep_what)w, st->defaults[w], err)) {
+            /* a default that no longer parses (a deleted material or macro): VMD's own */
+            if (ms_rep_set_current(app, (ms_rep_what)w, default_text[w], err)) return -1;
+        }
+    return 0;
+}
+
+const char *ms_rep_text(const ms_app *app, const ms_rep *r, ms_rep_what what)
+{
+    const ms_rep_settings *cur = ms_rep_current(app);
+    switch (what) {
+    case MS_REP_STYLE: return r ? r->style.text : cur->style.text;
+    case MS_REP_COLOR: return r ? r->coloring.text : cur->coloring.text;
+    case MS_REP_SELECTION: return r ? r->seltext : cur->selection;
+    default: return ms_material_by_id(app->materials, r ? r->material : cur->material)->name;
+    }
+}
+
+/* ---------------------------------------------------------------- events, scene, view */
+
+/* Structure edits invalidate selections and colours; a coordinate edit arrives as a frame
+ * event that leaves the frame number as it was. */
+static void on_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg)
+{
+    ms_replist *l = list_get(ud, m, 0);
+    if (!l) return;
+    if (ev == MS_EV_STRUCTURE) l->struct_gen++;
+    else if (ev == MS_EV_FRAMES_ADDED) l->coord_gen++;
+    else if (ev == MS_EV_FRAME) {
+        if (m->frame == l->last_frame) l->coord_gen++;
+        l->last_frame = m->frame;
+    }
+}
+
+static int scene_source(ms_app *app, ms_molecule *m, ms_scene *s, const float model[16],
+                        ms_error *err)
+{
+    ms_replist *l = list_get(app, m, 0);
+    for (size_t i = 0; l && i < l->n; i++) {
+        ms_rep *r = l->reps[i];
+        if (!r->shown) continue;
+        if (ms_rep_update(app, m, r, err)) {
+            ms_error_prefix(err, "molecule %d rep %zu", m->id, i);
+            return -1;
+        }
+        ms_displaylist *dl = &r->cache->dl;
+        dl->material = r->material;
+        if (ms_dl_count(dl) == 0) continue;
+        float xform[16];
+        ms_mat4_mul(model, dl->model, xform);
+        if (ms_scene_add(s, dl, xform, app->materials, err)) return -1;
+    }
+    return 0;
+}
+
+/* VMD's resetview: the atoms of the molecule's shown reps, when there are any. */
+static int cov_hook(ms_app *app, ms_molecule *m, float center[3], float *scale)
+{
+    ms_replist *l = list_get(app, m, 0);
+    const float *pos = ms_mol_pos(m);
+    if (!l || !pos || m->atoms.n == 0) return 0;
+    ms_bitset any;
+    if (ms_bitset_init(&any, m->atoms.n)) return 0;
+    ms_error err = {{0}};
+    for (size_t i = 0; i < l->n; i++)
+        if (l->reps[i]->shown && ms_rep_update_data(app, m, l->reps[i], &err) == 0 &&
+            l->reps[i]->cache->on.nbits == m->atoms.n)
+            ms_bitset_or(&any, &l->reps[i]->cache->on);
+    size_t n = ms_bitset_count(&any);
+    uint32_t *idx = n ? malloc(n * sizeof *idx) : NULL;
+    int rc = 0;
+    if (idx) {
+        ms_bitset_indices(&any, idx);
+        ms_view_points_cov(pos, idx, n, center, scale);
+        rc = 1;
+    }
+    free(idx);
+    ms_bitset_free(&any);
+    return rc;
+}
+
+static void free_state(ClientData cd, Tcl_Interp *interp)
+{
+    ms_app *app = cd;
+    ms_rep_state *st = app->reps;
+    if (!st) return;
+    free(st->current.selection);
+    for (int w = 0; w < 4; w++) free(st->defaults[w]);
+    free(st);
+    app->reps = NULL;
+}
+
+int ms_rep_register(ms_app *app)
+{
+    ms_rep_state *st = calloc(1, sizeof *st);
+    if (!st) return -1;
+    app->reps = st;
+    ms_rep_style_init(&st->current.style);
+    ms_rep_coloring_init(&st->current.coloring);
+    int ok = (st->current.selection = ms_strdup("all")) != NULL;
+    for (int w = 0; w < 4; w++) ok &= (st->defaults[w] = ms_strdup(default_text[w])) != NULL;
+    st->current.material = app->materials ? app->materials->list[0].id : 0;
+    st->slot = ms_molset_register_ext(&app->mols, free_list);
+    if (!ok || st->slot < 0 || ms_molset_listen(&app->mols, on_event, app) ||
+        ms_scene_register_source(scene_source)) {
+        free_state(app, app->interp);
+        return -1;
+    }
+    ms_view_cov_hook = cov_hook;
+    Tcl_CallWhenDeleted(app->interp, free_state, app);
+    return 0;
+}
