@@ -167,6 +167,17 @@ static int get_keyword(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const ch
     return TCL_OK;
 }
 
+/* Is `k` a keyword that takes an index ("rep" of "rep 0")? */
+static int takes_index(const char *k)
+{
+    size_t len = strlen(k);
+    for (int e = 0; e < nextra; e++)
+        if (extra[e].prefix && strlen(extra[e].name) == len + 1 &&
+            !strncasecmp(extra[e].name, k, len) && extra[e].name[len] == ' ')
+            return 1;
+    return 0;
+}
+
 /* frame n|now|first|last -> index, or -2 on error. */
 static long parse_frame(Tcl_Interp *interp, const ms_molecule *m, Tcl_Obj *w)
 {
@@ -200,8 +211,20 @@ static int molinfo_get(ms_app *app, Tcl_Interp *interp, ms_molecule *m, int objc
     Tcl_Obj *res = Tcl_NewListObj(0, NULL);
     for (int i = 0; i < nk; i++) {
         Tcl_Obj *v = NULL;
-        /* "rep 0", "selection 0" ... arrive as one keyword with a space. */
-        if (get_keyword(app, interp, m, Tcl_GetString(keys[i]), frame, &v) != TCL_OK) {
+        /* "rep 0", "selection 0" ... arrive as one keyword with a space ({{rep 0}}), or
+         * split in two when given as a plain string (molinfo top get "rep 0"). */
+        Tcl_Obj *joined = NULL;
+        if (i + 1 < nk && takes_index(Tcl_GetString(keys[i]))) {
+            int idx;
+            if (Tcl_GetIntFromObj(NULL, keys[i + 1], &idx) == TCL_OK) {
+                joined = Tcl_ObjPrintf("%s %d", Tcl_GetString(keys[i]), idx);
+                Tcl_IncrRefCount(joined);
+                i++;
+            }
+        }
+        int rc = get_keyword(app, interp, m, Tcl_GetString(joined ? joined : keys[i]), frame, &v);
+        if (joined) Tcl_DecrRefCount(joined);
+        if (rc != TCL_OK) {
             Tcl_DecrRefCount(res);
             return TCL_ERROR;
         }

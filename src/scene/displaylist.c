@@ -141,6 +141,22 @@ static int oom(ms_error *err)
     return -1;
 }
 
+void ms_dl_mesh_adopt(ms_displaylist *dl, float *xyz, int8_t *normal, ms_rgba8 *color,
+                      size_t nverts, uint32_t *tri, size_t ntris)
+{
+    ms_dl_mesh *m = &dl->mesh;
+    free(m->xyz);
+    free(m->normal);
+    free(m->color);
+    free(m->tri);
+    m->xyz = xyz;
+    m->normal = normal;
+    m->color = color;
+    m->tri = tri;
+    m->nverts = m->vcap = nverts;
+    m->ntris = m->tcap = ntris;
+}
+
 int ms_dl_reserve(ms_displaylist *dl, ms_dl_kind kind, size_t n, ms_error *err)
 {
     column c[MAX_COLS];

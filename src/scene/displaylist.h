@@ -118,6 +118,11 @@ long ms_dl_extend(ms_displaylist *dl, ms_dl_kind kind, size_t count, ms_error *e
 int ms_dl_mesh_extend(ms_displaylist *dl, size_t nverts, size_t ntris, size_t *v0, size_t *t0,
                       ms_error *err);
 
+/* Make the list's mesh these malloc'd arrays (a surface engine's output, taken without a
+ * copy); whatever mesh the list held is freed. */
+void ms_dl_mesh_adopt(ms_displaylist *dl, float *xyz, int8_t *normal, ms_rgba8 *color,
+                      size_t nverts, uint32_t *tri, size_t ntris);
+
 /* Append one primitive. Each returns 0, or -1 when memory runs out (the list is unchanged). */
 int ms_dl_sphere(ms_displaylist *dl, const float c[3], float r, ms_rgba8 col, int res);
 int ms_dl_cylinder(ms_displaylist *dl, const float a[3], const float b[3], float r, ms_rgba8 col,
