@@ -11,6 +11,10 @@
 
 static const char *const kind_names[MS_GL_NKINDS] = {"egl", "osmesa"};
 
+/* Sides beyond this are refused even where GL takes them: a 16384 x 16384 image already
+ * needs 2 GB of framebuffer and 800 MB of pixels. */
+#define MS_GL_MAX_SIDE 16384
+
 static ms_gl *current;      /* the context current in the (one) rendering thread */
 
 int ms_gl_built(ms_gl_kind k)
@@ -67,7 +71,7 @@ static int describe(ms_gl *g, ms_error *err)
     g->f.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
     g->f.GetIntegerv(GL_MAX_TEXTURE_SIZE, &tex);
     g->f.GetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
-    g->max_side = MS_MIN(MS_MIN(rb, tex), MS_MIN(vp[0], vp[1]));
+    g->max_side = MS_MIN(MS_MIN(MS_MIN(rb, tex), MS_MIN(vp[0], vp[1])), MS_GL_MAX_SIDE);
     size_t n = strlen(g->info);
     snprintf(g->info + n, sizeof g->info - n, ": %s, OpenGL %s", ren, ver);
     return 0;
