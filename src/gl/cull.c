@@ -104,13 +104,19 @@ static int ball_rect(const ms_glcull *c, const float e[3], float r, float rect[4
     return 1;
 }
 
+/* A window coordinate clamped to [-1, limit + 1] before it becomes an int (NaN: -1). */
+static int to_pixel(float v, int limit)
+{
+    return v >= -1.0f ? (int)fminf(v, (float)limit + 1.0f) : -1;
+}
+
 /* The pixel centres inside a rectangle widened by eps, clipped to the image; 0 if none. */
 static int rect_pixels(const ms_glcull *c, const float rect[4], float eps, int px[4])
 {
-    px[0] = MS_MAX(0, (int)ceilf(rect[0] - eps - 0.5f));
-    px[1] = MS_MAX(0, (int)ceilf(rect[1] - eps - 0.5f));
-    px[2] = MS_MIN(c->cam.width - 1, (int)floorf(rect[2] + eps - 0.5f));
-    px[3] = MS_MIN(c->cam.height - 1, (int)floorf(rect[3] + eps - 0.5f));
+    px[0] = MS_MAX(0, to_pixel(ceilf(rect[0] - eps - 0.5f), c->cam.width));
+    px[1] = MS_MAX(0, to_pixel(ceilf(rect[1] - eps - 0.5f), c->cam.height));
+    px[2] = MS_MIN(c->cam.width - 1, to_pixel(floorf(rect[2] + eps - 0.5f), c->cam.width));
+    px[3] = MS_MIN(c->cam.height - 1, to_pixel(floorf(rect[3] + eps - 0.5f), c->cam.height));
     return px[0] <= px[2] && px[1] <= px[3];
 }
 

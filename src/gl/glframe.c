@@ -15,7 +15,7 @@
 #include <string.h>
 
 enum { K_SPHERES, K_CYLINDERS, K_CONES, K_MESH, K_LINES, K_POINTS, K_TEXT, K_N };
-#define MAX_ARRAYS 6
+#define MAX_ARRAYS 6               /* per kind; attribute locations go to 6 */
 
 /* One scene item in GL: its buffers per kind and what it needs. */
 typedef struct glitem {
@@ -195,9 +195,10 @@ typedef struct arr {
     GLenum target;
 } arr;
 
-/* The arrays of one kind, in the order the draw binds them; *n is the primitive count. */
-static int kind_arrays(const ms_displaylist *dl, int k, arr a[MAX_ARRAYS], const ms_rgba8 **col,
-                       size_t *n)
+/* The arrays of one kind, in the order the draw binds them; *n is the primitive count.
+ * color2: the apex halves' colours of merged cylinders, or NULL. */
+static int kind_arrays(const ms_displaylist *dl, int k, const ms_rgba8 *color2,
+                       arr a[MAX_ARRAYS], const ms_rgba8 **col, size_t *n)
 {
     const ms_dl_spheres *sp = &dl->spheres;
     const ms_dl_cylinders *cy = &dl->cylinders;
@@ -212,7 +213,9 @@ static int kind_arrays(const ms_displaylist *dl, int k, arr a[MAX_ARRAYS], const
         A(0, sp->xyz, f3); A(1, sp->radius, f1); A(2, sp->color, c4); return 3;
     case K_CYLINDERS: *n = cy->n; *col = cy->color;
         A(0, cy->base, f3); A(1, cy->apex, f3); A(2, cy->radius, f1); A(3, cy->color, c4);
-        A(4, cy->caps, 1); return 5;
+        A(4, cy->caps, 1);
+        if (!color2) return 5;
+        A(5, color2, c4); return 6;
     case K_CONES: *n = co->n; *col = co->color;
         A(0, co->base, f3); A(1, co->apex, f3); A(2, co->rbase, f1); A(3, co->rapex, f1);
         A(4, co->color, c4); return 5;
@@ -261,13 +264,14 @@ static int upload_arrays(frame *fr, glitem *gi, int k, const arr *a, int na,
     return 0;
 }
 
-static int upload_kind(frame *fr, glitem *gi, int k, ms_error *err)
+/* One kind of a list (the item's own, its merged cylinders or its text strokes). */
+static int upload_list(frame *fr, glitem *gi, int k, const ms_displaylist *dl,
+                       const ms_rgba8 *color2, ms_error *err)
 {
-    const ms_displaylist *dl = k == K_TEXT ? gi->text : gi->it->dl;
     arr a[MAX_ARRAYS];
     const ms_rgba8 *col = NULL;
     size_t n = 0;
-    int na = kind_arrays(dl, k, a, &col, &n);
+    int na = kind_arrays(dl, k, color2, a, &col, &n);
     if (n == 0 || na == 0) return 0;
     if (n > INT_MAX / 3 || (k == K_MESH && a[3].count > INT_MAX / 3)) {
         ms_error_set(err, "%zu primitives in one display list: too many for one draw", n);
@@ -284,11 +288,24 @@ static int upload_kind(frame *fr, glitem *gi, int k, ms_error *err)
     return rc;
 }
 
-/* Cull when the scene holds many impostors; MOLSCOPE_GL_CULL=0 or 1 decides instead. */
+static int upload_kind(frame *fr, glitem *gi, int k, ms_error *err)
+{
+    const ms_displaylist *dl = k == K_TEXT ? gi->text : gi->it->dl;
+    ms_glmerge merged;
+    int m = k == K_CYLINDERS ? ms_glmerge_cylinders(&dl->cylinders, &merged, err) : 1;
+    if (m < 0) return -1;
+    int rc = upload_list(fr, gi, k, m == 0 ? &merged.dl : dl, m == 0 ? merged.color2 : NULL, err);
+    if (m == 0) ms_glmerge_free(&merged);
+    return rc;
+}
+
+/* Cull when the scene holds many impostors (and the occlusion buffer, 4 bytes a pixel, is
+ * at most 256 MB); MOLSCOPE_GL_CULL=0 or 1 decides instead. */
 static int want_cull(const ms_scene *s)
 {
     const char *v = getenv("MOLSCOPE_GL_CULL");
     if (v && *v) return strcmp(v, "0") != 0;
+    if ((size_t)s->width * (size_t)s->height > (size_t)8192 * 8192) return 0;
     size_t n = 0;
     for (size_t i = 0; i < s->nitems; i++) {
         const ms_displaylist *dl = s->items[i].dl;
@@ -356,7 +373,7 @@ static void attrib(const ms_glfn *f, int loc, GLuint b, int size, GLenum type, i
 
 static void attribs_off(const ms_glfn *f)
 {
-    for (int loc = 0; loc < MAX_ARRAYS; loc++) f->DisableVertexAttribArray(loc);
+    for (int loc = 0; loc <= MAX_ARRAYS; loc++) f->DisableVertexAttribArray(loc);
 }
 
 static int kind_program(int k)
@@ -397,6 +414,7 @@ static void draw_arrays(const ms_glfn *f, int k, const GLuint *b, size_t n)
         attrib(f, 2, b[2], 1, GL_FLOAT, 0, 1);
         attrib(f, 3, k == K_CONES ? b[3] : b[2], 1, GL_FLOAT, 0, 1);
         attrib(f, 4, k == K_CONES ? b[4] : b[3], 4, GL_UNSIGNED_BYTE, 1, 1);
+        attrib(f, 6, k == K_CONES ? b[4] : b[5] ? b[5] : b[3], 4, GL_UNSIGNED_BYTE, 1, 1);
         if (k == K_CYLINDERS) attrib(f, 5, b[4], 1, GL_UNSIGNED_BYTE, 0, 1);
         else f->VertexAttrib1f(5, (float)MS_CAP_BASE);
         break;

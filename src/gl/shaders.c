@@ -164,7 +164,8 @@ static const char fs_sphere[] =
     "}\n";
 
 /* Cylinders and cones: a truncated cone from a_base (radius a_rbase) to a_apex (a_rapex),
- * with the end discs named in a_caps (1 base, 2 apex) closed. */
+ * with the end discs named in a_caps (1 base, 2 apex) closed; the half nearer the apex takes
+ * a_color2 (merged half-bond pairs; otherwise the same colour). */
 static const char vs_cone[] =
     "layout(location = 0) in vec3 a_base;\n"
     "layout(location = 1) in vec3 a_apex;\n"
@@ -172,15 +173,17 @@ static const char vs_cone[] =
     "layout(location = 3) in float a_rapex;\n"
     "layout(location = 4) in vec4 a_color;\n"
     "layout(location = 5) in float a_caps;\n"
+    "layout(location = 6) in vec4 a_color2;\n"
     "flat out vec3 v_base, v_apex;\n"
     "flat out vec2 v_radii;\n"
-    "flat out vec4 v_color;\n"
+    "flat out vec4 v_color, v_color2;\n"
     "flat out int v_caps;\n"
     "void main() {\n"
     "    v_base = (u_mv * vec4(a_base, 1.0)).xyz;\n"
     "    v_apex = (u_mv * vec4(a_apex, 1.0)).xyz;\n"
     "    v_radii = vec2(a_rbase, a_rapex) * u_rscale;\n"
     "    v_color = a_color;\n"
+    "    v_color2 = a_color2;\n"
     "    v_caps = int(a_caps + 0.5);\n"
     "    gl_Position = corner(sphere_rect(v_base, v_radii.x), sphere_rect(v_apex, v_radii.y));\n"
     "}\n";
@@ -188,7 +191,7 @@ static const char vs_cone[] =
 static const char fs_cone[] =
     "flat in vec3 v_base, v_apex;\n"
     "flat in vec2 v_radii;\n"
-    "flat in vec4 v_color;\n"
+    "flat in vec4 v_color, v_color2;\n"
     "flat in int v_caps;\n"
     "float best_t; vec3 best_n;\n"
     "vec3 o1, d1;\n"
@@ -234,7 +237,8 @@ static const char fs_cone[] =
     "    if (best_t > 1e29) discard;\n"
     "    vec3 p = o1 + best_t * d;\n"
     "    gl_FragDepth = depth_of(p);\n"
-    "    surface(v_color.rgb, v_color.a, p, best_n, -d);\n"
+    "    vec4 col = ws + best_t * ds < 0.5 * len ? v_color : v_color2;\n"
+    "    surface(col.rgb, col.a, p, best_n, -d);\n"
     "}\n";
 
 /* Triangle meshes: normals arrive as the signed bytes of the display list. */

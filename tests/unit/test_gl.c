@@ -272,6 +272,41 @@ static void test_translucent(ms_gl *g)
     ms_dl_free(&back);
 }
 
+/* Outline (VMD's Edgy: outline 0.62, width 0.94): the shade is multiplied by
+ * (1 - a) + e a, e = 1 - (1 - (N.V)^2)^((1 - w) 32); 1 where the surface faces the viewer. */
+static void test_outline(ms_gl *g)
+{
+    int vals[2][2];
+    float x, y, n[3], c[3] = {0, 0, 0};
+    int ix = W / 2 - (int)(0.9f * 0.5f * H / 3);
+    for (int k = 0; k < 2; k++) {
+        ms_scene s;
+        ms_displaylist dl;
+        ms_image img;
+        ms_material m = DIFFUSE;
+        m.outline = k ? 0.62f : 0;
+        m.outlinewidth = k ? 0.94f : 0;
+        scene_init(&s, 1);
+        ms_dl_init(&dl);
+        ms_dl_sphere(&dl, c, 0.5f, WHITE, 12);
+        add(&s, &dl, &m);
+        ms_scene_project(&s, c, &x, &y, NULL);
+        vals[k][0] = vals[k][1] = -1;
+        if (draw(g, &s, &img) == 0) {
+            vals[k][0] = px(&img, (int)x, (int)y)[0];
+            vals[k][1] = px(&img, ix, (int)y)[0];
+            ms_image_free(&img);
+        }
+        ms_scene_free(&s);
+        ms_dl_free(&dl);
+    }
+    normal_at(x, y, 0.5f * H / 3, ix, (int)y, n);
+    double e = 1 - pow(1 - n[2] * n[2], 0.06 * 32), f = 0.38 + e * 0.62;
+    t_ok(vals[1][0] == vals[0][0] && fabs(vals[1][1] - f * vals[0][1]) <= 2,
+         "outline: centre unchanged (%d %d), rim %d -> %d (expected %.1f, N.V %.3f)", vals[0][0],
+         vals[1][0], vals[0][1], vals[1][1], f * vals[0][1], n[2]);
+}
+
 /* A sphere cut by the near plane shows its inside instead of vanishing. */
 static void test_near_clip(ms_gl *g)
 {
@@ -331,6 +366,40 @@ static void test_shapes(ms_gl *g)
     ms_dl_triangle(&dl, p, n, cols);
     area_check(g, &dl, 0.5 * 1.2 * 1.1 * u * u, "triangle: 1.2 x 1.1 / 2");
     ms_dl_free(&dl);
+}
+
+/* A bond as two half cylinders coloured by their atoms: drawn merged when they are list
+ * neighbours, as two cylinders when they are not; both images are the same but for pixels
+ * on the seam. */
+static void test_half_bonds(ms_gl *g)
+{
+    ms_image img[2];
+    int ok = 1;
+    float a[3] = {-0.6f, 0, 0}, b[3] = {0.6f, 0, 0}, m[3] = {0, 0, 0}, away[3] = {0, 0, 5};
+    for (int split = 0; split < 2; split++) {
+        ms_displaylist dl;
+        ms_scene s;
+        ms_dl_init(&dl);
+        ms_dl_cylinder(&dl, a, m, 0.2f, RED, 0, 12);
+        if (split) ms_dl_cylinder(&dl, away, away, 0.2f, RED, 0, 12);   /* behind the eye */
+        ms_dl_cylinder(&dl, b, m, 0.2f, BLUE, 0, 12);
+        scene_init(&s, 1);
+        add(&s, &dl, &AMBIENT);
+        ok &= draw(g, &s, &img[split]) == 0;
+        ms_scene_free(&s);
+        ms_dl_free(&dl);
+    }
+    if (!ok) return;
+    const uint8_t bg[3] = {0, 0, 0};
+    size_t lit = count_not(&img[0], bg), diff = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++) diff += memcmp(img[0].rgb + 3 * i, img[1].rgb + 3 * i, 3) != 0;
+    double e = 1.2 * 0.4 * (H / 3.0) * (H / 3.0);
+    const uint8_t *l = px(&img[0], W / 2 - 40, H / 2), *r = px(&img[0], W / 2 + 40, H / 2);
+    t_ok(fabs((double)lit - e) < 0.01 * e && l[0] > 100 && !l[2] && r[2] > 100 && !r[0],
+         "a bond of two half cylinders: %zu pixels (expected %.0f), red half then blue half", lit, e);
+    t_ok(diff <= (size_t)H, "merged and separate halves differ only along the seam (%zu pixels)", diff);
+    ms_image_free(&img[0]);
+    ms_image_free(&img[1]);
 }
 
 /* Lines are their width in pixels; points squares of their size; text strokes. */
@@ -505,8 +574,10 @@ static void run_backend(ms_gl *g, const ms_displaylist *mol, const float xform[1
     test_sphere_colour(g);
     test_depthcue(g);
     test_translucent(g);
+    test_outline(g);
     test_near_clip(g);
     test_shapes(g);
+    test_half_bonds(g);
     test_lines(g);
     if (mol) {
         test_nearest_atom(g, mol, xform);
