@@ -162,7 +162,8 @@ static int read_pixels(ms_gl *g, ms_image *img, ms_error *err)
     g->f.ReadPixels(0, 0, img->width, img->height, GL_RGB, GL_UNSIGNED_BYTE, img->rgb);
     GLenum e = g->f.GetError();
     if (e != GL_NO_ERROR) {
-        ms_error_set(err, "%s: reading the image back failed (GL error 0x%04x)", kind_names[g->kind], e);
+        ms_error_set(err, "%s: reading the image back failed (GL error 0x%04x)",
+                     kind_names[g->kind], e);
         return -1;
     }
     uint8_t *tmp = malloc(row);
@@ -171,7 +172,8 @@ static int read_pixels(ms_gl *g, ms_image *img, ms_error *err)
         return -1;
     }
     for (int y = 0; y < img->height / 2; y++) {
-        uint8_t *a = img->rgb + (size_t)y * row, *b = img->rgb + (size_t)(img->height - 1 - y) * row;
+        uint8_t *a = img->rgb + (size_t)y * row;
+        uint8_t *b = img->rgb + (size_t)(img->height - 1 - y) * row;
         memcpy(tmp, a, row);
         memcpy(a, b, row);
         memcpy(b, tmp, row);

@@ -101,8 +101,9 @@ static int make_context(egl *e, char *why, size_t size)
     EGLConfig cfg;
     EGLint n = 0;
     int pbuffer = eglChooseConfig(e->dpy, pbuf_cfg, &cfg, 1, &n) && n > 0;
-    if (!pbuffer && !(has_ext(eglQueryString(e->dpy, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context") &&
-                      eglChooseConfig(e->dpy, any_cfg, &cfg, 1, &n) && n > 0)) {
+    const char *exts = eglQueryString(e->dpy, EGL_EXTENSIONS);
+    int surfaceless = has_ext(exts, "EGL_KHR_surfaceless_context");
+    if (!pbuffer && !(surfaceless && eglChooseConfig(e->dpy, any_cfg, &cfg, 1, &n) && n > 0)) {
         snprintf(why, size, "no OpenGL config with a pbuffer");
         return -1;
     }
@@ -163,7 +164,8 @@ static void find_devices(cands *c)
     memset(c, 0, sizeof *c);
     if (!has_ext(client, "EGL_EXT_platform_base")) return;
     c->get_display = (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
-    PFNEGLQUERYDEVICESEXTPROC query = (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+    PFNEGLQUERYDEVICESEXTPROC query =
+        (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
     c->dev_string = (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
     if (!c->get_display || !query || !c->dev_string || !has_ext(client, "EGL_EXT_platform_device"))
         return;
@@ -180,16 +182,16 @@ static int open_any(egl *e, char *platform, size_t psize, ms_error *err)
     for (int soft = 0; soft < 2; soft++) {
         for (int i = 0; i < c.n; i++) {
             if (is_software(&c, c.dev[i]) != soft) continue;
-            if (try_display(e, c.get_display(EGL_PLATFORM_DEVICE_EXT, c.dev[i], NULL), why, sizeof why) == 0) {
+            EGLDisplay dpy = c.get_display(EGL_PLATFORM_DEVICE_EXT, c.dev[i], NULL);
+            if (try_display(e, dpy, why, sizeof why) == 0) {
                 const char *file = c.dev_string(c.dev[i], EGL_DRM_DEVICE_FILE_EXT);
                 snprintf(platform, psize, "device %d%s%s", i, file ? " " : "", file ? file : "");
                 return 0;
             }
             snprintf(last, sizeof last, "device %d: %s", i, why);
         }
-        if (soft || !c.get_display ||
-            !has_ext(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), "EGL_MESA_platform_surfaceless"))
-            continue;
+        const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+        if (soft || !c.get_display || !has_ext(client, "EGL_MESA_platform_surfaceless")) continue;
         if (try_display(e, c.get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL),
                         why, sizeof why) == 0) {
             snprintf(platform, psize, "surfaceless");

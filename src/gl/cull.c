@@ -7,13 +7,15 @@
  * plane under orthographic projection). An opaque sphere wholly between the clip planes is
  * drawn at every pixel whose ray meets it, at the distance of the first hit. Each pixel
  * whose ray meets the ball well inside its rim receives that distance (computed in double
- * precision, nudged farther) in an occlusion buffer (the smallest wins; the store is a relaxed atomic, and a lost race
- * only leaves another occluder's value, still a valid bound). Cylinders add the balls
- * inscribed along their axis. A primitive is then hidden when its nearest possible
- * distance (|c| - r of its end balls) is beyond the buffer at every pixel centre its screen
- * rectangle may sample (the shaders widen rectangles by RECT_MARGIN against subpixel
- * snapping). A primitive whose rectangle holds no pixel centre draws nothing: it goes too
- * (most atoms of a million-atom Licorice view are smaller than a pixel). */
+ * precision, nudged farther) in an occlusion buffer (the smallest wins; the store is a
+ * relaxed atomic, and a lost race only leaves another occluder's value, still a valid
+ * bound). Cylinders add the balls
+ * inscribed along their axis. A primitive is then hidden when, at every pixel centre its
+ * screen rectangle may sample (the shaders widen rectangles by RECT_MARGIN against subpixel
+ * snapping), either the pixel's ray misses the capsule around it (its end balls swept along
+ * the axis, slightly widened) or the capsule lies beyond the buffer along that ray. A
+ * primitive whose rectangle holds no pixel centre draws nothing: it goes too (most atoms of
+ * a million-atom Licorice view are smaller than a pixel). */
 #include "config.h"
 #include "gl/glrender.h"
 #include "base/threads.h"
@@ -61,7 +63,8 @@ void ms_glcull_free(ms_glcull *c)
 
 static void xform(const float m[16], const float p[3], float out[3])
 {
-    for (int i = 0; i < 3; i++) out[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
+    for (int i = 0; i < 3; i++)
+        out[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
 }
 
 /* Window position (pixels, GL's: y up) of an eye-space point in front of the eye. */
@@ -217,8 +220,61 @@ void ms_glcull_occluders(ms_glcull *c, const ms_displaylist *dl, const float mv[
 
 /* ---------------------------------------------------------------- tests */
 
-/* Whether any pixel centre of the rectangle may show something at distance near. */
-static int rect_visible(const ms_glcull *c, const float rect[4], float near)
+/* The eye ray of a pixel centre (double: o origin, d unit direction). */
+static void pixel_ray(const ms_glcull *c, int x, int y, double o[3], double d[3])
+{
+    double rx = (x + 0.5) * 2.0 * c->cam.hx / c->cam.width - c->cam.hx;
+    double ry = (y + 0.5) * 2.0 * c->cam.hy / c->cam.height - c->cam.hy;
+    o[0] = o[1] = o[2] = 0;
+    d[0] = d[1] = 0;
+    d[2] = -1;
+    if (c->cam.ortho) {
+        o[0] = rx;
+        o[1] = ry;
+        return;
+    }
+    double il = 1.0 / sqrt(rx * rx + ry * ry + 1.0);
+    d[0] = rx * il;
+    d[1] = ry * il;
+    d[2] = -il;
+}
+
+/* A primitive inside the capsule of radius r around segment a-b (a ball when a == b). */
+typedef struct capsule {
+    const float *a, *b;
+    double r;
+} capsule;
+
+/* Whether the ray may meet the capsule, and then a distance along it no farther than the
+ * first hit: exact for a ball; for a segment, the nearer end's distance less the radius.
+ * The radius is widened against rounding. */
+static int capsule_hit(const capsule *k, const double o[3], const double d[3], double *t)
+{
+    double u[3], w[3], uu = 0, ud = 0, wd = 0, wu = 0;
+    for (int i = 0; i < 3; i++) {
+        u[i] = (double)k->b[i] - k->a[i];
+        w[i] = (double)k->a[i] - o[i];
+        uu += u[i] * u[i]; ud += u[i] * d[i]; wd += w[i] * d[i]; wu += w[i] * u[i];
+    }
+    /* the segment point nearest the ray's line: s minimises |w + s u - ((w + s u).d) d| */
+    double den = uu - ud * ud, s = den > 1e-300 ? (wd * ud - wu) / den : 0;
+    s = s < 0 ? 0 : s > 1 ? 1 : s;
+    double q[3], qd = 0, m2 = 0;
+    for (int i = 0; i < 3; i++) q[i] = w[i] + s * u[i];
+    for (int i = 0; i < 3; i++) qd += q[i] * d[i];
+    for (int i = 0; i < 3; i++) m2 += (q[i] - qd * d[i]) * (q[i] - qd * d[i]);
+    double dist = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    double r = k->r * 1.001 + 1e-6 * dist;
+    if (m2 > r * r) return 0;
+    *t = uu > 0 ? fmin(wd, wd + ud) - r : qd - sqrt(r * r - m2);
+    *t = *t * (1.0 - 1e-5) - 1e-6;
+    return 1;
+}
+
+/* Whether any pixel centre of the rectangle may show the primitive: its ray meets the
+ * capsule no farther than the occlusion buffer (checked first against near, the least
+ * distance of the whole primitive). */
+static int rect_visible(const ms_glcull *c, const float rect[4], float near, const capsule *k)
 {
     int px[4];
     if (!rect_pixels(c, rect, RECT_MARGIN + 0.02f, px)) return 0;
@@ -228,14 +284,22 @@ static int rect_visible(const ms_glcull *c, const float rect[4], float near)
     memcpy(&bits, &near, sizeof bits);
     for (int y = px[1]; y <= px[3]; y++) {
         const _Atomic uint32_t *row = c->occ + (size_t)y * (size_t)c->cam.width;
-        for (int x = px[0]; x <= px[2]; x++)
-            if (atomic_load_explicit(row + x, memory_order_relaxed) >= bits) return 1;
+        for (int x = px[0]; x <= px[2]; x++) {
+            uint32_t ob = atomic_load_explicit(row + x, memory_order_relaxed);
+            if (ob < bits) continue;
+            double o[3], d[3], t;
+            float occ;
+            memcpy(&occ, &ob, sizeof occ);
+            pixel_ray(c, x, y, o, d);
+            if (capsule_hit(k, o, d, &t) && t <= occ) return 1;
+        }
     }
     return 0;
 }
 
 /* A primitive bounded by two balls (the same one twice for a sphere). */
-static int two_balls_visible(const ms_glcull *c, const float a[3], float ra, const float b[3], float rb)
+static int two_balls_visible(const ms_glcull *c, const float a[3], float ra, const float b[3],
+                             float rb)
 {
     float r1[4], r2[4], n1 = 0, n2 = 0;
     int k1 = ball_rect(c, a, ra, r1, &n1), k2 = a == b ? k1 : ball_rect(c, b, rb, r2, &n2);
@@ -249,7 +313,8 @@ static int two_balls_visible(const ms_glcull *c, const float a[3], float ra, con
         memcpy(r1, r2, sizeof r1);
         n1 = n2;
     }
-    return rect_visible(c, r1, n1);
+    capsule k = {a, b, MS_MAX(ra, rb)};
+    return rect_visible(c, r1, n1, &k);
 }
 
 typedef struct test_job {
@@ -277,7 +342,8 @@ static int primitive_visible(const test_job *j, size_t i)
     }
     xform(j->mv, dl->cones.base + 3 * i, a);
     xform(j->mv, dl->cones.apex + 3 * i, b);
-    return two_balls_visible(j->c, a, dl->cones.rbase[i] * j->rscale, b, dl->cones.rapex[i] * j->rscale);
+    return two_balls_visible(j->c, a, dl->cones.rbase[i] * j->rscale, b,
+                             dl->cones.rapex[i] * j->rscale);
 }
 
 static void test_chunk(void *ctx, size_t b, size_t e, int t)

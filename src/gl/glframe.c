@@ -65,7 +65,8 @@ static void view_matrix(const ms_camera *c, float m[16])
     for (int i = 0; i < 3; i++) {
         float sg = i == 2 ? -1.0f : 1.0f;
         for (int k = 0; k < 3; k++) m[4 * i + k] = sg * rows[i][k];
-        m[4 * i + 3] = -(m[4 * i] * c->eye[0] + m[4 * i + 1] * c->eye[1] + m[4 * i + 2] * c->eye[2]);
+        m[4 * i + 3] = -(m[4 * i] * c->eye[0] + m[4 * i + 1] * c->eye[1] +
+                         m[4 * i + 2] * c->eye[2]);
     }
     m[12] = m[13] = m[14] = 0;
     m[15] = 1;
@@ -107,9 +108,9 @@ static void lights_and_fog(frame *fr)
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
         if (!s->lights[i].on) continue;
         float *d = fr->ldir + 3 * fr->nlights;
+        const float *l = s->lights[i].pos;
         for (int k = 0; k < 3; k++)
-            d[k] = fr->view[4 * k] * s->lights[i].pos[0] + fr->view[4 * k + 1] * s->lights[i].pos[1] +
-                   fr->view[4 * k + 2] * s->lights[i].pos[2];
+            d[k] = fr->view[4 * k] * l[0] + fr->view[4 * k + 1] * l[1] + fr->view[4 * k + 2] * l[2];
         normalize3(d);
         memcpy(fr->lcol + 3 * fr->nlights, s->lights[i].color, 3 * sizeof(float));
         fr->nlights++;
@@ -292,19 +293,23 @@ static int upload_kind(frame *fr, glitem *gi, int k, ms_error *err)
 {
     const ms_displaylist *dl = k == K_TEXT ? gi->text : gi->it->dl;
     ms_glmerge merged;
-    int m = k == K_CYLINDERS ? ms_glmerge_cylinders(&dl->cylinders, &merged, err) : 1;
+    int m = 1;
+    if (k == K_CYLINDERS && !fr->g->hardware)
+        m = ms_glmerge_cylinders(&dl->cylinders, &merged, err);
     if (m < 0) return -1;
     int rc = upload_list(fr, gi, k, m == 0 ? &merged.dl : dl, m == 0 ? merged.color2 : NULL, err);
     if (m == 0) ms_glmerge_free(&merged);
     return rc;
 }
 
-/* Cull when the scene holds many impostors (and the occlusion buffer, 4 bytes a pixel, is
- * at most 256 MB); MOLSCOPE_GL_CULL=0 or 1 decides instead. */
-static int want_cull(const ms_scene *s)
+/* Cull on a software rasterizer when the scene holds many impostors (and the occlusion
+ * buffer, 4 bytes a pixel, is at most 256 MB); a GPU draws them faster than the CPU culls.
+ * MOLSCOPE_GL_CULL=0 or 1 decides instead. */
+static int want_cull(const ms_gl *g, const ms_scene *s)
 {
     const char *v = getenv("MOLSCOPE_GL_CULL");
     if (v && *v) return strcmp(v, "0") != 0;
+    if (ms_gl_hardware(g)) return 0;
     if ((size_t)s->width * (size_t)s->height > (size_t)8192 * 8192) return 0;
     size_t n = 0;
     for (size_t i = 0; i < s->nitems; i++) {
@@ -334,11 +339,13 @@ static int place_items(frame *fr, ms_error *err)
 static int upload(frame *fr, ms_error *err)
 {
     if (place_items(fr, err)) return -1;
-    if (want_cull(fr->s)) {
+    if (want_cull(fr->g, fr->s)) {
         if (!(fr->cull = ms_glcull_new(&fr->cam, err))) return -1;
-        for (size_t i = 0; i < fr->n; i++)
-            if (fr->items[i].it->mat.opacity >= 1.0f)
-                ms_glcull_occluders(fr->cull, fr->items[i].it->dl, fr->items[i].mv, fr->items[i].rscale);
+        for (size_t i = 0; i < fr->n; i++) {
+            const glitem *gi = &fr->items[i];
+            if (gi->it->mat.opacity >= 1.0f)
+                ms_glcull_occluders(fr->cull, gi->it->dl, gi->mv, gi->rscale);
+        }
     }
     fr->g->r.used = 0;
     for (size_t i = 0; i < fr->n; i++)
@@ -445,8 +452,8 @@ static void draw_items(frame *fr, int pass)
         const glitem *gi = &fr->items[i];
         for (int k = 0; k < K_N; k++) {
             size_t n = gi->count[k];
-            if (!n || (pass == 1 && !gi->translucent[k]) || (pass == 0 && gi->it->mat.opacity < 1.0f))
-                continue;
+            int skip = pass == 1 ? !gi->translucent[k] : gi->it->mat.opacity < 1.0f;
+            if (!n || skip) continue;
             item_uniforms(fr, gi, k, pass);
             draw_arrays(&fr->g->f, k, gi->buf[k], n);
         }

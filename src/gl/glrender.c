@@ -183,7 +183,8 @@ GLuint ms_glr_upload(ms_gl *g, GLenum target, const void *data, size_t n, ms_err
     g->f.BindBuffer(target, b);
     g->f.BufferData(target, (GLsizeiptr)n, data, GL_STREAM_DRAW);
     if (g->f.GetError() == GL_OUT_OF_MEMORY) {
-        ms_error_set(err, "%s: out of memory for %zu bytes of geometry", ms_gl_kind_name(g->kind), n);
+        ms_error_set(err, "%s: out of memory for %zu bytes of geometry", ms_gl_kind_name(g->kind),
+                     n);
         return 0;
     }
     return b;

@@ -461,7 +461,8 @@ static ms_rgba8 element_colour(int z)
     return z == 6 ? (ms_rgba8){64, 191, 191, 255} : z == 8 ? RED : z == 7 ? BLUE : (ms_rgba8){255, 255, 0, 255};
 }
 
-/* VDW spheres of every atom and Licorice-like bonds, placed as resetview places them. */
+/* VDW spheres of every atom and Licorice's bonds (half cylinders coloured by atom), placed
+ * as resetview places them. */
 static void molecule_list(const ms_molecule *m, ms_displaylist *dl, float xform[16])
 {
     const float *p = ms_mol_pos(m);
@@ -469,9 +470,14 @@ static void molecule_list(const ms_molecule *m, ms_displaylist *dl, float xform[
     for (size_t i = 0; i < m->atoms.n; i++)
         ms_dl_sphere(dl, p + 3 * i, m->atoms.radius[i], element_colour(m->atoms.atomicnumber[i]), 12);
     for (size_t i = 0; i < m->atoms.n; i++)
-        for (uint32_t k = m->bonds.start[i]; k < m->bonds.start[i + 1]; k++)
-            if (m->bonds.to[k] > i)
-                ms_dl_cylinder(dl, p + 3 * i, p + 3 * m->bonds.to[k], 0.3f, WHITE, 0, 12);
+        for (uint32_t k = m->bonds.start[i]; k < m->bonds.start[i + 1]; k++) {
+            size_t j = m->bonds.to[k];
+            float mid[3];
+            if (j < i) continue;
+            for (int d = 0; d < 3; d++) mid[d] = 0.5f * (p[3 * i + d] + p[3 * j + d]);
+            ms_dl_cylinder(dl, p + 3 * i, mid, 0.3f, element_colour(m->atoms.atomicnumber[i]), 0, 12);
+            ms_dl_cylinder(dl, p + 3 * j, mid, 0.3f, element_colour(m->atoms.atomicnumber[j]), 0, 12);
+        }
     ms_dl_bounds(dl, lo, hi);
     for (int k = 0; k < 3; k++) ext = fmaxf(ext, hi[k] - lo[k]);
     ms_mat4_translation(t, -0.5f * (lo[0] + hi[0]), -0.5f * (lo[1] + hi[1]), -0.5f * (lo[2] + hi[2]));
@@ -518,15 +524,25 @@ static void test_nearest_atom(ms_gl *g, const ms_displaylist *dl, const float xf
     ms_scene_free(&s);
 }
 
-/* Occlusion culling (forced on and off) leaves every pixel as it is. */
+/* Occlusion culling (forced on and off) leaves every pixel as it is: both projections, the
+ * whole molecule at 401 and at 61 pixels (atoms smaller than a pixel) and a close-up whose
+ * atoms cross the near plane. */
 static void test_cull_invariance(ms_gl *g, const ms_displaylist *dl, const float xform[16])
 {
-    for (int ortho = 0; ortho < 2; ortho++) {
+    static const char *views[3] = {"401 px", "61 px", "close-up"};
+    for (int v = 0; v < 6; v++) {
+        int ortho = v & 1, view = v / 2;
         ms_scene s;
         ms_image img[2];
         int ok = 1;
+        float zoom[16], t[16], x[16];
+        ms_mat4_translation(t, 0.1f, 0, 1.2f);
+        ms_mat4_scaling(zoom, 4);
+        ms_mat4_mul(zoom, xform, x);
+        ms_mat4_mul(t, x, x);
         scene_init(&s, ortho);
-        add_xform(&s, (ms_displaylist *)dl, xform);
+        if (view == 1) s.width = s.height = 61;
+        add_xform(&s, (ms_displaylist *)dl, view == 2 ? x : xform);
         for (int c = 0; c < 2; c++) {
             setenv("MOLSCOPE_GL_CULL", c ? "1" : "0", 1);
             ok &= draw(g, &s, &img[c]) == 0;
@@ -534,9 +550,13 @@ static void test_cull_invariance(ms_gl *g, const ms_displaylist *dl, const float
         unsetenv("MOLSCOPE_GL_CULL");
         if (ok) {
             size_t diff = 0;
-            for (size_t i = 0; i < 3 * (size_t)W * H; i++) diff += img[0].rgb[i] != img[1].rgb[i];
-            t_ok(diff == 0, "%s 1tii VDW + bonds: culling changes %zu values",
-                 ortho ? "orthographic" : "perspective", diff);
+            for (size_t i = 0; i < 3 * (size_t)s.width * s.height; i++)
+                diff += img[0].rgb[i] != img[1].rgb[i];
+            const uint8_t bg[3] = {0, 0, 0};
+            size_t lit = count_not(&img[0], bg);
+            t_ok(diff == 0 && lit > (size_t)s.width * s.height / 10,
+                 "%s 1tii VDW + Licorice, %s (%zu pixels drawn): culling changes %zu values",
+                 ortho ? "orthographic" : "perspective", views[view], lit, diff);
             ms_image_free(&img[0]);
             ms_image_free(&img[1]);
         }
