@@ -33,7 +33,11 @@ foreach e [array names byelement] {
 }
 display resetview
 display resize 640 640
-set t [time {render snapshot $png}]
-puts "rendered [llength [join [lmap e [array names byelement] {set byelement($e)}]]] atoms to\
-      [file normalize $png] ([join [display get size] x], [format %.2f [expr {[lindex $t 0] / 1e6}]] s)"
+set n [llength [join [lmap e [array names byelement] {set byelement($e)}]]]
+if {[catch {time {render snapshot $png}} t]} {
+    puts "no preview image: $t"
+} else {
+    puts "rendered $n atoms to [file normalize $png] ([join [display get size] x],\
+          [format %.2f [expr {[lindex $t 0] / 1e6}]] s)"
+}
 quit

@@ -15,6 +15,12 @@ static ms_gl *display;
 static ms_gl *open_best(ms_error *err)
 {
     ms_error e[MS_GL_NKINDS];
+    if (!ms_gl_built(MS_GL_EGL) && !ms_gl_built(MS_GL_OSMESA)) {
+        ms_error_set(err, "OpenGL is not built into this molscope (configure found neither "
+                          "OSMesa nor EGL; Debian: libosmesa6-dev libegl-dev libgl-dev); the "
+                          "file renderers (Tachyon, POV3, Wavefront) still work");
+        return NULL;
+    }
     for (int k = 0; k < MS_GL_NKINDS; k++) {
         ms_gl *g = ms_gl_open((ms_gl_kind)k, &e[k]);
         if (g) return g;

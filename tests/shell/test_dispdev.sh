@@ -6,6 +6,10 @@
 . "$(dirname "$0")/lib.sh"
 cd "$scratch"
 script='render snapshot s.ppm; puts "[display get depthcue] [file size s.ppm]"'
+out=$(echo "$script" | $MOLSCOPE -dispdev text 2>&1)
+case "$out" in *"not built"*|*"no offscreen OpenGL device"*)
+    skip "offscreen OpenGL" "$out"; rm -rf "$scratch"; exit 0;;
+esac
 size=$((512 * 512 * 3 + 15))      # VMD's 512 x 512 and the PPM header "P6\n512 512\n255\n"
 for dev in osmesa egl; do
     out=$(echo "$script" | $MOLSCOPE -dispdev $dev 2>&1)
@@ -22,6 +26,8 @@ for dev in opengl openglpbuffer WIN; do
 done
 out=$(echo "$script" | $MOLSCOPE -dispdev text 2>&1)
 expect_eq "a text session draws render snapshot on demand (depth cueing stays off)" "$out" "off $size"
+out=$(echo "$script" | $MOLSCOPE -dispdev osmesa -size 64 48 2>&1)
+expect_eq "-size sets the image size" "$out" "on $((64 * 48 * 3 + 13))"
 
 # EGL with no vendor library cannot start: the reason, a device that works, then text.
 out=$(echo "$script" | __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json $MOLSCOPE -dispdev egl 2>&1)
