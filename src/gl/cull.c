@@ -81,14 +81,21 @@ static void to_window(const ms_glcull *c, const float e[3], float *x, float *y)
 
 /* ---------------------------------------------------------------- rectangles */
 
-/* Window rectangle (GL pixels) of a ball, and its nearest distance; 0 when it cannot be
- * seen at all (beyond the clip planes), 2 when it crosses the eye plane (it must be kept),
- * else 1. Under perspective the bounds are the slopes of the planes through the eye that
- * touch the ball (as the vertex shader computes them). */
+/* Which side of the clip planes a ball lies wholly on: -1 nearer than the near plane, 1
+ * beyond the far plane, 0 neither. */
+static int ball_side(const ms_glcull *c, const float e[3], float r)
+{
+    float d = -e[2];
+    return d + r < c->cam.near ? -1 : d - r > c->cam.far ? 1 : 0;
+}
+
+/* Window rectangle (GL pixels) of a ball, and its nearest distance: 1, or 2 when it crosses
+ * the eye plane (its projection is unbounded: keep what it bounds). Under perspective the
+ * bounds are the slopes of the planes through the eye that touch the ball (as the vertex
+ * shader computes them). */
 static int ball_rect(const ms_glcull *c, const float e[3], float r, float rect[4], float *near)
 {
     float d = -e[2];
-    if (d + r < c->cam.near || d - r > c->cam.far) return 0;
     if (c->cam.ortho) {
         float x, y, rp = r * c->px_per_unit;
         to_window(c, e, &x, &y);
@@ -297,21 +304,21 @@ static int rect_visible(const ms_glcull *c, const float rect[4], float near, con
     return 0;
 }
 
-/* A primitive bounded by two balls (the same one twice for a sphere). */
+/* A primitive bounded by two balls (the same one twice for a sphere): gone when both lie
+ * on the same far side of a clip plane, else tested over the union of their rectangles (as
+ * the vertex shader bounds it). */
 static int two_balls_visible(const ms_glcull *c, const float a[3], float ra, const float b[3],
                              float rb)
 {
     float r1[4], r2[4], n1 = 0, n2 = 0;
-    int k1 = ball_rect(c, a, ra, r1, &n1), k2 = a == b ? k1 : ball_rect(c, b, rb, r2, &n2);
-    if (k1 == 2 || k2 == 2) return 1;
-    if (!k1 && !k2) return 0;
-    if (a != b && k1 && k2) {
+    int side = ball_side(c, a, ra);
+    if (side && side == ball_side(c, b, rb)) return 0;
+    if (ball_rect(c, a, ra, r1, &n1) == 2 || (a != b && ball_rect(c, b, rb, r2, &n2) == 2))
+        return 1;
+    if (a != b) {
         r1[0] = MS_MIN(r1[0], r2[0]); r1[1] = MS_MIN(r1[1], r2[1]);
         r1[2] = MS_MAX(r1[2], r2[2]); r1[3] = MS_MAX(r1[3], r2[3]);
         n1 = MS_MIN(n1, n2);
-    } else if (!k1) {
-        memcpy(r1, r2, sizeof r1);
-        n1 = n2;
     }
     capsule k = {a, b, MS_MAX(ra, rb)};
     return rect_visible(c, r1, n1, &k);

@@ -91,10 +91,10 @@ static const char fs_common[] =
     "    o_weight = vec4(a);\n"
     "}\n";
 
-/* Screen rectangle (normalised device coordinates) bounding two spheres exactly: under
- * perspective each sphere's x and y bounds are the slopes of the planes through the eye that
- * touch it. A sphere crossing the eye plane gets the whole screen; one wholly in front of the
- * near plane or behind the far plane an empty rectangle. */
+/* Screen rectangle (normalised device coordinates) bounding one or two balls exactly: under
+ * perspective each ball's x and y bounds are the slopes of the planes through the eye that
+ * touch it. A ball crossing the eye plane gets the whole screen; a primitive whose balls
+ * both lie nearer than the near plane, or both beyond the far plane, an empty rectangle. */
 static const char vs_bounds[] =
     "#version 330 core\n"
     "uniform mat4 u_mv;\n"
@@ -106,19 +106,24 @@ static const char vs_bounds[] =
     "    float k = dd * dd - r * r, s = r * sqrt(max(c * c + k, 0.0));\n"
     "    return vec2(c * dd - s, c * dd + s) / k;\n"
     "}\n"
+    "int ball_side(vec3 c, float r) {\n"
+    "    return -c.z + r < u_nearfar.x ? -1 : -c.z - r > u_nearfar.y ? 1 : 0;\n"
+    "}\n"
     "vec4 sphere_rect(vec3 c, float r) {\n"
     "    float dd = -c.z;\n"
-    "    if (dd + r < u_nearfar.x || dd - r > u_nearfar.y) return vec4(2.0);\n"
     "    if (u_ray.z > 0.5) return vec4((c.xy - r) / u_ray.xy, (c.xy + r) / u_ray.xy);\n"
     "    if (dd <= r * 1.0001) return vec4(-1.0, -1.0, 1.0, 1.0);\n"
     "    vec2 sx = slopes(c.x, dd, r) / u_ray.x, sy = slopes(c.y, dd, r) / u_ray.y;\n"
     "    return vec4(sx.x, sy.x, sx.y, sy.y);\n"
     "}\n"
-    "/* The corner gl_VertexID (0..3, a triangle strip) of the union of two rectangles, widened\n"
+    "/* The corner gl_VertexID (0..3, a triangle strip) of the balls' rectangles' union, widened\n"
     "   by 0.05 pixel so that rasterizers snapping corners to a subpixel grid still sample\n"
     "   every pixel centre inside (the occlusion culling counts on it). */\n"
-    "vec4 corner(vec4 a, vec4 b) {\n"
-    "    vec4 r = a.x > 1.5 ? b : b.x > 1.5 ? a : vec4(min(a.xy, b.xy), max(a.zw, b.zw));\n"
+    "vec4 corner(vec3 ca, float ra, vec3 cb, float rb) {\n"
+    "    int side = ball_side(ca, ra);\n"
+    "    if (side != 0 && side == ball_side(cb, rb)) return vec4(2.0, 2.0, 2.0, 1.0);\n"
+    "    vec4 a = sphere_rect(ca, ra), b = sphere_rect(cb, rb);\n"
+    "    vec4 r = vec4(min(a.xy, b.xy), max(a.zw, b.zw));\n"
     "    vec2 m = 0.1 / u_viewport;\n"
     "    r = clamp(r + vec4(-m, m), -1.0, 1.0);\n"
     "    vec2 p = vec2((gl_VertexID & 1) != 0 ? r.z : r.x, (gl_VertexID & 2) != 0 ? r.w : r.y);\n"
@@ -136,8 +141,7 @@ static const char vs_sphere[] =
     "    v_center = (u_mv * vec4(a_center, 1.0)).xyz;\n"
     "    v_radius = a_radius * u_rscale;\n"
     "    v_color = a_color;\n"
-    "    vec4 r = sphere_rect(v_center, v_radius);\n"
-    "    gl_Position = corner(r, r);\n"
+    "    gl_Position = corner(v_center, v_radius, v_center, v_radius);\n"
     "}\n";
 
 /* The ray is first moved to the point nearest the centre, so that what follows works with
@@ -185,7 +189,7 @@ static const char vs_cone[] =
     "    v_color = a_color;\n"
     "    v_color2 = a_color2;\n"
     "    v_caps = int(a_caps + 0.5);\n"
-    "    gl_Position = corner(sphere_rect(v_base, v_radii.x), sphere_rect(v_apex, v_radii.y));\n"
+    "    gl_Position = corner(v_base, v_radii.x, v_apex, v_radii.y);\n"
     "}\n";
 
 static const char fs_cone[] =

@@ -307,6 +307,33 @@ static void test_outline(ms_gl *g)
          vals[1][0], vals[0][1], vals[1][1], f * vals[0][1], n[2]);
 }
 
+/* A cylinder running from the middle of the view to beyond the far plane is drawn up to
+ * the far plane (its far end's ball is clipped, its middle is not), culled or not. */
+static void test_far_cylinder(ms_gl *g)
+{
+    float a[3] = {0.5f, 0, 0}, b[3] = {0.5f, 0, -20}, mid[3] = {0.5f, 0, -3}, x, y;
+    for (int cull = 0; cull < 2; cull++) {
+        ms_scene s;
+        ms_displaylist dl;
+        ms_image img;
+        scene_init(&s, 0);
+        ms_dl_init(&dl);
+        ms_dl_cylinder(&dl, a, b, 0.05f, WHITE, 0, 12);
+        add(&s, &dl, &AMBIENT);
+        ms_scene_project(&s, mid, &x, &y, NULL);
+        setenv("MOLSCOPE_GL_CULL", cull ? "1" : "0", 1);
+        if (draw(g, &s, &img) == 0) {
+            const uint8_t *p = px(&img, (int)x, (int)y);
+            t_ok(p[0] > 50, "a cylinder into the far plane is drawn 5 units away (%s): %d",
+                 cull ? "culling" : "no culling", p[0]);
+            ms_image_free(&img);
+        }
+        unsetenv("MOLSCOPE_GL_CULL");
+        ms_scene_free(&s);
+        ms_dl_free(&dl);
+    }
+}
+
 /* A sphere cut by the near plane shows its inside instead of vanishing. */
 static void test_near_clip(ms_gl *g)
 {
@@ -596,6 +623,7 @@ static void run_backend(ms_gl *g, const ms_displaylist *mol, const float xform[1
     test_translucent(g);
     test_outline(g);
     test_near_clip(g);
+    test_far_cylinder(g);
     test_shapes(g);
     test_half_bonds(g);
     test_lines(g);
