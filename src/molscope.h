@@ -17,6 +17,7 @@
  *               file on rank 0 and broadcasting the molecule (also the core of the
  *               molscope::parallel Tcl package, ../tcl/parallel)
  *   surf/       QuickSurf: Gaussian density maps, marching cubes, the surface engine
+ *   gl/         offscreen OpenGL (OSMesa, EGL): the display device and `render snapshot`
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
  *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
@@ -53,6 +54,7 @@
 #include "measure/measure.h"
 #include "parallel/parallel.h"
 #include "surf/qsurf.h"
+#include "gl/gl.h"
 #include "app/app.h"
 #include "commands/commands.h"
 #include "select/atomsel.h"

@@ -21,6 +21,10 @@ tests_unit_test_molecule_LDADD = $(TEST_CORE_LIBS)
 tests_unit_test_select_SOURCES = tests/unit/test_select.c tests/unit/ms_test.h \
 	plugins/pdb.c $(PLUGIN_UTIL)
 tests_unit_test_select_LDADD = $(TEST_CORE_LIBS)
+check_PROGRAMS += tests/unit/test_gl
+tests_unit_test_gl_SOURCES = tests/unit/test_gl.c tests/unit/ms_test.h plugins/pdb.c $(PLUGIN_UTIL)
+tests_unit_test_gl_LDADD = $(TEST_CORE_LIBS) -lm
+tests_unit_test_gl_CFLAGS = $(AM_CFLAGS)
 check_PROGRAMS += tests/unit/test_scene
 tests_unit_test_scene_SOURCES = tests/unit/test_scene.c tests/unit/ms_test.h
 tests_unit_test_scene_LDADD = $(TEST_CORE_LIBS)

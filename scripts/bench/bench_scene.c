@@ -5,8 +5,8 @@
  *
  * usage: bench_scene [data folder] [copies]     (run by `make bench`) */
 #include "config.h"
+#include "bench_system.h"
 #include "base/threads.h"
-#include "fileio/load.h"
 #include "render/render.h"
 #include "scene/displaylist.h"
 #include "scene/mat4.h"
@@ -14,118 +14,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-const ms_plugin *ms_plugin_entry(void);
-
-typedef struct sys {
-    size_t n;                 /* atoms */
-    float *pos, *radius;
-    ms_rgba8 *color;
-    uint32_t *bstart, *bto;   /* CSR bonds of the replicated system */
-} sys;
-
-static int make_system(const char *data, int copies, sys *s)
-{
-    ms_registry reg;
-    ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
-    char path[1024];
-    snprintf(path, sizeof path, "%s/1tii.pdb", data);
-    ms_load_opts o;
-    ms_load_opts_default(&o);
-    o.waitfor = -1;
-    ms_error err = {{0}};
-    ms_molecule *m = ms_load_new(&reg, path, &o, &err);
-    if (!m) {
-        fprintf(stderr, "bench_scene: %s: %s\n", path, err.msg);
-        return -1;
-    }
-    size_t n0 = m->atoms.n, nb0 = m->bonds.start[n0];
-    s->n = n0 * (size_t)copies;
-    s->pos = malloc(3 * s->n * sizeof(float));
-    s->radius = malloc(s->n * sizeof(float));
-    s->color = malloc(s->n * sizeof(ms_rgba8));
-    s->bstart = malloc((s->n + 1) * sizeof(uint32_t));
-    s->bto = malloc(nb0 * (size_t)copies * sizeof(uint32_t));
-    if (!s->pos || !s->radius || !s->color || !s->bstart || !s->bto) return -1;
-    const float *p0 = ms_mol_pos(m);
-    int side = 1;
-    while (side * side * side < copies) side++;
-    for (int c = 0; c < copies; c++) {
-        float off[3] = {(float)(c % side) * 120.0f, (float)(c / side % side) * 120.0f,
-                        (float)(c / side / side) * 180.0f};
-        for (size_t i = 0; i < n0; i++) {
-            size_t a = (size_t)c * n0 + i;
-            for (int k = 0; k < 3; k++) s->pos[3 * a + k] = p0[3 * i + k] + off[k];
-            s->radius[a] = m->atoms.radius[i];
-            int z = m->atoms.atomicnumber[i];
-            s->color[a] = z == 6 ? (ms_rgba8){64, 191, 191, 255} : z == 8 ? (ms_rgba8){255, 0, 0, 255}
-                          : z == 7 ? (ms_rgba8){0, 0, 255, 255} : (ms_rgba8){255, 255, 0, 255};
-            s->bstart[a] = (uint32_t)((size_t)c * nb0 + m->bonds.start[i]);
-        }
-        for (size_t b = 0; b < nb0; b++) s->bto[(size_t)c * nb0 + b] = m->bonds.to[b] + (uint32_t)((size_t)c * n0);
-    }
-    s->bstart[s->n] = (uint32_t)(nb0 * (size_t)copies);
-    ms_mol_free(m);
-    ms_registry_free(&reg);
-    return 0;
-}
-
-/* ---------------------------------------------------------------- VDW */
-
-typedef struct job {
-    const sys *s;
-    ms_displaylist *dl;
-    size_t s0, c0;            /* first sphere and cylinder of the block */
-} job;
-
-static void fill_spheres(void *ctx, size_t b, size_t e, int t)
-{
-    job *j = ctx;
-    ms_dl_spheres *sp = &j->dl->spheres;
-    for (size_t i = b; i < e; i++) {
-        size_t o = j->s0 + i;
-        memcpy(sp->xyz + 3 * o, j->s->pos + 3 * i, 3 * sizeof(float));
-        sp->radius[o] = j->s->radius[i];
-        sp->color[o] = j->s->color[i];
-        sp->res[o] = 12;
-    }
-}
-
-/* Licorice: a sphere per atom and, for each bond i-j with i < j, two half cylinders
- * coloured by their atom. Bond k of atom i is cylinder pair 2 * (its rank among i's upper
- * bonds + the upper bonds of the atoms before i): the ranks come from a prefix sum. */
-typedef struct lic {
-    job j;
-    const uint32_t *first;    /* first cylinder pair of each atom */
-} lic;
-
-static void fill_bonds(void *ctx, size_t b, size_t e, int t)
-{
-    lic *l = ctx;
-    const sys *s = l->j.s;
-    ms_dl_cylinders *cy = &l->j.dl->cylinders;
-    for (size_t i = b; i < e; i++) {
-        size_t c = l->j.c0 + 2 * (size_t)l->first[i];
-        for (uint32_t k = s->bstart[i]; k < s->bstart[i + 1]; k++) {
-            uint32_t j = s->bto[k];
-            if (j < i) continue;
-            float mid[3];
-            for (int d = 0; d < 3; d++) mid[d] = 0.5f * (s->pos[3 * i + d] + s->pos[3 * j + d]);
-            memcpy(cy->base + 3 * c, s->pos + 3 * i, 12);
-            memcpy(cy->apex + 3 * c, mid, 12);
-            memcpy(cy->base + 3 * c + 3, s->pos + 3 * (size_t)j, 12);
-            memcpy(cy->apex + 3 * c + 3, mid, 12);
-            cy->radius[c] = cy->radius[c + 1] = 0.3f;
-            cy->color[c] = s->color[i];
-            cy->color[c + 1] = s->color[j];
-            cy->caps[c] = cy->caps[c + 1] = 0;
-            cy->res[c] = cy->res[c + 1] = 12;
-            c += 2;
-        }
-        l->j.dl->spheres.radius[l->j.s0 + i] = 0.3f;
-    }
-}
 
 /* NewCartoon-like: a tube mesh of `ring` vertices per spline point. */
 typedef struct tube {
@@ -163,7 +51,7 @@ static void fill_tube(void *ctx, size_t b, size_t e, int t)
 
 static double now(void) { return ms_now(); }
 
-static void bench_vdw(const sys *s, ms_error *err)
+static void bench_vdw(const bench_sys *s, ms_error *err)
 {
     ms_displaylist dl;
     ms_dl_init(&dl);
@@ -172,45 +60,30 @@ static void bench_vdw(const sys *s, ms_error *err)
     double t_single = now() - t;
     /* reserve + parallel fill, into the memory of the last build (a rebuild) and fresh */
     ms_dl_clear(&dl);
-    job j = {s, &dl, 0, 0};
     t = now();
-    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s->n, err);
-    ms_parallel_for(s->n, 16384, fill_spheres, &j);
+    bench_vdw_list(s, &dl, err);
     double t_rebuild = now() - t;
     ms_dl_free(&dl);
     t = now();
-    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s->n, err);
-    ms_parallel_for(s->n, 16384, fill_spheres, &j);
+    bench_vdw_list(s, &dl, err);
     double t_fresh = now() - t;
     printf("VDW       %8zu spheres: single appends %.3f s, block fill %.3f s fresh, %.3f s rebuild\n",
            s->n, t_single, t_fresh, t_rebuild);
     ms_dl_free(&dl);
 }
 
-static void bench_licorice(const sys *s, ms_error *err)
+static void bench_licorice(const bench_sys *s, ms_error *err)
 {
     ms_displaylist dl;
     ms_dl_init(&dl);
     double t = now();
-    uint32_t *first = malloc((s->n + 1) * sizeof *first);
-    if (!first) return;
-    uint32_t acc = 0;
-    for (size_t i = 0; i < s->n; i++) {
-        first[i] = acc;
-        for (uint32_t k = s->bstart[i]; k < s->bstart[i + 1]; k++) acc += s->bto[k] > i;
-    }
-    lic l = {{s, &dl, 0, 0}, first};
-    l.j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, s->n, err);
-    l.j.c0 = (size_t)ms_dl_extend(&dl, MS_DL_CYLINDERS, 2 * (size_t)acc, err);
-    ms_parallel_for(s->n, 16384, fill_spheres, &l.j);
-    ms_parallel_for(s->n, 16384, fill_bonds, &l);
+    bench_licorice_list(s, &dl, err);
     printf("Licorice  %8zu spheres + %zu cylinders: %.3f s fresh\n", s->n, dl.cylinders.n, now() - t);
-    free(first);
     ms_dl_free(&dl);
 }
 
 /* NewCartoon-like: 10 spline points per residue (1/8 of the atoms), a ring of 12. */
-static void bench_cartoon(const sys *s, ms_error *err)
+static void bench_cartoon(const bench_sys *s, ms_error *err)
 {
     size_t npts = s->n / 8 * 10, ring = 12;
     float *path = malloc(3 * npts * sizeof(float));
@@ -237,14 +110,14 @@ static void bench_cartoon(const sys *s, ms_error *err)
 }
 
 /* The Tachyon exporter on the first 200k spheres. */
-static void bench_export(const sys *s, ms_error *err)
+static void bench_export(const bench_sys *s, ms_error *err)
 {
     ms_displaylist dl;
     ms_dl_init(&dl);
-    size_t n = MS_MIN(s->n, (size_t)200000);
-    job j = {s, &dl, 0, 0};
-    j.s0 = (size_t)ms_dl_extend(&dl, MS_DL_SPHERES, n, err);
-    ms_parallel_for(n, 16384, fill_spheres, &j);
+    bench_sys part = *s;
+    part.n = MS_MIN(s->n, (size_t)200000);
+    size_t n = part.n;
+    bench_vdw_list(&part, &dl, err);
     ms_scene sc;
     ms_scene_init(&sc);
     sc.width = sc.height = 512;
@@ -272,9 +145,8 @@ int main(int argc, char **argv)
 {
     const char *data = argc > 1 ? argv[1] : "tests/data";
     int copies = argc > 2 ? atoi(argv[2]) : 176;
-    sys s;
-    memset(&s, 0, sizeof s);
-    if (copies < 1 || make_system(data, copies, &s)) return 1;
+    bench_sys s;
+    if (copies < 1 || bench_system_make(data, copies, &s)) return 1;
     printf("system: %zu atoms, %u bonds (1tii x %d), %d threads\n", s.n, s.bstart[s.n] / 2,
            copies, ms_threads_count());
     ms_error err = {{0}};
@@ -282,10 +154,6 @@ int main(int argc, char **argv)
     bench_licorice(&s, &err);
     bench_cartoon(&s, &err);
     bench_export(&s, &err);
-    free(s.pos);
-    free(s.radius);
-    free(s.color);
-    free(s.bstart);
-    free(s.bto);
+    bench_system_free(&s);
     return 0;
 }

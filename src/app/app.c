@@ -4,6 +4,7 @@
 #include "app/app.h"
 #include "commands/commands.h"
 #include "fileio/load.h"
+#include "gl/gl.h"
 
 #include <limits.h>
 #include <stdio.h>
@@ -101,6 +102,7 @@ void ms_app_free(ms_app *app)
         ms_molset_free(&app->mols);
     }
     ms_registry_free(&app->plugins);
+    ms_gl_display_close();
     free(app);
 }
 

@@ -9,6 +9,8 @@
 #include "app/options.h"
 #include "app/shell.h"
 #include "parallel/parallel.h"
+#include "gl/gl.h"
+#include "view/view.h"
 
 #include <malloc.h>
 #include <stdint.h>
@@ -35,25 +37,41 @@ static void set_tcl_argv(ms_app *app, const char *argv0, const ms_options *o)
                   TCL_GLOBAL_ONLY);
 }
 
-/* Display devices: text and none need nothing; the others are offscreen renderers that
- * later modules provide. A device that is not built is reported and text mode is used. */
+/* Display devices: text and none need nothing (render snapshot opens an offscreen context
+ * when it first draws); osmesa and egl start that back-end; opengl, openglpbuffer and win
+ * (what VMD users type) start the best one available and say which. VMD's OpenGL displays
+ * turn depth cueing on. A device that cannot start is reported with the reason and a device
+ * that works, and text is used. */
 static void choose_dispdev(ms_app *app, const char *dev)
 {
-    static const char *known[] = {"text", "none", "win", "opengl", "openglpbuffer", "osmesa",
-                                  "egl", "cave", "caveforms", "freevr", "freevrforms"};
+    static const char *known[] = {"text", "none", "osmesa", "egl", "opengl", "openglpbuffer",
+                                  "win", "cave", "caveforms", "freevr", "freevrforms"};
     int talk = ms_par_rank() == 0;  /* only rank 0 prints informational messages */
     if (!dev) return;
-    for (size_t i = 0; i < sizeof known / sizeof known[0]; i++) {
-        if (strcasecmp(dev, known[i]) != 0) continue;
-        if (i >= 2 && talk)
-            fprintf(stderr, "molscope: display device '%s' is not built into this version; "
-                            "using text (render snapshot and the ray tracers work without a "
-                            "display)\n", dev);
-        else if (i < 2)
-            snprintf(app->dispdev, sizeof app->dispdev, "%s", known[i]);
+    size_t i = 0;
+    while (i < sizeof known / sizeof known[0] && strcasecmp(dev, known[i]) != 0) i++;
+    if (i == sizeof known / sizeof known[0]) {
+        if (talk) fprintf(stderr, "molscope: unknown display device '%s'; using text\n", dev);
         return;
     }
-    if (talk) fprintf(stderr, "molscope: unknown display device '%s'; using text\n", dev);
+    if (i >= 7) {
+        if (talk) fprintf(stderr, "molscope: display device '%s' is not built into this version; using "
+                        "text (render snapshot and the file renderers work without a display)\n", dev);
+        return;
+    }
+    if (i < 2) {
+        snprintf(app->dispdev, sizeof app->dispdev, "%s", known[i]);
+        return;
+    }
+    char msg[1200];
+    if (ms_gl_display_start(known[i], msg, sizeof msg) != 0) {
+        if (talk) fprintf(stderr, "molscope: -dispdev %s: %s; using text\n", dev, msg);
+        return;
+    }
+    ms_gl *g = ms_gl_display_current();
+    snprintf(app->dispdev, sizeof app->dispdev, "%s", ms_gl_kind_name(ms_gl_kind_of(g)));
+    if (i >= 4 && talk) fprintf(stderr, "molscope: -dispdev %s: using %s\n", dev, msg);
+    if (app->view) app->view->depthcue = 1;
 }
 
 /* Run one startup stage; in batch mode an error ends the program. Returns 0 to continue,

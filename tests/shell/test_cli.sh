@@ -65,8 +65,8 @@ out=$(echo 'puts "[molinfo top get {numatoms filetype}]"' | $MOLSCOPE -dispdev t
 expect_eq "-pdb forces the type" "$out" "107 pdb"
 out=$($MOLSCOPE -dispdev text nonexistent.pdb </dev/null 2>&1); rc=$?
 expect_match "a missing command-line file fails the batch run" "$rc:$out" "1:*nonexistent.pdb*No such file*"
-out=$(echo 'puts [molinfo num]' | $MOLSCOPE -dispdev opengl 2>&1)
-expect_match "unbuilt display device reported, text used" "$out" "*'opengl' is not built*0"
+out=$(echo 'puts [molinfo num]' | $MOLSCOPE -dispdev cave 2>&1)
+expect_match "unbuilt display device reported, text used" "$out" "*'cave' is not built*0"
 
 # Interactive: a terminal on stdin gives a prompt and keeps going after errors.
 if /usr/bin/python3 -c 'import pty' 2>/dev/null; then
