@@ -65,9 +65,9 @@ static void test_style(void)
     t_ok(ms_rep_style_parse(&s, "VDW 1e40", &err) == -1, "a number too large for a float is refused");
     t_ok(ms_rep_style_parse(&s, "Sticks", &err) == -1 && strstr(err.msg, "Sticks"),
          "unknown method named (%s)", err.msg);
-    t_ok(ms_rep_style_parse(&s, "QuickSurf 1.0 0.5", &err) == -1 &&
-         strstr(err.msg, "QuickSurf") && strstr(err.msg, "not available"),
-         "QuickSurf is known, not yet drawn (%s)", err.msg);
+    t_ok(ms_rep_style_parse(&s, "MSMS 1.5", &err) == -1 && strstr(err.msg, "MSMS") &&
+             strstr(err.msg, "not available"),
+         "a VMD method molscope does not draw is known and named (%s)", err.msg);
     t_ok(ms_rep_style_parse(&s, "   ", &err) == 0 && !memcmp(&s, &before, sizeof s),
          "an empty style changes nothing");
     t_ok(ms_rep_style_parse(&s, "Off", &err) == 0 && !strcmp(s.text, "Lines") &&
