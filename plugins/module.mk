@@ -24,3 +24,17 @@ plugins_LTLIBRARIES += plugins/gro.la
 plugins_gro_la_SOURCES = plugins/gro.c $(PLUGIN_UTIL)
 plugins_gro_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_gro_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/dx.la
+plugins_dx_la_SOURCES = plugins/dx.c $(PLUGIN_UTIL)
+plugins_dx_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/ccp4.la
+plugins_ccp4_la_SOURCES = plugins/ccp4.c $(PLUGIN_UTIL)
+plugins_ccp4_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_ccp4_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/cube.la
+plugins_cube_la_SOURCES = plugins/cube.c $(PLUGIN_UTIL)
+plugins_cube_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_cube_la_LIBADD = -lm

@@ -66,9 +66,9 @@ tests_tools_msdump_LDADD = $(TEST_CORE_LIBS) -lm
 # ASan+UBSan (when the compiler has them), run by tests/run-tests over tests/fuzz/corpus/<fmt>.
 FUZZ_CORE = \
 	src/base/base.c src/base/strtab.c src/base/threads.c src/base/bitset.c \
-	src/molecule/molecule.c src/molecule/elements.c src/molecule/bonds.c \
+	src/molecule/molecule.c src/molecule/volume.c src/molecule/elements.c src/molecule/bonds.c \
 	src/molecule/classify.c src/molecule/molset.c \
-	src/fileio/registry.c src/fileio/load.c src/fileio/write.c
+	src/fileio/registry.c src/fileio/load.c src/fileio/assembly.c src/fileio/write.c
 FUZZ_FORMATS = pdb psf dcd xyz gro
 check_LTLIBRARIES = tests/fuzz/libfuzzcore.la
 tests_fuzz_libfuzzcore_la_SOURCES = $(FUZZ_CORE)
