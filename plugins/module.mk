@@ -38,3 +38,13 @@ plugins_LTLIBRARIES += plugins/cube.la
 plugins_cube_la_SOURCES = plugins/cube.c $(PLUGIN_UTIL)
 plugins_cube_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_cube_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/xtc.la
+plugins_xtc_la_SOURCES = plugins/xtc.c $(PLUGIN_UTIL)
+plugins_xtc_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_xtc_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/trr.la
+plugins_trr_la_SOURCES = plugins/trr.c $(PLUGIN_UTIL)
+plugins_trr_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_trr_la_LIBADD = -lm

@@ -49,7 +49,9 @@ tests_tools_qsurfbench_CFLAGS = $(AM_CFLAGS)
 
 # Every plugin linked into one program (tests/tools/plugin_*.c rename their entry points).
 BUILTIN_PLUGINS = tests/tools/builtin.h tests/tools/plugin_pdb.c tests/tools/plugin_psf.c \
-	tests/tools/plugin_dcd.c tests/tools/plugin_xyz.c tests/tools/plugin_gro.c $(PLUGIN_UTIL)
+	tests/tools/plugin_dcd.c tests/tools/plugin_xyz.c tests/tools/plugin_gro.c \
+	tests/tools/plugin_dx.c tests/tools/plugin_ccp4.c tests/tools/plugin_cube.c \
+	tests/tools/plugin_xtc.c tests/tools/plugin_trr.c $(PLUGIN_UTIL)
 
 check_PROGRAMS += tests/unit/test_formats
 tests_unit_test_formats_SOURCES = tests/unit/test_formats.c tests/unit/ms_test.h $(BUILTIN_PLUGINS)
