@@ -48,3 +48,8 @@ plugins_LTLIBRARIES += plugins/trr.la
 plugins_trr_la_SOURCES = plugins/trr.c $(PLUGIN_UTIL)
 plugins_trr_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_trr_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/pdbx.la
+plugins_pdbx_la_SOURCES = plugins/cif.c plugins/cif_tok.h plugins/cif_tok.c $(PLUGIN_UTIL)
+plugins_pdbx_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_pdbx_la_LIBADD = -lm
