@@ -53,3 +53,15 @@ plugins_LTLIBRARIES += plugins/pdbx.la
 plugins_pdbx_la_SOURCES = plugins/cif.c plugins/cif_tok.h plugins/cif_tok.c $(PLUGIN_UTIL)
 plugins_pdbx_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_pdbx_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/pqr.la
+plugins_pqr_la_SOURCES = plugins/pqr.c $(PLUGIN_UTIL)
+plugins_pqr_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/mol2.la
+plugins_mol2_la_SOURCES = plugins/mol2.c $(PLUGIN_UTIL)
+plugins_mol2_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/namdbin.la
+plugins_namdbin_la_SOURCES = plugins/namdbin.c $(PLUGIN_UTIL)
+plugins_namdbin_la_LDFLAGS = $(PLUGIN_FLAGS)

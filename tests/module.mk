@@ -51,7 +51,9 @@ tests_tools_qsurfbench_CFLAGS = $(AM_CFLAGS)
 BUILTIN_PLUGINS = tests/tools/builtin.h tests/tools/plugin_pdb.c tests/tools/plugin_psf.c \
 	tests/tools/plugin_dcd.c tests/tools/plugin_xyz.c tests/tools/plugin_gro.c \
 	tests/tools/plugin_dx.c tests/tools/plugin_ccp4.c tests/tools/plugin_cube.c \
-	tests/tools/plugin_xtc.c tests/tools/plugin_trr.c $(PLUGIN_UTIL)
+	tests/tools/plugin_xtc.c tests/tools/plugin_trr.c tests/tools/plugin_pdbx.c \
+	plugins/cif_tok.c tests/tools/plugin_pqr.c tests/tools/plugin_mol2.c \
+	tests/tools/plugin_namdbin.c $(PLUGIN_UTIL)
 
 check_PROGRAMS += tests/unit/test_formats
 tests_unit_test_formats_SOURCES = tests/unit/test_formats.c tests/unit/ms_test.h $(BUILTIN_PLUGINS)
