@@ -73,7 +73,7 @@ FUZZ_CORE = \
 	src/molecule/molecule.c src/molecule/volume.c src/molecule/elements.c src/molecule/bonds.c \
 	src/molecule/classify.c src/molecule/molset.c \
 	src/fileio/registry.c src/fileio/load.c src/fileio/assembly.c src/fileio/write.c
-FUZZ_FORMATS = pdb psf dcd xyz gro
+FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin
 check_LTLIBRARIES = tests/fuzz/libfuzzcore.la
 tests_fuzz_libfuzzcore_la_SOURCES = $(FUZZ_CORE)
 tests_fuzz_libfuzzcore_la_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
@@ -106,13 +106,64 @@ tests_fuzz_fuzz_dcd_LDADD = $(FUZZ_LIBS)
 tests_fuzz_fuzz_xyz_LDADD = $(FUZZ_LIBS)
 tests_fuzz_fuzz_gro_LDADD = $(FUZZ_LIBS)
 
+
+# The readers of the second set (volumes, GROMACS, mmCIF, PQR, MOL2, NAMD binary).
+check_PROGRAMS += tests/fuzz/fuzz_dx tests/fuzz/fuzz_ccp4 tests/fuzz/fuzz_cube \
+	tests/fuzz/fuzz_xtc tests/fuzz/fuzz_trr tests/fuzz/fuzz_cif tests/fuzz/fuzz_pqr \
+	tests/fuzz/fuzz_mol2 tests/fuzz/fuzz_namdbin
+tests_fuzz_fuzz_dx_SOURCES = tests/fuzz/fuzz_dx.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/dx.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_dx_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_dx_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_dx_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_ccp4_SOURCES = tests/fuzz/fuzz_ccp4.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/ccp4.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_ccp4_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_ccp4_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_ccp4_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_cube_SOURCES = tests/fuzz/fuzz_cube.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/cube.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_cube_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_cube_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_cube_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_xtc_SOURCES = tests/fuzz/fuzz_xtc.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/xtc.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_xtc_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_xtc_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_xtc_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_trr_SOURCES = tests/fuzz/fuzz_trr.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/trr.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_trr_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_trr_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_trr_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_cif_SOURCES = tests/fuzz/fuzz_cif.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/cif.c plugins/cif_tok.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_cif_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_cif_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_cif_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_pqr_SOURCES = tests/fuzz/fuzz_pqr.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/pqr.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_pqr_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_pqr_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_pqr_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_mol2_SOURCES = tests/fuzz/fuzz_mol2.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/mol2.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_mol2_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_mol2_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_mol2_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_namdbin_SOURCES = tests/fuzz/fuzz_namdbin.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/namdbin.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_namdbin_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_namdbin_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_namdbin_LDADD = $(FUZZ_LIBS)
+
 # `make fuzz`: real libFuzzer binaries tests/fuzz/lf_<fmt> built by clang. Run one with a
 # scratch corpus folder first (new inputs go there) and the seeds second, e.g.
 #   mkdir -p /tmp/c && tests/fuzz/lf_dcd -max_total_time=60 /tmp/c tests/fuzz/corpus/dcd
 LF_FLAGS = -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
 if HAVE_LIBFUZZER
 fuzz: $(FUZZ_FORMATS:%=tests/fuzz/lf_%)
-LF_CORE = $(FUZZ_CORE:%=$(srcdir)/%) $(srcdir)/plugins/plugin_util.c
+LF_CORE = $(FUZZ_CORE:%=$(srcdir)/%) $(srcdir)/plugins/plugin_util.c $(srcdir)/plugins/cif_tok.c
 tests/fuzz/lf_%: $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c $(srcdir)/tests/fuzz/fuzz.h \
 		$(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
