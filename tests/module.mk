@@ -60,6 +60,11 @@ tests_unit_test_formats_SOURCES = tests/unit/test_formats.c tests/unit/ms_test.h
 tests_unit_test_formats_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/tests/tools
 tests_unit_test_formats_LDADD = $(TEST_CORE_LIBS) -lm
 
+check_PROGRAMS += tests/unit/test_volumes
+tests_unit_test_volumes_SOURCES = tests/unit/test_volumes.c tests/unit/ms_test.h $(BUILTIN_PLUGINS)
+tests_unit_test_volumes_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/tests/tools
+tests_unit_test_volumes_LDADD = $(TEST_CORE_LIBS) -lm
+
 # msdump: loads files like `mol new`/`mol addfile` and prints them as TSV (python cross-checks).
 check_PROGRAMS += tests/tools/msdump
 tests_tools_msdump_SOURCES = tests/tools/msdump.c $(BUILTIN_PLUGINS)
