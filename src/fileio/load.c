@@ -886,7 +886,10 @@ int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms
         }
         free(done);
     }
-    if (volume_only(p)) return add_volumes(p, m, path, err);
+    /* A map, or a file of atoms and maps (a cube) added to a molecule that has atoms: its
+     * volumes only. */
+    if (volume_only(p) || ((p->caps & MS_CAN_READ_VOLUME) && m->atoms.n > 0))
+        return add_volumes(p, m, path, err);
     if (m->atoms.n == 0) {
         ms_molecule *src = ms_load_new(r, path, o, err);
         if (!src) return -1;

@@ -40,7 +40,8 @@ ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_o
 
 /* Add a file to an existing molecule: a structure file when the molecule has no atoms,
  * frames otherwise (the atom count must match); a volume file's data sets are appended to
- * the molecule's volumes whatever it holds. On error the molecule is as before. */
+ * the molecule's volumes whatever it holds (of a file of atoms and volumes, a cube, only
+ * the volumes when the molecule already has atoms). On error the molecule is as before. */
 int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms_load_opts *o,
                 ms_error *err);
 
