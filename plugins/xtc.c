@@ -97,19 +97,35 @@ static inline uint32_t get_bits(bits *b, int n)
     return (uint32_t)(b->acc >> b->n) & (uint32_t)((1ull << n) - 1);
 }
 
+/* Up to 56 bits, most significant first. */
+static inline uint64_t get_bits56(bits *b, int n)
+{
+    if (b->n < n) {
+        while (b->n <= 56) {
+            if (b->p < b->end) b->acc = (b->acc << 8) | *b->p++;
+            else if (b->n >= n) break;
+            else {
+                b->acc <<= 8;
+                b->overrun = 1;
+            }
+            b->n += 8;
+        }
+    }
+    b->n -= n;
+    return (b->acc >> b->n) & ((1ull << n) - 1);
+}
+
 /* Three integers packed as one number of nbits bits in the radices sizes[] (the first
- * coordinate most significant). The bits come in bytes, least significant byte first. */
+ * coordinate most significant). The bits come in bytes, least significant byte first, each
+ * byte most significant bit first, the last byte holding the 1..8 bits left: the full bytes
+ * are read in one go and byte-reversed. */
 static inline void get_ints(bits *b, int nbits, const uint32_t sizes[3], int32_t out[3])
 {
     if (nbits <= 64) {
+        int full = (nbits - 1) / 8, rest = nbits - 8 * full;
         uint64_t v = 0;
-        int shift = 0;
-        while (nbits > 8) {
-            v |= (uint64_t)get_bits(b, 8) << shift;
-            shift += 8;
-            nbits -= 8;
-        }
-        if (nbits > 0) v |= (uint64_t)get_bits(b, nbits) << shift;
+        if (full) v = __builtin_bswap64(get_bits56(b, 8 * full)) >> (64 - 8 * full);
+        v |= (uint64_t)get_bits(b, rest) << (8 * full);
         if (v >> 32 == 0) {
             uint32_t w = (uint32_t)v;
             out[2] = (int32_t)(w % sizes[2]);
