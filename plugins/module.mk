@@ -24,3 +24,44 @@ plugins_LTLIBRARIES += plugins/gro.la
 plugins_gro_la_SOURCES = plugins/gro.c $(PLUGIN_UTIL)
 plugins_gro_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_gro_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/dx.la
+plugins_dx_la_SOURCES = plugins/dx.c $(PLUGIN_UTIL)
+plugins_dx_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/ccp4.la
+plugins_ccp4_la_SOURCES = plugins/ccp4.c $(PLUGIN_UTIL)
+plugins_ccp4_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_ccp4_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/cube.la
+plugins_cube_la_SOURCES = plugins/cube.c $(PLUGIN_UTIL)
+plugins_cube_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_cube_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/xtc.la
+plugins_xtc_la_SOURCES = plugins/xtc.c $(PLUGIN_UTIL)
+plugins_xtc_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_xtc_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/trr.la
+plugins_trr_la_SOURCES = plugins/trr.c $(PLUGIN_UTIL)
+plugins_trr_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_trr_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/pdbx.la
+plugins_pdbx_la_SOURCES = plugins/cif.c plugins/cif_tok.h plugins/cif_tok.c $(PLUGIN_UTIL)
+plugins_pdbx_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_pdbx_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/pqr.la
+plugins_pqr_la_SOURCES = plugins/pqr.c $(PLUGIN_UTIL)
+plugins_pqr_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/mol2.la
+plugins_mol2_la_SOURCES = plugins/mol2.c $(PLUGIN_UTIL)
+plugins_mol2_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/namdbin.la
+plugins_namdbin_la_SOURCES = plugins/namdbin.c $(PLUGIN_UTIL)
+plugins_namdbin_la_LDFLAGS = $(PLUGIN_FLAGS)

@@ -7,7 +7,13 @@
  * function reports failure by returning MS_PLUGIN_ERROR after filling the error buffer with
  * a message naming the line or record ("line 12: bad coordinate field").
  *
- * This header is self-contained (C99, no molscope symbols), so plugins build on their own. */
+ * This header is self-contained (C99, no molscope symbols), so plugins build on their own.
+ *
+ * ABI history. 1: structures and frames. 2 (this header): volumetric data (read_volume_meta,
+ * read_volume_data, write_volume and the MS_CAN_*_VOLUME bits, appended to ms_plugin) and
+ * biological assemblies (add_assembly, appended to ms_struct_sink). The host still loads ABI
+ * 1 plugins: it copies their shorter description into a zeroed ABI 2 one, so the new
+ * members read as NULL; it fills every sink member, so an ABI 2 plugin may call any. */
 #ifndef MS_PLUGIN_H
 #define MS_PLUGIN_H
 
@@ -19,7 +25,8 @@
 extern "C" {
 #endif
 
-#define MS_PLUGIN_ABI 1
+#define MS_PLUGIN_ABI 2
+#define MS_PLUGIN_ABI_MIN 1  /* the oldest ABI the host still loads */
 
 enum { MS_PLUGIN_OK = 0, MS_PLUGIN_EOF = 1, MS_PLUGIN_ERROR = -1 };
 
@@ -94,6 +101,13 @@ struct ms_struct_sink {
     void (*set_time)(ms_struct_sink *s, double time);
     /* A line of free text (PDB REMARK, title). */
     int (*add_remark)(ms_struct_sink *s, const char *text);
+    /* ABI 2. One generator of biological assembly `id` (mmCIF pdbx_struct_assembly_gen,
+     * PDB REMARK 350): copies of the atoms in nranges half-open index ranges [r[0], r[1])
+     * (0-based, in the order added), one copy per operator. ops holds nops 3x4 matrices,
+     * row-major [R | t], Angstrom, the copies coming in that order. An assembly with
+     * several generators is their copies in the order reported. Call it after the atoms. */
+    int (*add_assembly)(ms_struct_sink *s, const char *id, size_t nranges,
+                        const size_t (*ranges)[2], size_t nops, const double (*ops)[12]);
 };
 
 /* One frame to fill. pos (3*natoms floats) is NULL when the host only skips this frame;
@@ -130,8 +144,20 @@ enum {
     MS_CAN_READ_STRUCTURE = 1u << 0,
     MS_CAN_READ_FRAMES = 1u << 1,
     MS_CAN_WRITE_STRUCTURE = 1u << 2,
-    MS_CAN_WRITE_FRAMES = 1u << 3
+    MS_CAN_WRITE_FRAMES = 1u << 3,
+    MS_CAN_READ_VOLUME = 1u << 4,   /* ABI 2 */
+    MS_CAN_WRITE_VOLUME = 1u << 5   /* ABI 2 */
 };
+
+/* ABI 2: one volumetric data set (a density map, a potential): values on a regular grid.
+ * Point (i, j, k) lies at origin + i delta[0] + j delta[1] + k delta[2] (Angstrom; the
+ * axes need not be orthogonal); data is n[0] n[1] n[2] floats with i varying fastest. */
+typedef struct ms_volume_meta {
+    char name[256];
+    double origin[3];
+    double delta[3][3];   /* step vector between neighbouring points along each axis */
+    long n[3];
+} ms_volume_meta;
 
 typedef struct ms_plugin {
     int abi;                 /* MS_PLUGIN_ABI */
@@ -156,7 +182,19 @@ typedef struct ms_plugin {
     int (*write_frame)(void *h, const ms_struct_view *view, const ms_frame_in *frame,
                        ms_perr *err);
     int (*close_write)(void *h, ms_perr *err);
+
+    /* ABI 2: volumetric data. read_volume_meta describes set k (0-based) of an open file,
+     * MS_PLUGIN_EOF when there is no set k; read_volume_data fills data (n[0] n[1] n[2]
+     * floats, x fastest) for a set already described. A file may hold a structure and
+     * volumes (a Gaussian cube): the host reads the structure first. write_volume writes
+     * one set to a file opened with open_write(path, 0, err), before close_write. */
+    int (*read_volume_meta)(void *h, int k, ms_volume_meta *meta, ms_perr *err);
+    int (*read_volume_data)(void *h, int k, float *data, ms_perr *err);
+    int (*write_volume)(void *h, const ms_volume_meta *meta, const float *data, ms_perr *err);
 } ms_plugin;
+
+/* The size of an ABI 1 description: the members before read_volume_meta. */
+#define MS_PLUGIN_ABI1_SIZE offsetof(ms_plugin, read_volume_meta)
 
 /* The one symbol a plugin exports. */
 typedef const ms_plugin *(*ms_plugin_entry_fn)(void);

@@ -1,5 +1,6 @@
 /* pdb.c: the PDB plugin. Reads ATOM/HETATM (hybrid-36 serials and resids, altlocs,
- * insertion codes, segment ids, element symbols), CRYST1, HELIX/SHEET, CONECT and REMARKs;
+ * insertion codes, segment ids, element symbols), CRYST1, HELIX/SHEET, CONECT and REMARKs,
+ * and the biological assemblies of REMARK 350 (BIOMOLECULE, APPLY ... TO CHAINS, BIOMT);
  * models (MODEL/ENDMDL, or frames separated by END) become frames. Writes the same. */
 #include "ms_plugin.h"
 #include "plugin_util.h"
@@ -16,8 +17,24 @@ typedef struct pdb_reader {
     int structure_done;
     int single_model;      /* no frames after the first model */
     int *serial;           /* serial of each atom (for CONECT), -1 when unknown */
+    char *chain;           /* chain of each atom (for REMARK 350) */
     size_t serial_cap;
 } pdb_reader;
+
+/* REMARK 350: generators (chains and BIOMT operators) of the biomolecules. */
+typedef struct biomt_gen {
+    char id[16];
+    char chains[256];      /* the chain letters it applies to */
+    double (*ops)[12];
+    size_t nops;
+} biomt_gen;
+
+typedef struct biomt {
+    biomt_gen *gen;
+    size_t ngen;
+    char cur[16];
+    int failed;
+} biomt;
 
 enum rec { R_OTHER, R_ATOM, R_HETATM, R_MODEL, R_ENDMDL, R_END, R_CRYST1, R_HELIX, R_SHEET,
            R_CONECT, R_REMARK };
@@ -75,6 +92,7 @@ static void pdb_close_read(void *h)
     pdb_reader *r = h;
     ms_lines_close(&r->in);
     free(r->serial);
+    free(r->chain);
     free(r);
 }
 
@@ -170,11 +188,14 @@ static int parse_atom(pdb_reader *r, ms_struct_sink *sink, int hetero, ms_perr *
     if (idx == r->serial_cap) {
         size_t cap = r->serial_cap ? r->serial_cap * 2 : 4096;
         int *ns = realloc(r->serial, cap * sizeof *ns);
-        if (!ns) return ms_perr_set(err, "out of memory");
-        r->serial = ns;
+        if (ns) r->serial = ns;
+        char *nc = ns ? realloc(r->chain, cap) : NULL;
+        if (!nc) return ms_perr_set(err, "out of memory");
+        r->chain = nc;
         r->serial_cap = cap;
     }
     r->serial[idx] = (int)serial;
+    r->chain[idx] = l[21];
     if (sink->add_atom(sink, &a)) return ms_perr_set(err, "out of memory at line %ld", in->line_no);
     r->natoms++;
     return MS_PLUGIN_OK;
@@ -283,11 +304,97 @@ static int add_conect_bonds(pdb_reader *r, ms_struct_sink *sink, const conect_li
     return MS_PLUGIN_OK;
 }
 
+static biomt_gen *biomt_new_gen(biomt *b)
+{
+    biomt_gen *g = realloc(b->gen, (b->ngen + 1) * sizeof *g);
+    if (!g) {
+        b->failed = 1;
+        return NULL;
+    }
+    b->gen = g;
+    g = &b->gen[b->ngen++];
+    memset(g, 0, sizeof *g);
+    snprintf(g->id, sizeof g->id, "%s", b->cur);
+    return g;
+}
+
+/* One REMARK 350 line. */
+static int parse_remark350(biomt *b, const ms_lines *in, ms_perr *err)
+{
+    const char *l = in->line + 10;
+    if (in->line_len <= 11) return MS_PLUGIN_OK;
+    const char *p;
+    if ((p = strstr(l, "BIOMOLECULE:"))) {
+        char id[16];
+        if (sscanf(p + 12, "%15s", id) == 1) snprintf(b->cur, sizeof b->cur, "%s", id);
+    } else if ((p = strstr(l, "CHAINS:"))) {
+        biomt_gen *g = b->ngen ? &b->gen[b->ngen - 1] : NULL;
+        if (!g || g->nops || strcmp(g->id, b->cur) || strstr(l, "APPLY"))
+            if (!(g = biomt_new_gen(b))) return ms_perr_set(err, "out of memory");
+        for (p += 7; *p; p++)
+            if (*p != ',' && *p != ' ' && strlen(g->chains) + 1 < sizeof g->chains)
+                strncat(g->chains, p, 1);
+    } else if ((p = strstr(l, "BIOMT")) && p[5] >= '1' && p[5] <= '3') {
+        int row = p[5] - '1', n;
+        double v[4];
+        if (sscanf(p + 6, "%d %lf %lf %lf %lf", &n, &v[0], &v[1], &v[2], &v[3]) != 5)
+            return ms_perr_set(err, "line %ld: bad REMARK 350 BIOMT record", in->line_no);
+        biomt_gen *g = b->ngen ? &b->gen[b->ngen - 1] : NULL;
+        if (!g) return ms_perr_set(err, "line %ld: BIOMT before APPLY ... TO CHAINS", in->line_no);
+        if (row == 0) {
+            double(*ops)[12] = realloc(g->ops, (g->nops + 1) * sizeof *ops);
+            if (!ops) return ms_perr_set(err, "out of memory");
+            g->ops = ops;
+            memset(g->ops[g->nops++], 0, sizeof *ops);
+        }
+        if (!g->nops) return ms_perr_set(err, "line %ld: BIOMT%d before BIOMT1", in->line_no, row + 1);
+        memcpy(&g->ops[g->nops - 1][4 * row], v, sizeof v);
+    }
+    return MS_PLUGIN_OK;
+}
+
+/* Report each generator with the ranges of the first model's atoms in its chains. */
+static int report_biomt(pdb_reader *r, biomt *b, ms_struct_sink *sink, ms_perr *err)
+{
+    for (size_t k = 0; k < b->ngen; k++) {
+        biomt_gen *g = &b->gen[k];
+        size_t(*rg)[2] = NULL, nr = 0;
+        for (long i = 0; i < r->natoms; i++) {
+            char c = r->chain[i] == ' ' ? '-' : r->chain[i];
+            if (!strchr(g->chains, c) || !c) continue;
+            if (nr && rg[nr - 1][1] == (size_t)i) {
+                rg[nr - 1][1]++;
+                continue;
+            }
+            size_t(*n2)[2] = realloc(rg, (nr + 1) * sizeof *n2);
+            if (!n2) {
+                free(rg);
+                return ms_perr_set(err, "out of memory");
+            }
+            rg = n2;
+            rg[nr][0] = (size_t)i;
+            rg[nr++][1] = (size_t)i + 1;
+        }
+        int rc = nr && g->nops ? sink->add_assembly(sink, g->id, nr, (const size_t(*)[2])rg,
+                                                    g->nops, (const double(*)[12])g->ops) : 0;
+        free(rg);
+        if (rc) return ms_perr_set(err, "out of memory");
+    }
+    return MS_PLUGIN_OK;
+}
+
+static void biomt_free(biomt *b)
+{
+    for (size_t k = 0; k < b->ngen; k++) free(b->gen[k].ops);
+    free(b->gen);
+}
+
 static int pdb_read_structure(void *h, ms_struct_sink *sink, ms_perr *err)
 {
     pdb_reader *r = h;
     ms_lines *in = &r->in;
     conect_list conect = {0};
+    biomt bio = {0};
     int in_first = 1, seen_atoms = 0;
     const char *l;
     /* The file size tells roughly how many atoms: 81 bytes a line. */
@@ -326,6 +433,9 @@ static int pdb_read_structure(void *h, ms_struct_sink *sink, ms_perr *err)
                 break;
             case R_REMARK:
                 if (sink->add_remark(sink, l)) goto oom;
+                if (n > 10 && !strncmp(l, "REMARK 350", 10) &&
+                    parse_remark350(&bio, in, err) != MS_PLUGIN_OK)
+                    goto fail;
                 break;
             default:
                 break;
@@ -346,8 +456,13 @@ static int pdb_read_structure(void *h, ms_struct_sink *sink, ms_perr *err)
         goto fail;
     }
     if (add_conect_bonds(r, sink, &conect, err) != MS_PLUGIN_OK) goto fail;
+    if (bio.failed) goto oom;
+    if (report_biomt(r, &bio, sink, err) != MS_PLUGIN_OK) goto fail;
+    biomt_free(&bio);
     free(conect.v);
-    free(r->serial); /* only CONECT needed them */
+    free(r->serial); /* only CONECT and REMARK 350 needed them */
+    free(r->chain);
+    r->chain = NULL;
     r->serial = NULL;
     r->serial_cap = 0;
     r->structure_done = 1;
@@ -362,6 +477,7 @@ oom:
     ms_perr_set(err, "out of memory");
 fail:
     free(conect.v);
+    biomt_free(&bio);
     return MS_PLUGIN_ERROR;
 }
 

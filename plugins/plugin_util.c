@@ -296,6 +296,64 @@ int ms_tokens(char *line, char **tok, int max)
     return n;
 }
 
+/* ---------------------------------------------------------------- volume data */
+
+/* Parse the numbers of one line into dst[*got..n); returns -1 with err set on a bad token. */
+static int floats_of_line(const ms_lines *in, const char *p, float *dst, size_t n, size_t *got,
+                          ms_perr *err)
+{
+    while (*got < n) {
+        while (*p == ' ' || *p == '\t' || *p == '\r') p++;
+        if (!*p) return 0;
+        const char *e = p;
+        while (*e && *e != ' ' && *e != '\t' && *e != '\r') e++;
+        if (ms_parse_float(p, (size_t)(e - p), &dst[*got]) < 0)
+            return ms_perr_set(err, "line %ld: bad value '%.*s'", in->line_no,
+                               (int)(e - p > 32 ? 32 : e - p), p);
+        (*got)++;
+        p = e;
+    }
+    return 0;
+}
+
+int ms_read_floats(ms_lines *in, const char *first, float *dst, size_t n, ms_perr *err)
+{
+    size_t got = 0;
+    if (first && floats_of_line(in, first, dst, n, &got, err) < 0) return MS_PLUGIN_ERROR;
+    while (got < n) {
+        const char *l = ms_lines_next(in);
+        if (!l) {
+            if (in->error) return ms_perr_set(err, "read error after line %ld", in->line_no);
+            return ms_perr_set(err, "line %ld: the file ends after %zu of %zu values",
+                               in->line_no, got, n);
+        }
+        if (floats_of_line(in, l, dst, n, &got, err) < 0) return MS_PLUGIN_ERROR;
+    }
+    return MS_PLUGIN_OK;
+}
+
+void ms_grid_zfast_to_xfast(const float *src, float *dst, const long n[3])
+{
+    size_t n0 = (size_t)n[0], n1 = (size_t)n[1], n2 = (size_t)n[2];
+    for (size_t i = 0; i < n0; i++)
+        for (size_t j = 0; j < n1; j++) {
+            const float *s = src + (i * n1 + j) * n2;
+            float *d = dst + j * n0 + i;
+            for (size_t k = 0; k < n2; k++) d[k * n0 * n1] = s[k];
+        }
+}
+
+void ms_grid_xfast_to_zfast(const float *src, float *dst, const long n[3])
+{
+    size_t n0 = (size_t)n[0], n1 = (size_t)n[1], n2 = (size_t)n[2];
+    for (size_t i = 0; i < n0; i++)
+        for (size_t j = 0; j < n1; j++) {
+            float *d = dst + (i * n1 + j) * n2;
+            const float *s = src + j * n0 + i;
+            for (size_t k = 0; k < n2; k++) d[k] = s[k * n0 * n1];
+        }
+}
+
 /* ---------------------------------------------------------------- output */
 
 int ms_out_open(ms_out *o, const char *path, ms_perr *err)

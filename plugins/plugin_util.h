@@ -61,6 +61,18 @@ int ms_hy36_encode(long v, size_t width, char *out);
 /* Split a line into whitespace-separated tokens; returns the count (at most max). */
 int ms_tokens(char *line, char **tok, int max);
 
+/* ---------------------------------------------------------------- volume data */
+
+/* Read n whitespace-separated numbers from the lines that follow (and the rest of `first`,
+ * when not NULL: the unread part of the current line) into dst. An error names the line
+ * and the token, or says how many values were found before the file ended. */
+int ms_read_floats(ms_lines *in, const char *first, float *dst, size_t n, ms_perr *err);
+/* Reorder a grid stored with z fastest (OpenDX, cube) into x fastest (molscope's order):
+ * value (i, j, k) is src[(i n1 + j) n2 + k] and becomes dst[(k n1 + j) n0 + i]. */
+void ms_grid_zfast_to_xfast(const float *src, float *dst, const long n[3]);
+/* The reverse, for writers. */
+void ms_grid_xfast_to_zfast(const float *src, float *dst, const long n[3]);
+
 /* ---------------------------------------------------------------- output */
 
 /* fprintf that remembers failure; check with ms_out_close. */

@@ -56,12 +56,21 @@ tests_tools_qsurfbench_CFLAGS = $(AM_CFLAGS)
 
 # Every plugin linked into one program (tests/tools/plugin_*.c rename their entry points).
 BUILTIN_PLUGINS = tests/tools/builtin.h tests/tools/plugin_pdb.c tests/tools/plugin_psf.c \
-	tests/tools/plugin_dcd.c tests/tools/plugin_xyz.c tests/tools/plugin_gro.c $(PLUGIN_UTIL)
+	tests/tools/plugin_dcd.c tests/tools/plugin_xyz.c tests/tools/plugin_gro.c \
+	tests/tools/plugin_dx.c tests/tools/plugin_ccp4.c tests/tools/plugin_cube.c \
+	tests/tools/plugin_xtc.c tests/tools/plugin_trr.c tests/tools/plugin_pdbx.c \
+	plugins/cif_tok.c tests/tools/plugin_pqr.c tests/tools/plugin_mol2.c \
+	tests/tools/plugin_namdbin.c $(PLUGIN_UTIL)
 
 check_PROGRAMS += tests/unit/test_formats
 tests_unit_test_formats_SOURCES = tests/unit/test_formats.c tests/unit/ms_test.h $(BUILTIN_PLUGINS)
 tests_unit_test_formats_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/tests/tools
 tests_unit_test_formats_LDADD = $(TEST_CORE_LIBS) -lm
+
+check_PROGRAMS += tests/unit/test_volumes
+tests_unit_test_volumes_SOURCES = tests/unit/test_volumes.c tests/unit/ms_test.h $(BUILTIN_PLUGINS)
+tests_unit_test_volumes_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/tests/tools
+tests_unit_test_volumes_LDADD = $(TEST_CORE_LIBS) -lm
 
 # msdump: loads files like `mol new`/`mol addfile` and prints them as TSV (python cross-checks).
 check_PROGRAMS += tests/tools/msdump
@@ -73,10 +82,10 @@ tests_tools_msdump_LDADD = $(TEST_CORE_LIBS) -lm
 # ASan+UBSan (when the compiler has them), run by tests/run-tests over tests/fuzz/corpus/<fmt>.
 FUZZ_CORE = \
 	src/base/base.c src/base/strtab.c src/base/threads.c src/base/bitset.c \
-	src/molecule/molecule.c src/molecule/elements.c src/molecule/bonds.c \
+	src/molecule/molecule.c src/molecule/volume.c src/molecule/elements.c src/molecule/bonds.c \
 	src/molecule/classify.c src/molecule/molset.c \
-	src/fileio/registry.c src/fileio/load.c src/fileio/write.c
-FUZZ_FORMATS = pdb psf dcd xyz gro
+	src/fileio/registry.c src/fileio/load.c src/fileio/assembly.c src/fileio/write.c
+FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin
 check_LTLIBRARIES = tests/fuzz/libfuzzcore.la
 tests_fuzz_libfuzzcore_la_SOURCES = $(FUZZ_CORE)
 tests_fuzz_libfuzzcore_la_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
@@ -109,13 +118,64 @@ tests_fuzz_fuzz_dcd_LDADD = $(FUZZ_LIBS)
 tests_fuzz_fuzz_xyz_LDADD = $(FUZZ_LIBS)
 tests_fuzz_fuzz_gro_LDADD = $(FUZZ_LIBS)
 
+
+# The readers of the second set (volumes, GROMACS, mmCIF, PQR, MOL2, NAMD binary).
+check_PROGRAMS += tests/fuzz/fuzz_dx tests/fuzz/fuzz_ccp4 tests/fuzz/fuzz_cube \
+	tests/fuzz/fuzz_xtc tests/fuzz/fuzz_trr tests/fuzz/fuzz_cif tests/fuzz/fuzz_pqr \
+	tests/fuzz/fuzz_mol2 tests/fuzz/fuzz_namdbin
+tests_fuzz_fuzz_dx_SOURCES = tests/fuzz/fuzz_dx.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/dx.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_dx_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_dx_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_dx_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_ccp4_SOURCES = tests/fuzz/fuzz_ccp4.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/ccp4.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_ccp4_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_ccp4_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_ccp4_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_cube_SOURCES = tests/fuzz/fuzz_cube.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/cube.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_cube_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_cube_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_cube_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_xtc_SOURCES = tests/fuzz/fuzz_xtc.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/xtc.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_xtc_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_xtc_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_xtc_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_trr_SOURCES = tests/fuzz/fuzz_trr.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/trr.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_trr_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_trr_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_trr_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_cif_SOURCES = tests/fuzz/fuzz_cif.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/cif.c plugins/cif_tok.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_cif_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_cif_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_cif_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_pqr_SOURCES = tests/fuzz/fuzz_pqr.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/pqr.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_pqr_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_pqr_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_pqr_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_mol2_SOURCES = tests/fuzz/fuzz_mol2.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/mol2.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_mol2_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_mol2_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_mol2_LDADD = $(FUZZ_LIBS)
+tests_fuzz_fuzz_namdbin_SOURCES = tests/fuzz/fuzz_namdbin.c tests/fuzz/fuzz.h tests/fuzz/driver.c \
+	plugins/namdbin.c $(PLUGIN_UTIL)
+tests_fuzz_fuzz_namdbin_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_namdbin_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_namdbin_LDADD = $(FUZZ_LIBS)
+
 # `make fuzz`: real libFuzzer binaries tests/fuzz/lf_<fmt> built by clang. Run one with a
 # scratch corpus folder first (new inputs go there) and the seeds second, e.g.
 #   mkdir -p /tmp/c && tests/fuzz/lf_dcd -max_total_time=60 /tmp/c tests/fuzz/corpus/dcd
 LF_FLAGS = -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
 if HAVE_LIBFUZZER
 fuzz: $(FUZZ_FORMATS:%=tests/fuzz/lf_%)
-LF_CORE = $(FUZZ_CORE:%=$(srcdir)/%) $(srcdir)/plugins/plugin_util.c
+LF_CORE = $(FUZZ_CORE:%=$(srcdir)/%) $(srcdir)/plugins/plugin_util.c $(srcdir)/plugins/cif_tok.c
 tests/fuzz/lf_%: $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c $(srcdir)/tests/fuzz/fuzz.h \
 		$(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \

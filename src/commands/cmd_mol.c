@@ -8,6 +8,8 @@
  *   mol delete molid|all; mol top molid; mol list [molid]; mol rename molid name
  *   mol on|off|fix|free|unfix|active|inactive molspec
  *   mol cancel molid; mol reanalyze molid; mol bondsrecalc molid
+ *   mol voldelete volid molid
+ * Load options include VMD's and molscope's `assembly id` (build a biological assembly).
  * molscope adds the load option `bcast on` to new and addfile: under MPI, rank 0 reads the
  * file and every rank receives the molecule (see commands.h). */
 #include "config.h"
@@ -138,7 +140,8 @@ static void list_line(Tcl_Obj *out, const ms_molecule *m, int top)
     char line[256];
     snprintf(line, sizeof line, "%-4d%c %c %c %c  %-24.24s %9zu %6zu %4d\n", m->id,
              m->id == top ? 'T' : ' ', m->active ? 'A' : ' ', m->displayed ? 'D' : ' ',
-             m->fixed ? 'F' : ' ', m->name ? m->name : "", m->atoms.n, m->nframes, 0);
+             m->fixed ? 'F' : ' ', m->name ? m->name : "", m->atoms.n, m->nframes,
+             (int)m->nvolumes);
     Tcl_AppendToObj(out, line, -1);
 }
 
@@ -228,6 +231,21 @@ static int mol_reanalyze(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
     return TCL_OK;
 }
 
+/* mol voldelete <volid> <molid>: delete one volumetric data set. */
+static int mol_voldelete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc != 4) return ms_cmd_error(interp, "mol voldelete: usage: mol voldelete <volid> <molid>");
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[3], "mol voldelete");
+    if (!m) return TCL_ERROR;
+    int k;
+    if (Tcl_GetIntFromObj(NULL, objv[2], &k) != TCL_OK || k < 0 || (size_t)k >= m->nvolumes)
+        return ms_cmd_error(interp, "mol voldelete: molecule %d has no volume '%s' (it has %zu)",
+                            m->id, Tcl_GetString(objv[2]), m->nvolumes);
+    ms_mol_delete_volume(m, (size_t)k);
+    ms_molset_emit(&app->mols, MS_EV_VOLUMES, m, NULL);
+    return TCL_OK;
+}
+
 static const ms_subcmd mol_table[] = {
     {"new", mol_new},           {"addfile", mol_addfile},   {"load", mol_load},
     {"delete", mol_delete},     {"top", mol_top},           {"rename", mol_rename},
@@ -235,6 +253,7 @@ static const ms_subcmd mol_table[] = {
     {"fix", mol_flag},          {"free", mol_flag},         {"unfix", mol_flag},
     {"active", mol_flag},       {"inactive", mol_flag},     {"cancel", mol_cancel},
     {"reanalyze", mol_reanalyze}, {"bondsrecalc", mol_reanalyze},
+    {"voldelete", mol_voldelete},
     {NULL, NULL}};
 
 void ms_cmd_mol_register(ms_app *app)

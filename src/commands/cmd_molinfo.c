@@ -132,7 +132,7 @@ static int get_keyword(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const ch
     else if (!strcasecmp(k, "numframes")) *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nframes);
     else if (!strcasecmp(k, "frame")) *out = Tcl_NewIntObj(m->frame);
     else if (!strcasecmp(k, "last")) *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nframes - 1);
-    else if (!strcasecmp(k, "numvolumedata")) *out = Tcl_NewIntObj(0);
+    else if (!strcasecmp(k, "numvolumedata")) *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nvolumes);
     else if (!strcasecmp(k, "active")) *out = Tcl_NewIntObj(m->active);
     else if (!strcasecmp(k, "drawn") || !strcasecmp(k, "displayed")) *out = Tcl_NewIntObj(m->displayed);
     else if (!strcasecmp(k, "fixed")) *out = Tcl_NewIntObj(m->fixed);

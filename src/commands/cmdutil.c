@@ -298,11 +298,14 @@ int ms_cmd_parse_load_opts(Tcl_Interp *interp, const char *cmd, int objc, Tcl_Ob
         } else if (!strcasecmp(opt, "bcast")) {
             if (get_bool_opt(interp, cmd, opt, v, &o->bcast)) return TCL_ERROR;
         } else if (!strcasecmp(opt, "volsets")) {
-            /* volumetric data sets: accepted, no volumes in these formats */
+            /* accepted: every data set of a volume file is read */
+        } else if (!strcasecmp(opt, "assembly")) {
+            o->assembly = Tcl_GetString(v);
         } else {
             return ms_cmd_error(interp,
                                 "%s: unknown option '%s': must be type, first, last, step, "
-                                "waitfor, filebonds, autobonds, volsets or bcast", cmd, opt);
+                                "waitfor, filebonds, autobonds, volsets, assembly or bcast", cmd,
+                                opt);
         }
     }
     if (o->last >= 0 && o->last < o->first)
@@ -341,6 +344,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         }
         if (m->nframes) ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
         if (m->atoms.n && ms_cmd_structure_hook) ms_cmd_structure_hook(app, m);
+        if (m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES, m, NULL);
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
         if (m->pending) ms_app_schedule_loading(app);
         else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, m, path);
@@ -348,6 +352,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         return TCL_OK;
     }
     size_t atoms_before = into->atoms.n, frames_before = into->nframes;
+    size_t volumes_before = into->nvolumes;
     if (bcast ? ms_par_load_add(&app->plugins, into, path, o, &err)
               : ms_load_add(&app->plugins, into, path, o, &err))
         return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
@@ -356,6 +361,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         if (ms_cmd_structure_hook) ms_cmd_structure_hook(app, into);
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
     }
+    if (into->nvolumes != volumes_before) ms_molset_emit(&app->mols, MS_EV_VOLUMES, into, NULL);
     if (into->nframes != frames_before) {
         ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, into, NULL);
         ms_molset_set_frame(&app->mols, into, (long)into->nframes - 1);
@@ -379,4 +385,5 @@ void ms_commands_register(ms_app *app)
     ms_cmd_vector_register(app);
     ms_cmd_measure_register(app);
     ms_cmd_measure_geom_register(app);
+    ms_cmd_volmap_register(app);
 }

@@ -74,6 +74,8 @@ void ms_cmd_scene_register(ms_app *app);
 void ms_cmd_measure_register(ms_app *app);
 void ms_cmd_measure_geom_register(ms_app *app);
 void ms_cmd_vector_register(ms_app *app);
+/* volmap density (cmd_volmap.c): Gaussian density maps on the QuickSurf engine. */
+void ms_cmd_volmap_register(ms_app *app);
 /* mol ssrecalc (cmd_ss.c): secondary structure recomputed on request. */
 void ms_cmd_ss_register(ms_app *app);
 /* The rep subcommands of mol (addrep, modstyle, ...) and molinfo's rep keywords

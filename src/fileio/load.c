@@ -3,6 +3,7 @@
  * undo everything on error so a failed load leaves no trace. */
 #include "config.h"
 #include "fileio/load.h"
+#include "fileio/assembly.h"
 #include "molecule/analysis.h"
 #include "molecule/elements.h"
 #include "molecule/molecule.h"
@@ -20,6 +21,8 @@ typedef struct ms_loader {
     long next_index;       /* file index of the frame read_frame returns next */
     long first, last, step;
     int with_vel;
+    ms_asm_plan *plan;        /* frames are read into scratch and expanded (assemblies) */
+    float *scratch_pos, *scratch_vel;
 } ms_loader;
 
 void ms_load_opts_default(ms_load_opts *o)
@@ -55,6 +58,7 @@ typedef struct sink_state {
     ms_str last_id[F_NFIELDS];
     char *remarks;
     size_t remarks_len, remarks_cap;
+    ms_asm_plan asm_all;      /* every generator the file reported */
 } sink_state;
 
 static ms_str sink_intern(sink_state *st, int field, const char *s)
@@ -222,6 +226,13 @@ static int sink_add_remark(ms_struct_sink *s, const char *text)
     return 0;
 }
 
+static int sink_add_assembly(ms_struct_sink *s, const char *id, size_t nranges,
+                             const size_t (*ranges)[2], size_t nops, const double (*ops)[12])
+{
+    sink_state *st = (sink_state *)s;
+    return ms_asm_plan_add(&st->asm_all, id, nranges, ranges, nops, ops, st->err);
+}
+
 static void sink_init(sink_state *st, ms_molecule *m, ms_error *err)
 {
     memset(st, 0, sizeof *st);
@@ -237,6 +248,7 @@ static void sink_init(sink_state *st, ms_molecule *m, ms_error *err)
     st->sink.set_cell = sink_set_cell;
     st->sink.set_time = sink_set_time;
     st->sink.add_remark = sink_add_remark;
+    st->sink.add_assembly = sink_add_assembly;
 }
 
 static void sink_free(sink_state *st)
@@ -247,6 +259,7 @@ static void sink_free(sink_state *st)
     free(st->orders);
     free(st->ss);
     free(st->remarks);
+    ms_asm_plan_free(&st->asm_all);
 }
 
 /* ================================================================ plugin choice */
@@ -374,12 +387,27 @@ static int take_first_frame(ms_molecule *m, sink_state *st, const ms_load_opts *
 }
 
 static ms_loader *loader_new(const ms_plugin *p, void *h, const char *path, long natoms,
-                             long next_index, const ms_load_opts *o, int with_vel)
+                             long next_index, const ms_load_opts *o, int with_vel,
+                             ms_asm_plan *plan)
 {
     ms_loader *ld = calloc(1, sizeof *ld);
     if (!ld || !(ld->path = ms_strdup(path))) {
         free(ld);
         return NULL;
+    }
+    if (plan) {
+        /* Frames come with the file's atoms: read them into scratch, then expand. */
+        natoms = (long)plan->nfile;
+        ld->plan = plan;
+        ld->scratch_pos = ms_alloc_array(3 * plan->nfile, sizeof(float));
+        ld->scratch_vel = with_vel ? ms_alloc_array(3 * plan->nfile, sizeof(float)) : NULL;
+        if (!ld->scratch_pos || (with_vel && !ld->scratch_vel)) {
+            free(ld->scratch_pos);
+            free(ld->scratch_vel);
+            free(ld->path);
+            free(ld);
+            return NULL;
+        }
     }
     ld->p = p;
     ld->h = h;
@@ -396,6 +424,12 @@ static void loader_free(ms_loader *ld)
 {
     if (!ld) return;
     if (ld->h) ld->p->close_read(ld->h);
+    if (ld->plan) {
+        ms_asm_plan_free(ld->plan);
+        free(ld->plan);
+    }
+    free(ld->scratch_pos);
+    free(ld->scratch_vel);
     free(ld->path);
     free(ld);
 }
@@ -416,8 +450,8 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         int keep = wants_frame(idx, ld->first, ld->last, ld->step);
         if (keep) {
             if (!(f = ms_mol_add_frame(m, ld->with_vel, err))) return -1;
-            out.pos = f->pos;
-            out.vel = f->vel;
+            out.pos = ld->plan ? ld->scratch_pos : f->pos;
+            out.vel = ld->plan ? ld->scratch_vel : f->vel;
         }
         int rc = ld->p->read_frame(ld->h, ld->natoms, &out, &perr);
         if (rc != MS_PLUGIN_OK) {
@@ -428,6 +462,10 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         }
         ld->next_index++;
         if (!keep) continue;
+        if (ld->plan) {
+            ms_asm_expand_xyz(ld->plan, ld->scratch_pos, f->pos, 0);
+            if (f->vel && out.has_vel) ms_asm_expand_xyz(ld->plan, ld->scratch_vel, f->vel, 1);
+        }
         if (out.has_cell) memcpy(f->cell, out.cell, sizeof f->cell);
         else if (m->nframes >= 2) memcpy(f->cell, m->frames[m->nframes - 2].cell, sizeof f->cell);
         f->time = out.has_time ? out.time : 0.0;
@@ -442,10 +480,14 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
  * when frames remain. */
 static int read_frames(ms_molecule *m, const ms_plugin *p, void *h, const char *path,
                        long next_index, long already, const ms_load_opts *o, int with_vel,
-                       ms_error *err)
+                       ms_asm_plan *plan, ms_error *err)
 {
-    ms_loader *ld = loader_new(p, h, path, (long)m->atoms.n, next_index, o, with_vel);
+    ms_loader *ld = loader_new(p, h, path, (long)m->atoms.n, next_index, o, with_vel, plan);
     if (!ld) {
+        if (plan) {
+            ms_asm_plan_free(plan);
+            free(plan);
+        }
         p->close_read(h);
         ms_error_set(err, "out of memory");
         return -1;
@@ -478,9 +520,56 @@ static int open_plugin(const ms_plugin *p, const char *path, long *natoms, void 
     return 0;
 }
 
+/* Replace the file's atoms, first-frame coordinates and bonds by assembly `id`'s copies.
+ * *plan receives the plan (the frames that follow are expanded by it). */
+static int apply_assembly(ms_molecule *m, sink_state *st, const char *id, ms_asm_plan **plan,
+                          ms_error *err)
+{
+    ms_asm_plan *p = calloc(1, sizeof *p);
+    if (!p) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    *plan = p;
+    if (ms_asm_select(&st->asm_all, id, m->atoms.n, p, err)) return -1;
+    size_t total = ms_asm_natoms(p);
+    float *pos = NULL, *vel = NULL;
+    if ((st->any_pos && !(pos = ms_alloc_array(3 * total, sizeof *pos))) ||
+        (st->any_vel && !(vel = ms_alloc_array(3 * total, sizeof *vel)))) {
+        free(pos);
+        ms_error_set(err, "out of memory for an assembly of %zu atoms", total);
+        return -1;
+    }
+    uint32_t *pairs;
+    float *orders;
+    size_t npairs;
+    if (ms_asm_expand_pairs(p, st->pairs, st->orders, st->npairs, &pairs, &orders, &npairs,
+                            err) ||
+        ms_asm_expand_atoms(m, p, err)) {
+        free(pos);
+        free(vel);
+        return -1;
+    }
+    if (pos) ms_asm_expand_xyz(p, st->pos, pos, 0);
+    if (vel) ms_asm_expand_xyz(p, st->vel, vel, 1);
+    free(st->pos);
+    free(st->vel);
+    st->pos = pos;
+    st->vel = vel;
+    st->pos_cap = pos ? total : 0;
+    st->vel_cap = vel ? total : 0;
+    free(st->pairs);
+    free(st->orders);
+    st->pairs = pairs;
+    st->orders = orders;
+    st->npairs = st->pairs_cap = st->orders_cap = npairs;
+    return 0;
+}
+
 /* Read the structure (and first frame) of an open file into m, then finish analysis. */
 static int read_structure_into(ms_molecule *m, const ms_plugin *p, void *h, long natoms,
-                               const ms_load_opts *o, sink_state *st, ms_error *err)
+                               const ms_load_opts *o, sink_state *st, ms_asm_plan **plan,
+                               ms_error *err)
 {
     if (p->read_structure) {
         ms_perr perr = {{0}};
@@ -504,7 +593,108 @@ static int read_structure_into(ms_molecule *m, const ms_plugin *p, void *h, long
         return -1;
     }
     ms_mol_shrink(m);
+    if (o->assembly && apply_assembly(m, st, o->assembly, plan, err)) return -1;
     return finish_structure(m, st, o, err);
+}
+
+/* A volume set's size from its description: refuse empty and absurd grids. */
+static int volume_size(const ms_volume_meta *meta, int k, size_t *n, ms_error *err)
+{
+    size_t t = 1;
+    for (int d = 0; d < 3; d++)
+        if (meta->n[d] < 1 || meta->n[d] > (1L << 30) || ms_mul_size(t, (size_t)meta->n[d], &t)) {
+            ms_error_set(err, "volume set %d: bad grid size %ld x %ld x %ld", k, meta->n[0],
+                         meta->n[1], meta->n[2]);
+            return -1;
+        }
+    if (t > ((size_t)1 << 36)) {
+        ms_error_set(err, "volume set %d: %zu points is more than 2^36", k, t);
+        return -1;
+    }
+    *n = t;
+    return 0;
+}
+
+/* One volume set of an open file into an ms_volume. */
+static int read_volume(const ms_plugin *p, void *h, int k, const ms_volume_meta *meta,
+                       const char *path, ms_volume *v, ms_error *err)
+{
+    size_t n;
+    memset(v, 0, sizeof *v);
+    if (volume_size(meta, k, &n, err)) return -1;
+    v->data = ms_alloc_array(n, sizeof(float));
+    v->name = ms_strdup(meta->name[0] ? meta->name : base_name(path));
+    if (!v->data || !v->name) {
+        ms_volume_clear(v);
+        ms_error_set(err, "volume set %d: out of memory for %zu points", k, n);
+        return -1;
+    }
+    ms_perr perr = {{0}};
+    if (p->read_volume_data(h, k, v->data, &perr) != MS_PLUGIN_OK) {
+        ms_volume_clear(v);
+        ms_error_set(err, "volume set %d: %s", k, perr.msg[0] ? perr.msg : "read error");
+        return -1;
+    }
+    for (int d = 0; d < 3; d++) {
+        v->n[d] = (int)meta->n[d];
+        v->origin[d] = (float)meta->origin[d];
+        for (int e = 0; e < 3; e++) v->delta[d][e] = (float)meta->delta[d][e];
+    }
+    return 0;
+}
+
+/* Every volume set of an open file, appended to m->volumes; on error none is kept. Returns
+ * the number read, or -1. */
+static long read_volumes(ms_molecule *m, const ms_plugin *p, void *h, const char *path,
+                         ms_error *err)
+{
+    size_t before = m->nvolumes;
+    if (!p->read_volume_meta || !p->read_volume_data) return 0;
+    for (int k = 0;; k++) {
+        ms_volume_meta meta;
+        memset(&meta, 0, sizeof meta);
+        ms_perr perr = {{0}};
+        int rc = p->read_volume_meta(h, k, &meta, &perr);
+        if (rc == MS_PLUGIN_EOF) break;
+        ms_volume v;
+        if (rc != MS_PLUGIN_OK) {
+            ms_error_set(err, "volume set %d: %s", k, perr.msg[0] ? perr.msg : "read error");
+            goto fail;
+        }
+        meta.name[sizeof meta.name - 1] = '\0';
+        if (read_volume(p, h, k, &meta, path, &v, err) || ms_mol_add_volume(m, &v, err) < 0)
+            goto fail;
+    }
+    return (long)(m->nvolumes - before);
+fail:
+    while (m->nvolumes > before) ms_mol_delete_volume(m, m->nvolumes - 1);
+    return -1;
+}
+
+/* A file of volumes only: a molecule with no atoms holding them. */
+static ms_molecule *load_volume_file(const ms_plugin *p, const char *path, ms_error *err)
+{
+    long natoms;
+    void *h;
+    if (open_plugin(p, path, &natoms, &h, err)) return NULL;
+    ms_molecule *m = ms_mol_new(err);
+    long got = m ? read_volumes(m, p, h, path, err) : -1;
+    p->close_read(h);
+    if (got == 0) ms_error_set(err, "no volumetric data found");
+    if (got <= 0 || !(m->name = ms_strdup(base_name(path))) ||
+        ms_mol_add_file(m, path, p->name, err) || ms_bonds_build(m, NULL, 0, NULL, err) ||
+        ms_analysis_classify(m, err)) {
+        if (!err->msg[0]) ms_error_set(err, "out of memory");
+        ms_mol_free(m);
+        return NULL;
+    }
+    return m;
+}
+
+static int volume_only(const ms_plugin *p)
+{
+    return (p->caps & MS_CAN_READ_VOLUME) && !(p->caps & MS_CAN_READ_STRUCTURE) &&
+           !(p->caps & MS_CAN_READ_FRAMES);
 }
 
 ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_opts *o,
@@ -513,8 +703,13 @@ ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_o
     err->msg[0] = '\0';
     const ms_plugin *p = ms_load_pick_plugin(r, path, o->type, err);
     if (!p) return NULL;
+    if (volume_only(p)) return load_volume_file(p, path, err);
     if (!(p->caps & (MS_CAN_READ_STRUCTURE | MS_CAN_READ_FRAMES))) {
         ms_error_set(err, "the %s plugin cannot read files", p->name);
+        return NULL;
+    }
+    if (o->assembly && !p->read_structure) {
+        ms_error_set(err, "the %s format holds no biological assemblies", p->name);
         return NULL;
     }
     long natoms;
@@ -526,13 +721,18 @@ ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_o
         return NULL;
     }
     sink_state st;
+    ms_asm_plan *plan = NULL;
     sink_init(&st, m, err);
     if (natoms > 0) sink_reserve(&st.sink, (size_t)natoms);
-    if (read_structure_into(m, p, h, natoms, o, &st, err) ||
+    if (read_structure_into(m, p, h, natoms, o, &st, &plan, err) ||
         take_first_frame(m, &st, o, err) || !(m->name = ms_strdup(base_name(path))) ||
-        ms_mol_add_file(m, path, p->name, err)) {
+        ms_mol_add_file(m, path, p->name, err) || read_volumes(m, p, h, path, err) < 0) {
         if (!err->msg[0]) ms_error_set(err, "out of memory");
         p->close_read(h);
+        if (plan) {
+            ms_asm_plan_free(plan);
+            free(plan);
+        }
         goto fail;
     }
     if (st.remarks) {
@@ -543,7 +743,8 @@ ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_o
     long next_index = st.any_pos ? 1 : 0;
     long already = (long)m->nframes;
     sink_free(&st);
-    if (read_frames(m, p, h, path, next_index, already, o, with_vel, err)) goto fail_nosink;
+    if (read_frames(m, p, h, path, next_index, already, o, with_vel, plan, err))
+        goto fail_nosink;
     if (ms_load_finish_bonds(m, err)) goto fail_nosink;
     m->frame = m->nframes ? (int)m->nframes - 1 : -1;
     return m;
@@ -630,7 +831,44 @@ static int add_frames(const ms_plugin *p, ms_molecule *m, const char *path,
 frames:
     /* A structure format's first frame counts towards waitfor. */
     return read_frames(m, p, h, path, next_index, (long)(m->nframes - before), o, with_vel,
-                       err);
+                       NULL, err);
+}
+
+/* A volume file's sets appended to a molecule's. */
+static int add_volumes(const ms_plugin *p, ms_molecule *m, const char *path, ms_error *err)
+{
+    long natoms;
+    void *h;
+    size_t before = m->nvolumes;
+    if (open_plugin(p, path, &natoms, &h, err)) return -1;
+    long got = read_volumes(m, p, h, path, err);
+    p->close_read(h);
+    if (got == 0) ms_error_set(err, "no volumetric data found");
+    if (got <= 0 || ms_mol_add_file(m, path, p->name, err)) {
+        while (m->nvolumes > before) ms_mol_delete_volume(m, m->nvolumes - 1);
+        return -1;
+    }
+    return 0;
+}
+
+/* Move dst's volumes in front of src's (src replaces dst's contents next). */
+static int keep_volumes(ms_molecule *src, ms_molecule *dst, ms_error *err)
+{
+    size_t n = dst->nvolumes + src->nvolumes;
+    ms_volume *v = ms_alloc_array(n, sizeof *v);
+    if (!v) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    memcpy(v, dst->volumes, dst->nvolumes * sizeof *v);
+    if (src->nvolumes) memcpy(v + dst->nvolumes, src->volumes, src->nvolumes * sizeof *v);
+    free(src->volumes);
+    free(dst->volumes);
+    src->volumes = v;
+    src->nvolumes = n;
+    dst->volumes = NULL;
+    dst->nvolumes = 0;
+    return 0;
 }
 
 int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms_load_opts *o,
@@ -648,11 +886,25 @@ int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms
         }
         free(done);
     }
+    /* A map, or a file of atoms and maps (a cube) added to a molecule that has atoms: its
+     * volumes only. */
+    if (volume_only(p) || ((p->caps & MS_CAN_READ_VOLUME) && m->atoms.n > 0))
+        return add_volumes(p, m, path, err);
     if (m->atoms.n == 0) {
         ms_molecule *src = ms_load_new(r, path, o, err);
         if (!src) return -1;
+        /* Volumes the molecule held stay, before the file's own. */
+        if (m->nvolumes && keep_volumes(src, m, err)) {
+            ms_mol_free(src);
+            return -1;
+        }
         ms_load_adopt(m, src);
         return 0;
+    }
+    if (o->assembly) {
+        ms_error_set(err, "an assembly can only be built when the file makes the structure "
+                     "(molecule %d already has atoms)", m->id);
+        return -1;
     }
     size_t before = m->nframes;
     int frame_before = m->frame;

@@ -17,6 +17,9 @@ typedef struct ms_load_opts {
     int autobonds;      /* add bonds by distance unless the file lists every bond */
     int bcast;          /* `bcast on`: load once and broadcast to every MPI rank; the
                          * commands route such loads to ms_par_load_* (parallel.h) */
+    const char *assembly; /* build this biological assembly (mmCIF pdbx_struct_assembly id,
+                           * PDB REMARK 350 biomolecule number) instead of the asymmetric
+                           * unit; NULL = the file's atoms as they are */
 } ms_load_opts;
 
 void ms_load_opts_default(ms_load_opts *o);
@@ -25,13 +28,20 @@ void ms_load_opts_default(ms_load_opts *o);
 const ms_plugin *ms_load_pick_plugin(const ms_registry *r, const char *path, const char *type,
                                      ms_error *err);
 
-/* Read a new molecule from a file: its structure, then frames. The molecule is complete and
- * analysed (bonds, residues, classification) but not yet added to any molecule set. */
+/* Read a new molecule from a file: its structure, then frames, then the volumetric data
+ * sets the file holds. A file of volumes only (a .dx map) makes a molecule with no atoms
+ * holding them. With opts->assembly the atoms are the assembly's copies: each generator's
+ * atoms under each of its operators, in order, every frame transformed alike; each copy's
+ * segname is its 1-based number in the assembly; file bonds are copied with their atoms.
+ * The molecule is complete and analysed (bonds, residues, classification) but not yet
+ * added to any molecule set. */
 ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_opts *o,
                          ms_error *err);
 
 /* Add a file to an existing molecule: a structure file when the molecule has no atoms,
- * frames otherwise (the atom count must match). On error the molecule is as before. */
+ * frames otherwise (the atom count must match); a volume file's data sets are appended to
+ * the molecule's volumes whatever it holds (of a file of atoms and volumes, a cube, only
+ * the volumes when the molecule already has atoms). On error the molecule is as before. */
 int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms_load_opts *o,
                 ms_error *err);
 

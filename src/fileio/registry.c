@@ -17,7 +17,9 @@ void ms_registry_free(ms_registry *r)
     for (size_t i = 0; i < r->n; i++) {
         if (r->handles[i]) dlclose(r->handles[i]);
         free(r->paths[i]);
+        free(r->copies[i]);
     }
+    free(r->copies);
     free(r->plugins);
     free(r->handles);
     free(r->paths);
@@ -34,12 +36,27 @@ int ms_registry_add(ms_registry *r, const ms_plugin *p, void *handle, const char
     if (ms_grow((void **)&r->handles, &cap, r->n + 1, sizeof *r->handles)) return -1;
     cap = r->cap;
     if (ms_grow((void **)&r->paths, &cap, r->n + 1, sizeof *r->paths)) return -1;
+    cap = r->cap;
+    if (ms_grow((void **)&r->copies, &cap, r->n + 1, sizeof *r->copies)) return -1;
     r->cap = cap;
+    r->copies[r->n] = NULL;
     r->plugins[r->n] = p;
     r->handles[r->n] = handle;
     r->paths[r->n] = ms_strdup(from ? from : "built in");
     r->n++;
     return 1;
+}
+
+const ms_plugin *ms_registry_upgrade(const ms_plugin *p, void **copy)
+{
+    *copy = NULL;
+    if (!p || p->abi < MS_PLUGIN_ABI_MIN || p->abi > MS_PLUGIN_ABI) return NULL;
+    if (p->abi == MS_PLUGIN_ABI) return p;
+    ms_plugin *c = calloc(1, sizeof *c);
+    if (!c) return NULL;
+    memcpy(c, p, MS_PLUGIN_ABI1_SIZE);
+    *copy = c;
+    return c;
 }
 
 static void note_searched(ms_registry *r, const char *dir)
@@ -72,16 +89,23 @@ int ms_registry_load_dir(ms_registry *r, const char *dir)
         }
         ms_plugin_entry_fn entry;
         *(void **)&entry = dlsym(h, MS_PLUGIN_ENTRY_NAME);
-        const ms_plugin *p = entry ? entry() : NULL;
-        if (!p || p->abi != MS_PLUGIN_ABI || !p->name) {
-            fprintf(stderr, "molscope: plugin %s: not a molscope plugin of ABI %d\n", path,
-                    MS_PLUGIN_ABI);
+        void *copy = NULL;
+        const ms_plugin *p = ms_registry_upgrade(entry ? entry() : NULL, &copy);
+        if (!p || !p->name) {
+            fprintf(stderr, "molscope: plugin %s: not a molscope plugin of ABI %d to %d\n",
+                    path, MS_PLUGIN_ABI_MIN, MS_PLUGIN_ABI);
+            free(copy);
             dlclose(h);
             continue;
         }
         int added = ms_registry_add(r, p, h, path);
-        if (added <= 0) dlclose(h);
-        else loaded++;
+        if (added <= 0) {
+            free(copy);
+            dlclose(h);
+        } else {
+            r->copies[r->n - 1] = copy;
+            loaded++;
+        }
     }
     closedir(d);
     return loaded;

@@ -11,6 +11,7 @@ typedef struct ms_registry {
     const ms_plugin **plugins;
     void **handles;            /* dlopen handles (NULL for plugins added directly) */
     char **paths;              /* where each came from ("built in" for direct ones) */
+    void **copies;             /* the host's full-size copy of an older ABI's description */
     size_t n, cap;
     char *searched;            /* the directories searched, for error messages */
 } ms_registry;
@@ -21,6 +22,10 @@ void ms_registry_free(ms_registry *r);
 /* Add a plugin description directly (tests, fuzzers). A plugin whose name is already known
  * is ignored: the first one found wins. */
 int ms_registry_add(ms_registry *r, const ms_plugin *p, void *handle, const char *from);
+/* The description of a plugin of ABI MS_PLUGIN_ABI_MIN..MS_PLUGIN_ABI as a full current one:
+ * p itself when current, else a malloc'd zero-padded copy of its shorter struct (*copy is
+ * set to it, for the caller to free). NULL for an ABI the host does not know. */
+const ms_plugin *ms_registry_upgrade(const ms_plugin *p, void **copy);
 /* Load every *.so of a directory. Returns the number loaded; bad files are skipped with a
  * line on stderr naming them. */
 int ms_registry_load_dir(ms_registry *r, const char *dir);

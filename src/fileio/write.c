@@ -201,3 +201,44 @@ fail_view:
     free(w.bond_to);
     return -1;
 }
+
+int ms_write_volume(const ms_registry *r, const ms_volume *v, const char *path,
+                    const char *type, ms_error *err)
+{
+    const ms_plugin *p = NULL;
+    if (type && *type) p = ms_load_pick_plugin(r, path, type, err);
+    else if (!(p = ms_registry_for_path(r, path)))
+        ms_error_set(err, "cannot tell the file type from the name; give a type");
+    if (!p) return -1;
+    if (!p->open_write || !p->write_volume || !(p->caps & MS_CAN_WRITE_VOLUME)) {
+        ms_error_set(err, "the %s plugin cannot write volumetric data", p->name);
+        return -1;
+    }
+    ms_volume_meta meta;
+    memset(&meta, 0, sizeof meta);
+    snprintf(meta.name, sizeof meta.name, "%s", v->name ? v->name : "");
+    for (int d = 0; d < 3; d++) {
+        meta.n[d] = v->n[d];
+        meta.origin[d] = v->origin[d];
+        for (int e = 0; e < 3; e++) meta.delta[d][e] = v->delta[d][e];
+    }
+    char tmp[4200];
+    if (snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid()) >= (int)sizeof tmp) {
+        ms_error_set(err, "file name too long");
+        return -1;
+    }
+    ms_perr perr = {{0}};
+    void *h = p->open_write(tmp, 0, &perr);
+    if (!h) {
+        ms_error_set(err, "%s", perr.msg[0] ? perr.msg : strerror(errno));
+        return -1;
+    }
+    int rc = p->write_volume(h, &meta, v->data, &perr);
+    int rc_close = p->close_write(h, rc == MS_PLUGIN_OK ? &perr : &(ms_perr){{0}});
+    if (rc != MS_PLUGIN_OK || rc_close != MS_PLUGIN_OK || rename(tmp, path) != 0) {
+        ms_error_set(err, "%s", perr.msg[0] ? perr.msg : strerror(errno));
+        unlink(tmp);
+        return -1;
+    }
+    return 0;
+}

@@ -20,4 +20,9 @@ void ms_write_opts_default(ms_write_opts *o);
 long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
                    const ms_write_opts *o, ms_error *err);
 
+/* Write one volume through a plugin that writes volumes (type NULL: from the extension),
+ * through a temporary file renamed into place. Returns 0 or -1 with err set. */
+int ms_write_volume(const ms_registry *r, const ms_volume *v, const char *path,
+                    const char *type, ms_error *err);
+
 #endif

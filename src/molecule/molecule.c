@@ -80,6 +80,7 @@ void ms_mol_free_contents(ms_molecule *m)
         free(m->files[i].type);
     }
     free(m->files);
+    ms_mol_free_volumes(m);
     for (int i = 0; i < 4; i++) free(m->user[i]);
     free(m->pfrag);
     free(m->nfrag);

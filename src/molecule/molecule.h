@@ -10,6 +10,7 @@
 
 #include "base/base.h"
 #include "base/strtab.h"
+#include "molecule/volume.h"
 
 /* Per-atom classification flags (ms_atoms.flags). */
 enum {
@@ -83,6 +84,8 @@ typedef struct ms_molecule {
 
     ms_molfile *files;
     size_t nfiles;
+    ms_volume *volumes;       /* volumetric data sets (volume.h), in the order added */
+    size_t nvolumes;
     char *remarks;
 
     unsigned active : 1, displayed : 1, fixed : 1;

@@ -11,7 +11,8 @@ typedef enum ms_mol_event {
     MS_EV_FRAME,          /* its current frame changed (vmd_frame) */
     MS_EV_FRAMES_ADDED,   /* frames were appended or deleted (vmd_timestep) */
     MS_EV_TRAJ_DONE,      /* a file finished loading (vmd_trajectory_read); arg: path */
-    MS_EV_STRUCTURE       /* atoms' attributes or bonds changed */
+    MS_EV_STRUCTURE,      /* atoms' attributes or bonds changed */
+    MS_EV_VOLUMES         /* volumetric data sets were added or deleted */
 } ms_mol_event;
 
 typedef void (*ms_mol_listener)(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg);

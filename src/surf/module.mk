@@ -4,7 +4,7 @@ QSURF_SOURCES = \
 	src/surf/qsurf.h src/surf/qsurf_impl.h src/surf/qsurf.c \
 	src/surf/atomgrid.c src/surf/density.c src/surf/simd_avx2.c \
 	src/surf/plan.c src/surf/mctable.c src/surf/mc.c src/surf/mesh.c \
-	src/surf/opencl.c src/surf/beads.c
+	src/surf/opencl.c src/surf/beads.c src/surf/volmap.c
 src_libmscore_la_SOURCES += $(QSURF_SOURCES)
 if HAVE_OPENCL
 src_libmscore_la_LIBADD += $(OPENCL_LIBS)

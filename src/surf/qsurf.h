@@ -203,6 +203,33 @@ int ms_qsurf_density(const ms_qsurf_atoms *a, const ms_qsurf_params *p, ms_qsurf
  * colour. The mesh is replaced. */
 int ms_qsurf_mc(const ms_qsurf_volume *v, float iso, ms_qsurf_mesh *out, ms_error *err);
 
+/* ---------------------------------------------------------------- volmap density
+ * VMD's `volmap density`: rho(p) = sum_i w_i N_i exp(-|p - x_i|^2 / 2 sigma_i^2) with
+ * sigma_i = radscale r_i and N_i = 1 / ((2 pi)^(3/2) sigma_i^3), so that each atom's
+ * Gaussian integrates to its weight (the map of an unweighted selection integrates to its
+ * atom count, in atoms per cubic Angstrom). The grid is QuickSurf's for these atoms (spacing
+ * res, padding from radscale and the largest radius); quality sets the cutoff as for
+ * surfaces (3: 4 sigma). With use_box the grid covers box_lo..box_hi as well (so that the
+ * maps of several frames share one grid). Atoms with radius <= 0 are left out. */
+typedef struct ms_volmap_in {
+    size_t n;
+    const float *pos, *radius;   /* 3 and 1 per atom */
+    const float *weight;         /* 1 per atom, or NULL for 1 */
+    const uint32_t *index;       /* NULL: atoms 0..n-1 */
+} ms_volmap_in;
+
+typedef struct ms_volmap_params {
+    float res, radscale;         /* 1.0, 1.0 */
+    int quality;                 /* 3 */
+    int use_box;
+    float box_lo[3], box_hi[3];
+} ms_volmap_params;
+
+void ms_volmap_params_default(ms_volmap_params *p);
+/* The map into *out (data only; axes orthogonal, spacing in axis[d][d]). */
+int ms_volmap_density(const ms_volmap_in *in, const ms_volmap_params *p, ms_qsurf_volume *out,
+                      ms_error *err);
+
 /* ---------------------------------------------------------------- the whole surface */
 
 typedef struct ms_qsurf_stats {

@@ -10,12 +10,24 @@ const ms_plugin *ms_plugin_entry_psf(void);
 const ms_plugin *ms_plugin_entry_dcd(void);
 const ms_plugin *ms_plugin_entry_xyz(void);
 const ms_plugin *ms_plugin_entry_gro(void);
+const ms_plugin *ms_plugin_entry_dx(void);
+const ms_plugin *ms_plugin_entry_ccp4(void);
+const ms_plugin *ms_plugin_entry_cube(void);
+const ms_plugin *ms_plugin_entry_xtc(void);
+const ms_plugin *ms_plugin_entry_trr(void);
+const ms_plugin *ms_plugin_entry_pdbx(void);
+const ms_plugin *ms_plugin_entry_pqr(void);
+const ms_plugin *ms_plugin_entry_mol2(void);
+const ms_plugin *ms_plugin_entry_namdbin(void);
 
 /* Add all of them to a registry; 0 or -1 (out of memory). */
 static inline int ms_test_add_builtin(ms_registry *r)
 {
     const ms_plugin *p[] = {ms_plugin_entry_pdb(), ms_plugin_entry_psf(), ms_plugin_entry_dcd(),
-                            ms_plugin_entry_xyz(), ms_plugin_entry_gro()};
+                            ms_plugin_entry_xyz(), ms_plugin_entry_gro(), ms_plugin_entry_dx(),
+                            ms_plugin_entry_ccp4(), ms_plugin_entry_cube(), ms_plugin_entry_xtc(),
+                            ms_plugin_entry_trr(), ms_plugin_entry_pdbx(), ms_plugin_entry_pqr(),
+                            ms_plugin_entry_mol2(), ms_plugin_entry_namdbin()};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         if (ms_registry_add(r, p[i], NULL, NULL) < 0) return -1;
     return 0;

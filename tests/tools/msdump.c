@@ -6,9 +6,12 @@
  *   atom    i name resname resid segname chain      (once per atom, 0-based i)
  *   cell    k a b c alpha beta gamma                (once per frame)
  *   xyz     k i x y z                               (per frame and atom)
- * usage: msdump [-o out] [-t type] file [[-t type] file ...]: the first file makes the
+ *   volume  v n0 n1 n2 ox oy oz d00 d01 ... d22 min max mean  (once per volume)
+ * usage: msdump [-o out] [-a assembly] [-t type] file [[-t type] file ...]: the first file
+ * makes the
  * molecule, the others are added to it; with -o the molecule (every frame) is written to
- * `out` instead, in the format its extension names. Exit status 1 with the error on stderr
+ * `out` instead, in the format its extension names (a volume format writes the first
+ * volume); -a builds a biological assembly from the first file. Exit status 1 with the error on stderr
  * when a load or the write fails. */
 #include "config.h"
 #include "builtin.h"
@@ -35,6 +38,13 @@ static void dump(const ms_molecule *m)
             printf("xyz\t%zu\t%zu\t%.9g\t%.9g\t%.9g\n", k, i, (double)f->pos[3 * i],
                    (double)f->pos[3 * i + 1], (double)f->pos[3 * i + 2]);
     }
+    for (size_t k = 0; k < m->nvolumes; k++) {
+        const ms_volume *v = &m->volumes[k];
+        printf("volume\t%zu\t%d\t%d\t%d", k, v->n[0], v->n[1], v->n[2]);
+        for (int d = 0; d < 3; d++) printf("\t%.9g", (double)v->origin[d]);
+        for (int d = 0; d < 9; d++) printf("\t%.9g", (double)v->delta[d / 3][d % 3]);
+        printf("\t%.9g\t%.9g\t%.9g\n", (double)v->min, (double)v->max, (double)v->mean);
+    }
 }
 
 int main(int argc, char **argv)
@@ -47,7 +57,7 @@ int main(int argc, char **argv)
     }
     ms_molecule *m = NULL;
     ms_error err = {{0}};
-    const char *type = NULL, *out = NULL;
+    const char *type = NULL, *out = NULL, *assembly = NULL;
     int status = 0;
     for (int i = 1; i < argc && status == 0; i++) {
         if (!strcmp(argv[i], "-t") && i + 1 < argc) {
@@ -58,10 +68,15 @@ int main(int argc, char **argv)
             out = argv[++i];
             continue;
         }
+        if (!strcmp(argv[i], "-a") && i + 1 < argc) {
+            assembly = argv[++i];
+            continue;
+        }
         ms_load_opts o;
         ms_load_opts_default(&o);
         o.waitfor = -1;
         o.type = type;
+        o.assembly = m ? NULL : assembly;
         type = NULL;
         int failed = m ? ms_load_add(&reg, m, argv[i], &o, &err) != 0
                        : (m = ms_load_new(&reg, argv[i], &o, &err)) == NULL;
@@ -77,7 +92,10 @@ int main(int argc, char **argv)
     if (status == 0 && out) {
         ms_write_opts wo;
         ms_write_opts_default(&wo);
-        if (ms_write_file(&reg, m, out, &wo, &err) < 0) {
+        const ms_plugin *wp = ms_registry_for_path(&reg, out);
+        int vol = wp && (wp->caps & MS_CAN_WRITE_VOLUME) && m->nvolumes;
+        if (vol ? ms_write_volume(&reg, &m->volumes[0], out, NULL, &err) < 0
+                : ms_write_file(&reg, m, out, &wo, &err) < 0) {
             fprintf(stderr, "msdump: %s: %s\n", out, err.msg);
             status = 1;
         }

@@ -1,0 +1,263 @@
+/* cmd_volmap.c: the `volmap` command (VMD's volumetric map maker), the density map only:
+ *
+ *   volmap density <sel> ?-res r? ?-radscale s? ?-weight none|<keyword>|<list>?
+ *          ?-allframes? ?-combine avg|max|min|stdev? ?-quality q? ?-o file? ?-mol molid?
+ *
+ * Each selected atom is a normalised Gaussian of width radscale * radius weighted by
+ * -weight (mass, charge, beta, occupancy, radius, or one number per selected atom), summed
+ * on QuickSurf's grid (surf/qsurf.h, ms_volmap_density). With -allframes every frame's map
+ * (on one grid) is combined. -o writes the map (the type from the extension: .dx, .ccp4);
+ * the map is added to molecule -mol, or to the selection's molecule when no -o is given.
+ * Returns the new volume's index in that molecule, or "" when only a file was written. */
+#include "config.h"
+#include "commands/commands.h"
+#include "fileio/write.h"
+#include "surf/qsurf.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+typedef struct volmap_opts {
+    ms_volmap_params p;
+    Tcl_Obj *weight, *mol;
+    const char *out;
+    int allframes;
+    const char *combine;
+} volmap_opts;
+
+static int parse_opts(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[],
+                      volmap_opts *o)
+{
+    (void)app;
+    memset(o, 0, sizeof *o);
+    ms_volmap_params_default(&o->p);
+    o->combine = "avg";
+    for (int i = 3; i < objc; i++) {
+        const char *w = Tcl_GetString(objv[i]);
+        if (!strcasecmp(w, "-allframes")) {
+            o->allframes = 1;
+            continue;
+        }
+        if (i + 1 >= objc) return ms_cmd_error(interp, "volmap density: option %s has no value", w);
+        Tcl_Obj *v = objv[++i];
+        double d;
+        if (!strcasecmp(w, "-res") || !strcasecmp(w, "-radscale")) {
+            if (Tcl_GetDoubleFromObj(NULL, v, &d) != TCL_OK || !(d > 0) || d > 1e4)
+                return ms_cmd_error(interp, "volmap density: %s: expected a positive number, "
+                                    "got '%s'", w, Tcl_GetString(v));
+            if (!strcasecmp(w, "-res")) o->p.res = (float)d;
+            else o->p.radscale = (float)d;
+        } else if (!strcasecmp(w, "-quality")) {
+            int q;
+            if (Tcl_GetIntFromObj(NULL, v, &q) != TCL_OK || q < 0 || q > 3)
+                return ms_cmd_error(interp, "volmap density: -quality: expected 0 to 3, got '%s'",
+                                    Tcl_GetString(v));
+            o->p.quality = q;
+        } else if (!strcasecmp(w, "-weight")) {
+            o->weight = v;
+        } else if (!strcasecmp(w, "-o")) {
+            o->out = Tcl_GetString(v);
+        } else if (!strcasecmp(w, "-mol")) {
+            o->mol = v;
+        } else if (!strcasecmp(w, "-combine")) {
+            o->combine = Tcl_GetString(v);
+            if (strcasecmp(o->combine, "avg") && strcasecmp(o->combine, "max") &&
+                strcasecmp(o->combine, "min") && strcasecmp(o->combine, "stdev"))
+                return ms_cmd_error(interp, "volmap density: -combine: expected avg, max, min or "
+                                    "stdev, got '%s'", o->combine);
+        } else {
+            return ms_cmd_error(interp, "volmap density: unknown option '%s': must be -res, "
+                                "-radscale, -weight, -allframes, -combine, -quality, -o or -mol", w);
+        }
+    }
+    return TCL_OK;
+}
+
+/* Per-atom weights (indexed like the molecule) from -weight; NULL for none. */
+static int get_weights(Tcl_Interp *interp, const ms_molecule *m, Tcl_Obj *wobj,
+                       const uint32_t *atoms, size_t n, float **out)
+{
+    *out = NULL;
+    if (!wobj || !strcasecmp(Tcl_GetString(wobj), "none")) return TCL_OK;
+    const char *w = Tcl_GetString(wobj);
+    const float *src = !strcasecmp(w, "mass") ? m->atoms.mass
+                       : !strcasecmp(w, "charge") ? m->atoms.charge
+                       : !strcasecmp(w, "beta") ? m->atoms.beta
+                       : !strcasecmp(w, "occupancy") ? m->atoms.occupancy
+                       : !strcasecmp(w, "radius") ? m->atoms.radius : NULL;
+    float *v = ms_calloc_array(m->atoms.n ? m->atoms.n : 1, sizeof *v);
+    if (!v) return ms_cmd_error(interp, "volmap density: out of memory");
+    if (src) {
+        memcpy(v, src, m->atoms.n * sizeof *v);
+    } else {
+        Tcl_Obj **el;
+        int ne;
+        if (Tcl_ListObjGetElements(NULL, wobj, &ne, &el) != TCL_OK || (size_t)ne != n) {
+            free(v);
+            return ms_cmd_error(interp, "volmap density: -weight: expected none, mass, charge, "
+                                "beta, occupancy, radius or %zu numbers, got '%.60s'", n, w);
+        }
+        for (size_t k = 0; k < n; k++) {
+            double d;
+            if (Tcl_GetDoubleFromObj(NULL, el[k], &d) != TCL_OK) {
+                free(v);
+                return ms_cmd_error(interp, "volmap density: -weight: '%s' is not a number",
+                                    Tcl_GetString(el[k]));
+            }
+            v[atoms[k]] = (float)d;
+        }
+    }
+    *out = v;
+    return TCL_OK;
+}
+
+/* The bounding box of the selected atoms over every frame. */
+static void frames_box(const ms_molecule *m, const uint32_t *atoms, size_t n, float lo[3],
+                       float hi[3])
+{
+    for (int d = 0; d < 3; d++) lo[d] = INFINITY, hi[d] = -INFINITY;
+    for (size_t f = 0; f < m->nframes; f++)
+        for (size_t k = 0; k < n; k++) {
+            const float *p = m->frames[f].pos + 3 * (size_t)atoms[k];
+            for (int d = 0; d < 3; d++)
+                if (isfinite(p[d])) lo[d] = fminf(lo[d], p[d]), hi[d] = fmaxf(hi[d], p[d]);
+        }
+}
+
+/* Combine one frame's map into the accumulator (sums for avg and stdev). */
+static void combine_into(const char *how, float *acc, float *acc2, const float *v, size_t n,
+                         int first)
+{
+    for (size_t i = 0; i < n; i++) {
+        if (first) acc[i] = v[i], acc2[i] = v[i] * v[i];
+        else if (!strcasecmp(how, "max")) acc[i] = fmaxf(acc[i], v[i]);
+        else if (!strcasecmp(how, "min")) acc[i] = fminf(acc[i], v[i]);
+        else acc[i] += v[i], acc2[i] += v[i] * v[i];
+    }
+}
+
+/* The map of one frame, or of all frames combined, into vol. */
+static int compute(const ms_molecule *m, long frame, const uint32_t *atoms, size_t n,
+                   const float *w, volmap_opts *o, ms_qsurf_volume *vol, ms_error *err)
+{
+    ms_volmap_in in = {n, NULL, m->atoms.radius, w, atoms};
+    if (!o->allframes) {
+        in.pos = m->frames[frame].pos;
+        return ms_volmap_density(&in, &o->p, vol, err);
+    }
+    frames_box(m, atoms, n, o->p.box_lo, o->p.box_hi);
+    o->p.use_box = isfinite(o->p.box_lo[0]);
+    float *acc2 = NULL;
+    for (size_t f = 0; f < m->nframes; f++) {
+        ms_qsurf_volume one;
+        in.pos = m->frames[f].pos;
+        if (ms_volmap_density(&in, &o->p, f ? &one : vol, err)) goto fail;
+        size_t np = (size_t)vol->n[0] * (size_t)vol->n[1] * (size_t)vol->n[2];
+        if (f == 0) {
+            if (!(acc2 = ms_alloc_array(np, sizeof *acc2))) goto oom;
+            combine_into(o->combine, vol->data, acc2, vol->data, np, 1);
+            continue;
+        }
+        combine_into(o->combine, vol->data, acc2, one.data, np, 0);
+        ms_qsurf_volume_free(&one);
+    }
+    size_t np = (size_t)vol->n[0] * (size_t)vol->n[1] * (size_t)vol->n[2];
+    double nf = (double)m->nframes;
+    for (size_t i = 0; i < np; i++) {
+        if (!strcasecmp(o->combine, "avg")) vol->data[i] = (float)(vol->data[i] / nf);
+        else if (!strcasecmp(o->combine, "stdev")) {
+            double mean = vol->data[i] / nf, var = acc2[i] / nf - mean * mean;
+            vol->data[i] = (float)sqrt(var > 0 ? var : 0);
+        }
+    }
+    free(acc2);
+    return 0;
+oom:
+    ms_error_set(err, "out of memory");
+fail:
+    free(acc2);
+    ms_qsurf_volume_free(vol);
+    return -1;
+}
+
+/* The computed map as a molecule volume: attached and/or written. */
+static int deliver(ms_app *app, Tcl_Interp *interp, ms_molecule *target, ms_qsurf_volume *q,
+                   const volmap_opts *o)
+{
+    ms_volume v;
+    memset(&v, 0, sizeof v);
+    v.name = ms_strdup("volmap density");
+    v.data = q->data;
+    q->data = NULL;
+    for (int d = 0; d < 3; d++) {
+        v.n[d] = q->n[d];
+        v.origin[d] = q->origin[d];
+        for (int e = 0; e < 3; e++) v.delta[d][e] = q->axis[d][e];
+    }
+    ms_error err = {{0}};
+    if (!v.name) {
+        ms_volume_clear(&v);
+        return ms_cmd_error(interp, "volmap density: out of memory");
+    }
+    if (o->out && ms_write_volume(&app->plugins, &v, o->out, NULL, &err)) {
+        ms_volume_clear(&v);
+        return ms_cmd_error(interp, "volmap density: %s: %s", o->out, err.msg);
+    }
+    if (!target) {
+        ms_volume_clear(&v);
+        Tcl_ResetResult(interp);
+        return TCL_OK;
+    }
+    long k = ms_mol_add_volume(target, &v, &err);
+    if (k < 0) return ms_cmd_error(interp, "volmap density: %s", err.msg);
+    ms_molset_emit(&app->mols, MS_EV_VOLUMES, target, NULL);
+    Tcl_SetObjResult(interp, Tcl_NewLongObj(k));
+    return TCL_OK;
+}
+
+static int volmap_density(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc < 3)
+        return ms_cmd_error(interp, "volmap density: usage: volmap density <selection> ?-res r? "
+                            "?-radscale s? ?-weight w? ?-allframes? ?-combine c? ?-o file? ?-mol id?");
+    volmap_opts o;
+    if (parse_opts(app, interp, objc, objv, &o)) return TCL_ERROR;
+    if (!ms_cmd_sel_resolver)
+        return ms_cmd_error(interp, "volmap density: atom selections are not available");
+    int molid;
+    long frame;
+    uint32_t *atoms = NULL;
+    size_t n = 0;
+    if (ms_cmd_sel_resolver(app, interp, Tcl_GetString(objv[2]), "volmap density", &molid,
+                            &frame, &atoms, &n) != TCL_OK)
+        return TCL_ERROR;
+    ms_molecule *m = ms_molset_get(&app->mols, molid), *target = NULL;
+    float *w = NULL;
+    int rc = TCL_ERROR;
+    if (!m || frame < 0 || (size_t)frame >= m->nframes || n == 0) {
+        ms_cmd_error(interp, "volmap density: %s: %s", Tcl_GetString(objv[2]),
+                     n == 0 ? "the selection is empty" : "the molecule has no coordinates");
+        goto done;
+    }
+    if (o.mol && !(target = ms_cmd_mol(app, interp, o.mol, "volmap density"))) goto done;
+    if (!o.mol && !o.out) target = m;
+    if (get_weights(interp, m, o.weight, atoms, n, &w)) goto done;
+    ms_qsurf_volume q;
+    ms_error err = {{0}};
+    if (compute(m, frame, atoms, n, w, &o, &q, &err)) {
+        ms_cmd_error(interp, "volmap density: %s", err.msg);
+        goto done;
+    }
+    rc = deliver(app, interp, target, &q, &o);
+    ms_qsurf_volume_free(&q);
+done:
+    free(atoms);
+    free(w);
+    return rc;
+}
+
+static const ms_subcmd volmap_table[] = {{"density", volmap_density}, {NULL, NULL}};
+
+void ms_cmd_volmap_register(ms_app *app) { ms_cmdset_create(app, "volmap", volmap_table); }

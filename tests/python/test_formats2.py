@@ -1,0 +1,242 @@
+#!/usr/bin/python3
+"""test_formats2.py: the second set of readers and writers against independent programs.
+tests/tools/msdump loads files as `mol new` + `mol addfile` do and prints what it read.
+- MDAnalysis (python3-mdanalysis) writes XTC and TRR files of helix.psf + helix.dcd; msdump
+  must read the XTC coordinates bit for bit as MDAnalysis reads them back, the TRR ones
+  within 1e-5 A; MDAnalysis reads the PQR of APBS and PyMOL's MOL2 like msdump; msdump's
+  TRR, PQR and MOL2 writers are read back by MDAnalysis.
+- gemmi (Debian's gemmi) converts 1tii.pdb to mmCIF: msdump reads it like the PDB (names,
+  residues, resids, chains, coordinates); gemmi builds assembly 1 of 3jqh.cif and of
+  1a8o.pdb (REMARK 350): msdump's `assembly 1` has the same atoms at the same places.
+- gridData (MDAnalysis' GridDataFormats) reads msdump's OpenDX of the cube seed grid, and
+  msdump reads a CCP4 map gemmi writes (`gemmi mask` of 3jqh.cif) as gridData reads it.
+Prints PASS:/FAIL:/SKIP: lines; SKIP when a peer is missing."""
+import os
+import shutil
+import subprocess
+import sys
+import warnings
+
+SUITE = "formats2"
+failures = 0
+
+
+def report(ok, name, detail=""):
+    global failures
+    if ok:
+        print("PASS: %s: %s" % (SUITE, name))
+    else:
+        failures += 1
+        print("FAIL: %s: %s: %s" % (SUITE, name, detail))
+
+
+def msdump(exe, files):
+    out = subprocess.run([exe] + files, capture_output=True, text=True)
+    if out.returncode != 0:
+        raise RuntimeError(out.stderr.strip())
+    d = {"atoms": [], "cells": [], "xyz": [], "volumes": []}
+    for line in out.stdout.splitlines():
+        f = line.split("\t")
+        if f[0] == "natoms":
+            d["natoms"] = int(f[1])
+        elif f[0] == "nframes":
+            d["nframes"] = int(f[1])
+        elif f[0] == "atom":
+            d["atoms"].append((f[2], f[3], int(f[4]), f[5], f[6]))
+        elif f[0] == "cell":
+            d["cells"].append([float(x) for x in f[2:8]])
+            d["xyz"].append([])
+        elif f[0] == "xyz":
+            d["xyz"][int(f[1])].append([float(x) for x in f[3:6]])
+        elif f[0] == "volume":
+            d["volumes"].append([float(x) for x in f[2:]])
+    return d
+
+
+def run(exe, args):
+    r = subprocess.run([exe] + args, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(r.stderr.strip())
+
+
+def trajectories(mda, np, exe, p, tmp):
+    src = mda.Universe(p("helix.psf"), p("helix.dcd"))
+    for ext in ("xtc", "trr"):
+        path = tmp("mda.%s" % ext)
+        with mda.Writer(path, src.atoms.n_atoms) as w:
+            for ts in src.trajectory:
+                w.write(src.atoms)
+        u = mda.Universe(p("helix.psf"), path)
+        ref = np.array([ts.positions.copy() for ts in u.trajectory], dtype=np.float32)
+        try:
+            ours = np.array(msdump(exe, [p("helix.psf"), path])["xyz"], dtype=np.float32)
+        except RuntimeError as e:
+            report(False, "%s: msdump reads MDAnalysis' file" % ext, str(e))
+            continue
+        same = ours.shape == ref.shape
+        if ext == "xtc":
+            report(same and bool((ours == ref).all()),
+                   "XTC written by MDAnalysis: every coordinate of 10 frames equal to the bit",
+                   "shapes %s %s, largest difference %s" % (
+                       ours.shape, ref.shape, np.abs(ours - ref).max() if same else "-"))
+        else:
+            report(same and float(np.abs(ours - ref).max()) < 1e-5,
+                   "TRR written by MDAnalysis: coordinates within 1e-5 A",
+                   "largest difference %s" % (np.abs(ours - ref).max() if same else ours.shape))
+    # Our TRR writer, read back by MDAnalysis.
+    out = tmp("ours.trr")
+    run(exe, ["-o", out, p("helix.psf"), p("helix.dcd")])
+    u = mda.Universe(p("helix.psf"), out)
+    worst = max(float(np.abs(a.positions - b.positions).max()) for a, b in
+                zip((src.trajectory[k] or src.atoms for k in range(10)),
+                    (u.trajectory[k] or u.atoms for k in range(10))))
+    report(len(u.trajectory) == 10 and worst < 1e-4,
+           "msdump's TRR read by MDAnalysis: 10 frames within 1e-4 A", "worst %g" % worst)
+
+
+def same_atoms(name, ours, u, np, names=True, tol=1e-3):
+    n = u.atoms.n_atoms
+    ok = ours["natoms"] == n
+    report(ok, "%s: %d atoms" % (name, n), "msdump has %d" % ours["natoms"])
+    if not ok:
+        return
+    if names:
+        bad = [i for i, a in enumerate(ours["atoms"])
+               if a[0] != u.atoms.names[i] or a[1] != u.atoms.resnames[i]
+               or a[2] != u.atoms.resids[i]]
+        report(not bad, "%s: names, residue names and resids" % name,
+               "atom %d: %s" % (bad[0], ours["atoms"][bad[0]]) if bad else "")
+    d = float(np.abs(np.array(ours["xyz"][0]) - u.atoms.positions).max())
+    report(d <= tol, "%s: coordinates within %g A" % (name, tol), "largest difference %g" % d)
+
+
+def small_formats(mda, np, exe, p, tmp):
+    pqr = "/usr/share/apbs/examples/pbam/1a63.pqr"
+    mol2 = p("small03_1.mol2")
+    for name, path in (("APBS 1a63.pqr", pqr), ("PyMOL small03.mol2 (first molecule)", mol2)):
+        if not os.path.exists(path):
+            print("SKIP: %s: %s: %s is missing" % (SUITE, name, path))
+            continue
+        u = mda.Universe(path)
+        ours = msdump(exe, [path])
+        same_atoms(name, ours, u, np)
+        if path == pqr:
+            bad = [i for i in range(u.atoms.n_atoms) if ours["natoms"] != u.atoms.n_atoms]
+            report(not bad, "%s: read" % name)
+        if path == mol2:
+            bonds = sorted(tuple(sorted(b)) for b in u.bonds.indices.tolist())
+            report(len(bonds) == 9, "small03 first molecule: MDAnalysis sees 9 bonds")
+    for ext in ("pqr", "mol2"):
+        out = tmp("ours.%s" % ext)
+        run(exe, ["-o", out, p("pept.pdb")])
+        ours = msdump(exe, [p("pept.pdb")])
+        same_atoms("msdump's %s of pept.pdb read by MDAnalysis" % ext.upper(), ours,
+                   mda.Universe(out), np)
+
+
+def with_gemmi(np, exe, p, tmp):
+    if not shutil.which("gemmi"):
+        print("SKIP: %s: gemmi: the gemmi program is not installed" % SUITE)
+        return
+    cif = tmp("1tii.cif")
+    subprocess.run(["gemmi", "convert", p("1tii.pdb"), cif], check=True, capture_output=True)
+    a, b = msdump(exe, [p("1tii.pdb")]), msdump(exe, [cif])
+    report(a["natoms"] == b["natoms"], "gemmi's mmCIF of 1tii: %d atoms" % a["natoms"],
+           "%d" % b["natoms"])
+    if a["natoms"] == b["natoms"]:
+        bad = [i for i in range(a["natoms"]) if a["atoms"][i][0] != b["atoms"][i][0] or
+               a["atoms"][i][1:3] != b["atoms"][i][1:3] or a["atoms"][i][4] != b["atoms"][i][4]]
+        report(not bad, "gemmi's mmCIF of 1tii: names, residue names, resids and chains as the "
+               "PDB", "atom %d: %s vs %s" % (bad[0], a["atoms"][bad[0]], b["atoms"][bad[0]])
+               if bad else "")
+        d = float(np.abs(np.array(a["xyz"][0]) - np.array(b["xyz"][0])).max())
+        report(d < 1e-4, "gemmi's mmCIF of 1tii: coordinates as the PDB", "%g" % d)
+    for src in ("3jqh.cif", "1a8o.pdb"):
+        ref = tmp("asm_" + src.replace(".", "_") + ".pdb")
+        subprocess.run(["gemmi", "convert", "--assembly=1", p(src), ref], check=True,
+                       capture_output=True)
+        g = msdump(exe, [ref])
+        try:
+            ours = msdump(exe, ["-a", "1", p(src)])
+        except RuntimeError as e:
+            report(False, "%s assembly 1: msdump builds it" % src, str(e))
+            continue
+        base = msdump(exe, [p(src)])
+        copies = ours["natoms"] // max(1, base["natoms"])
+        report(ours["natoms"] == g["natoms"],
+               "%s assembly 1: %d atoms (%d copies of %d), as gemmi builds it" % (
+                   src, g["natoms"], copies, base["natoms"]), "msdump has %d" % ours["natoms"])
+        if ours["natoms"] == g["natoms"]:
+            from scipy.spatial import cKDTree
+            x, y = np.array(ours["xyz"][0]), np.array(g["xyz"][0])
+            # Match atoms by position (gemmi may order the copies differently): every atom
+            # of each must have one of the other's within the tolerance.
+            d = max(float(cKDTree(y).query(x)[0].max()), float(cKDTree(x).query(y)[0].max()))
+            report(d < 2e-3, "%s assembly 1: every atom where gemmi puts it" % src,
+                   "largest difference %g" % d)
+
+
+def grids(np, exe, p, tmp):
+    try:
+        import gridData
+    except ImportError:
+        print("SKIP: %s: gridData: python3-griddataformats is not installed" % SUITE)
+        return
+    dx = tmp("ours.dx")
+    run(exe, ["-o", dx, p("grid345.cube")])
+    g = gridData.Grid(dx)
+    i, j, k = np.meshgrid(np.arange(3), np.arange(4), np.arange(5), indexing="ij")
+    report(g.grid.shape == (3, 4, 5) and bool((g.grid == i + 10 * j + 100 * k).all()),
+           "msdump's DX of the cube test grid read by gridData: every value")
+    report(np.allclose(g.origin, np.array([1, 2, 3]) * 0.529177210903, atol=1e-6) and
+           np.allclose(g.delta, np.array([0.5, 1, 2]) * 0.529177210903, atol=1e-6),
+           "msdump's DX: origin and spacing in Angstrom (Bohr converted)")
+    if not shutil.which("gemmi"):
+        return
+    msk = tmp("3jqh.ccp4")
+    subprocess.run(["gemmi", "mask", p("3jqh.cif"), msk], check=True,
+                   capture_output=True)
+    ref = gridData.Grid(msk)
+    out = tmp("gemmi_mask.dx")
+    run(exe, ["-o", out, msk])
+    ours = gridData.Grid(out)
+    report(ours.grid.shape == ref.grid.shape and bool((ours.grid == ref.grid).all()),
+           "gemmi's CCP4 mask of 3jqh.cif: every value as gridData reads it (%s)" %
+           "x".join(map(str, ref.grid.shape)))
+    report(np.allclose(ours.delta, ref.delta, atol=1e-5),
+           "gemmi's CCP4 mask: grid spacing as gridData reads it",
+           "%s vs %s" % (ours.delta, ref.delta))
+
+
+def main():
+    try:
+        warnings.simplefilter("ignore")
+        import numpy as np
+        import MDAnalysis as mda
+    except ImportError:
+        print("SKIP: %s: python3-mdanalysis is not installed" % SUITE)
+        return 0
+    srcdir = os.environ.get("MS_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+    builddir = os.environ.get("MS_BUILDDIR", srcdir)
+    data = os.environ.get("MS_TEST_DATA", os.path.join(srcdir, "tests", "data"))
+    outdir = os.environ.get("MS_TEST_OUT", "/tmp")
+    exe = os.path.join(builddir, "tests", "tools", "msdump")
+    if not os.access(exe, os.X_OK):
+        print("FAIL: %s: %s is not built (make check-build)" % (SUITE, exe))
+        return 1
+    corpus = os.path.join(srcdir, "tests", "fuzz", "corpus")
+    seeds = {"small03_1.mol2": os.path.join(corpus, "mol2", "small03_1.mol2"),
+             "grid345.cube": os.path.join(corpus, "cube", "grid345.cube")}
+    p = lambda f: seeds.get(f, os.path.join(data, f))
+    tmp = lambda f: os.path.join(outdir, "formats2_%d_%s" % (os.getpid(), f))
+    for step in (lambda: trajectories(mda, np, exe, p, tmp), lambda: small_formats(mda, np, exe, p, tmp),
+                 lambda: with_gemmi(np, exe, p, tmp), lambda: grids(np, exe, p, tmp)):
+        try:
+            step()
+        except (RuntimeError, subprocess.CalledProcessError) as e:
+            report(False, "a step failed", str(e))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
