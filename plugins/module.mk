@@ -65,3 +65,13 @@ plugins_mol2_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_LTLIBRARIES += plugins/namdbin.la
 plugins_namdbin_la_SOURCES = plugins/namdbin.c $(PLUGIN_UTIL)
 plugins_namdbin_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+# Every plugin in one convenience library, each under its own entry name (plugins/builtin/),
+# for the programs that read files without the plugin directory: tests, tools, benchmarks.
+noinst_LTLIBRARIES += plugins/libbuiltin.la
+plugins_libbuiltin_la_SOURCES = plugins/builtin/builtin.h \
+	plugins/builtin/pdb.c plugins/builtin/psf.c plugins/builtin/dcd.c plugins/builtin/xyz.c \
+	plugins/builtin/gro.c plugins/builtin/dx.c plugins/builtin/ccp4.c plugins/builtin/cube.c \
+	plugins/builtin/xtc.c plugins/builtin/trr.c plugins/builtin/pdbx.c plugins/builtin/pqr.c \
+	plugins/builtin/mol2.c plugins/builtin/namdbin.c plugins/cif_tok.c $(PLUGIN_UTIL)
+plugins_libbuiltin_la_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/plugins/builtin

@@ -14,7 +14,7 @@
 #include <string.h>
 #include <time.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -45,7 +45,7 @@ int main(int argc, char **argv)
     if (repeats < 1) repeats = 1;
     ms_registry reg;
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     ms_load_opts o;
     ms_load_opts_default(&o);
     o.waitfor = -1;

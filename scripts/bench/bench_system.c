@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 static void place_copies(const ms_molecule *m, int copies, bench_sys *s)
 {
@@ -50,7 +50,7 @@ int bench_system_make(const char *data, int copies, bench_sys *s)
     memset(s, 0, sizeof *s);
     ms_registry reg;
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     char path[1024];
     snprintf(path, sizeof path, "%s/1tii.pdb", data);
     ms_load_opts o;

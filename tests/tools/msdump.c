@@ -14,7 +14,7 @@
  * volume); -a builds a biological assembly from the first file. Exit status 1 with the error on stderr
  * when a load or the write fails. */
 #include "config.h"
-#include "builtin.h"
+#include "builtin/builtin.h"
 #include "fileio/load.h"
 #include "fileio/write.h"
 

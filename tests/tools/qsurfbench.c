@@ -17,7 +17,7 @@
 #include <string.h>
 #include <sys/resource.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 typedef struct bench_opts {
     ms_qsurf_params p;
@@ -129,7 +129,7 @@ int main(int argc, char **argv)
         return 2;
     }
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     ms_load_opts_default(&lo);
     lo.autobonds = 0;
     lo.waitfor = -1;

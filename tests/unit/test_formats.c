@@ -4,7 +4,7 @@
  * file, or from the text of the source files; never from output this test just wrote,
  * except in round trips, which compare against the original molecule. */
 #include "config.h"
-#include "builtin.h"
+#include "builtin/builtin.h"
 #include "ms_test.h"
 #include "fileio/load.h"
 #include "fileio/write.h"

@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 #define W 401
 #define H 401
@@ -470,7 +470,7 @@ static ms_molecule *load_1tii(void)
 {
     ms_registry reg;
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     char path[1024];
     snprintf(path, sizeof path, "%s/1tii.pdb", t_data());
     ms_load_opts o;

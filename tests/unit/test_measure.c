@@ -13,7 +13,7 @@
 #include <math.h>
 #include <string.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 static ms_registry reg;
 
@@ -973,7 +973,7 @@ static void test_helix_hbonds(void)
 int main(void)
 {
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     test_matrices();
     test_eigen();
     test_geometry();

@@ -11,7 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 static ms_registry reg;
 
@@ -181,7 +181,7 @@ static void test_bad_input(void)
 int main(void)
 {
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     test_1tii();
     test_il2();
     test_nucleic();

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 static ms_registry reg;
 
@@ -561,7 +561,7 @@ static void test_1tii(void)
 int main(void)
 {
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     test_exp2();
     test_grid_rules();
     test_one_atom();

@@ -12,7 +12,7 @@
 #include <math.h>
 #include <string.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 static ms_registry reg;
 
@@ -454,7 +454,7 @@ static void test_access(ms_molecule *m)
 int main(void)
 {
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     test_lexer();
     test_precedence();
     test_values();

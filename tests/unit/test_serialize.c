@@ -11,7 +11,7 @@
 
 #include <string.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 static ms_registry reg;
 
@@ -286,7 +286,7 @@ static void test_damage(void)
 int main(void)
 {
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     test_round_trip();
     test_blocks();
     test_empty();

@@ -16,7 +16,7 @@
 #include <math.h>
 #include <string.h>
 
-const ms_plugin *ms_plugin_entry(void);
+#include "builtin/builtin.h"
 
 static ms_registry reg;
 
@@ -455,7 +455,7 @@ int main(void)
 {
     t_suite = "ss";
     ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
+    ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     size_t tot = 0, agree = 0;
     test_reference("1tii.pdb", ref_1tii, &tot, &agree);
     test_reference("il2.pdb", ref_il2, &tot, &agree);

@@ -5,7 +5,7 @@
  * cut by marching cubes at the analytic radius, ABI 1 plugins, and errors naming the
  * record. */
 #include "config.h"
-#include "builtin.h"
+#include "builtin/builtin.h"
 #include "ms_test.h"
 #include "fileio/load.h"
 #include "fileio/write.h"

@@ -1,7 +1,8 @@
-/* builtin.h: every plugin linked into a test program (see plugin_*.c), for tools and tests
- * that load files without the plugin directory. */
-#ifndef MS_TEST_BUILTIN_H
-#define MS_TEST_BUILTIN_H
+/* builtin.h: every file-format plugin linked into one program (plugins/libbuiltin.la: each
+ * plugin compiled under its own entry name by builtin/<name>.c), for the tests, tools,
+ * benchmarks and fuzz drivers that load files without the plugin directory. */
+#ifndef MS_PLUGINS_BUILTIN_H
+#define MS_PLUGINS_BUILTIN_H
 
 #include "fileio/registry.h"
 

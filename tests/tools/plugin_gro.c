@@ -1,4 +1,0 @@
-/* plugin_gro.c: the GRO plugin compiled into a test program under its own entry name, so
- * one program can link every plugin. */
-#define ms_plugin_entry ms_plugin_entry_gro
-#include "gro.c"

@@ -1,0 +1,40 @@
+# tests/unit: C unit tests, one program per module (ms_test.h reports PASS/FAIL lines).
+check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_formats \
+	tests/unit/test_volumes tests/unit/test_image tests/unit/test_serialize \
+	tests/unit/test_select tests/unit/test_ss tests/unit/test_measure tests/unit/test_scene \
+	tests/unit/test_rep tests/unit/test_gl tests/unit/test_qsurf
+
+tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h
+tests_unit_test_base_LDADD = $(TEST_LIBS)
+tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h
+tests_unit_test_molecule_LDADD = $(TEST_LIBS)
+tests_unit_test_formats_SOURCES = tests/unit/test_formats.c tests/unit/ms_test.h
+tests_unit_test_formats_LDADD = $(TEST_LIBS)
+tests_unit_test_volumes_SOURCES = tests/unit/test_volumes.c tests/unit/ms_test.h
+tests_unit_test_volumes_LDADD = $(TEST_LIBS)
+tests_unit_test_image_SOURCES = tests/unit/test_image.c tests/unit/ms_test.h
+tests_unit_test_image_LDADD = $(TEST_LIBS)
+tests_unit_test_serialize_SOURCES = tests/unit/test_serialize.c tests/unit/ms_test.h
+tests_unit_test_serialize_LDADD = $(TEST_LIBS)
+tests_unit_test_select_SOURCES = tests/unit/test_select.c tests/unit/ms_test.h
+tests_unit_test_select_LDADD = $(TEST_LIBS)
+tests_unit_test_ss_SOURCES = tests/unit/test_ss.c tests/unit/ms_test.h
+tests_unit_test_ss_LDADD = $(TEST_LIBS)
+tests_unit_test_measure_SOURCES = tests/unit/test_measure.c tests/unit/ms_test.h
+tests_unit_test_measure_LDADD = $(TEST_LIBS)
+tests_unit_test_scene_SOURCES = tests/unit/test_scene.c tests/unit/ms_test.h
+tests_unit_test_scene_LDADD = $(TEST_LIBS)
+tests_unit_test_rep_SOURCES = tests/unit/test_rep.c tests/unit/ms_test.h
+tests_unit_test_rep_LDADD = $(TEST_LIBS)
+tests_unit_test_gl_SOURCES = tests/unit/test_gl.c tests/unit/ms_test.h
+tests_unit_test_gl_LDADD = $(TEST_LIBS)
+tests_unit_test_qsurf_SOURCES = tests/unit/test_qsurf.c tests/unit/ms_test.h
+tests_unit_test_qsurf_LDADD = $(TEST_LIBS)
+
+# The QuickSurf sources again, built with other mesh storage types.
+check_PROGRAMS += tests/unit/test_qsurf_prec
+tests_unit_test_qsurf_prec_SOURCES = tests/unit/test_qsurf_prec.c tests/unit/ms_test.h \
+	$(QSURF_SOURCES)
+tests_unit_test_qsurf_prec_LDADD = $(TEST_LIBS)
+tests_unit_test_qsurf_prec_CFLAGS = $(AM_CFLAGS) -DMS_QSURF_POS_TYPE=double \
+	-DMS_QSURF_NORMAL_TYPE=float -DMS_QSURF_COLOR_TYPE=uint16_t
