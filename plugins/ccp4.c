@@ -265,15 +265,8 @@ static int ccp4_read_volume_data(void *h, int k, float *data, ms_perr *err)
 static void *ccp4_open_write(const char *path, long natoms, ms_perr *err)
 {
     (void)natoms;
-    ms_out *o = calloc(1, sizeof *o);
-    if (!o) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_out_open(o, path, err) != MS_PLUGIN_OK) {
-        free(o);
-        return NULL;
-    }
+    ms_out *o = ms_out_create(sizeof *o, path, err);
+    if (!o) return NULL;
     return o;
 }
 
@@ -337,9 +330,7 @@ static int ccp4_write_volume(void *h, const ms_volume_meta *m, const float *data
 static int ccp4_close_write(void *h, ms_perr *err)
 {
     ms_out *o = h;
-    int rc = ms_out_close(o, err);
-    free(o);
-    return rc;
+    return ms_out_destroy(o, err);
 }
 
 static const ms_plugin ccp4_plugin = {

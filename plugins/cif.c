@@ -463,15 +463,8 @@ typedef struct cif_writer {
 static void *cif_open_write(const char *path, long natoms, ms_perr *err)
 {
     (void)natoms;
-    cif_writer *w = calloc(1, sizeof *w);
-    if (!w) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_out_open(&w->out, path, err) != MS_PLUGIN_OK) {
-        free(w);
-        return NULL;
-    }
+    cif_writer *w = ms_out_create(sizeof *w, path, err);
+    if (!w) return NULL;
     return w;
 }
 
@@ -527,9 +520,7 @@ static int cif_close_write(void *h, ms_perr *err)
 {
     cif_writer *w = h;
     ms_out_printf(&w->out, "#\n");
-    int rc = ms_out_close(&w->out, err);
-    free(w);
-    return rc;
+    return ms_out_destroy(w, err);
 }
 
 static const ms_plugin cif_plugin = {

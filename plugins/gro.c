@@ -255,15 +255,8 @@ typedef struct gro_writer {
 
 static void *gro_open_write(const char *path, long natoms, ms_perr *err)
 {
-    gro_writer *w = calloc(1, sizeof *w);
-    if (!w) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_out_open(&w->out, path, err) != MS_PLUGIN_OK) {
-        free(w);
-        return NULL;
-    }
+    gro_writer *w = ms_out_create(sizeof *w, path, err);
+    if (!w) return NULL;
     return w;
 }
 
@@ -313,9 +306,7 @@ static int gro_write_frame(void *h, const ms_struct_view *v, const ms_frame_in *
 static int gro_close_write(void *h, ms_perr *err)
 {
     gro_writer *w = h;
-    int rc = ms_out_close(&w->out, err);
-    free(w);
-    return rc;
+    return ms_out_destroy(w, err);
 }
 
 static const ms_plugin gro_plugin = {

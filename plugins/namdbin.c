@@ -98,15 +98,8 @@ static void *nb_open_write(const char *path, long natoms, ms_perr *err)
         ms_perr_set(err, "cannot write %ld atoms to a NAMD binary file", natoms);
         return NULL;
     }
-    nb_writer *w = calloc(1, sizeof *w);
-    if (!w) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_out_open(&w->out, path, err) != MS_PLUGIN_OK) {
-        free(w);
-        return NULL;
-    }
+    nb_writer *w = ms_out_create(sizeof *w, path, err);
+    if (!w) return NULL;
     w->natoms = natoms;
     return w;
 }
@@ -128,9 +121,7 @@ static int nb_write_frame(void *h, const ms_struct_view *v, const ms_frame_in *f
 static int nb_close_write(void *h, ms_perr *err)
 {
     nb_writer *w = h;
-    int rc = ms_out_close(&w->out, err);
-    free(w);
-    return rc;
+    return ms_out_destroy(w, err);
 }
 
 static const ms_plugin namdbin_plugin = {

@@ -527,15 +527,8 @@ typedef struct pdb_writer {
 
 static void *pdb_open_write(const char *path, long natoms, ms_perr *err)
 {
-    pdb_writer *w = calloc(1, sizeof *w);
-    if (!w) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_out_open(&w->out, path, err) != MS_PLUGIN_OK) {
-        free(w);
-        return NULL;
-    }
+    pdb_writer *w = ms_out_create(sizeof *w, path, err);
+    if (!w) return NULL;
     w->natoms = natoms;
     return w;
 }
@@ -599,9 +592,7 @@ static int pdb_close_write(void *h, ms_perr *err)
 {
     pdb_writer *w = h;
     ms_out_printf(&w->out, "END\n");
-    int rc = ms_out_close(&w->out, err);
-    free(w);
-    return rc;
+    return ms_out_destroy(w, err);
 }
 
 static const ms_plugin pdb_plugin = {

@@ -364,6 +364,27 @@ int ms_out_open(ms_out *o, const char *path, ms_perr *err)
     return MS_PLUGIN_OK;
 }
 
+void *ms_out_create(size_t size, const char *path, ms_perr *err)
+{
+    ms_out *o = calloc(1, size < sizeof *o ? sizeof *o : size);
+    if (!o) {
+        ms_perr_set(err, "out of memory");
+        return NULL;
+    }
+    if (ms_out_open(o, path, err) != MS_PLUGIN_OK) {
+        free(o);
+        return NULL;
+    }
+    return o;
+}
+
+int ms_out_destroy(void *writer, ms_perr *err)
+{
+    int rc = ms_out_close((ms_out *)writer, err);
+    free(writer);
+    return rc;
+}
+
 void ms_out_printf(ms_out *o, const char *fmt, ...)
 {
     if (o->failed) return;

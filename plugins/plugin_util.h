@@ -82,6 +82,12 @@ typedef struct ms_out {
 } ms_out;
 
 int ms_out_open(ms_out *o, const char *path, ms_perr *err);
+/* A writer's state: `size` zeroed bytes of a struct whose first member is an ms_out, with
+ * that output opened at path. NULL with err set. */
+void *ms_out_create(size_t size, const char *path, ms_perr *err);
+/* Close the ms_out at the start of a writer's state (ms_out_close) and free the state;
+ * returns what the close returned. */
+int ms_out_destroy(void *writer, ms_perr *err);
 void ms_out_printf(ms_out *o, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))

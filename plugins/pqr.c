@@ -140,15 +140,8 @@ static int pqr_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
 static void *pqr_open_write(const char *path, long natoms, ms_perr *err)
 {
     (void)natoms;
-    ms_out *o = calloc(1, sizeof *o);
-    if (!o) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_out_open(o, path, err) != MS_PLUGIN_OK) {
-        free(o);
-        return NULL;
-    }
+    ms_out *o = ms_out_create(sizeof *o, path, err);
+    if (!o) return NULL;
     return o;
 }
 
@@ -177,9 +170,7 @@ static int pqr_close_write(void *h, ms_perr *err)
 {
     ms_out *o = h;
     ms_out_printf(o, "END\n");
-    int rc = ms_out_close(o, err);
-    free(o);
-    return rc;
+    return ms_out_destroy(o, err);
 }
 
 static const ms_plugin pqr_plugin = {

@@ -302,15 +302,8 @@ typedef struct psf_writer {
 
 static void *psf_open_write(const char *path, long natoms, ms_perr *err)
 {
-    psf_writer *w = calloc(1, sizeof *w);
-    if (!w) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_out_open(&w->out, path, err) != MS_PLUGIN_OK) {
-        free(w);
-        return NULL;
-    }
+    psf_writer *w = ms_out_create(sizeof *w, path, err);
+    if (!w) return NULL;
     return w;
 }
 
@@ -434,9 +427,7 @@ static int psf_write_structure(void *h, const ms_struct_view *v, ms_perr *err)
 static int psf_close_write(void *h, ms_perr *err)
 {
     psf_writer *w = h;
-    int rc = ms_out_close(&w->out, err);
-    free(w);
-    return rc;
+    return ms_out_destroy(w, err);
 }
 
 static const ms_plugin psf_plugin = {

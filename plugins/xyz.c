@@ -167,15 +167,8 @@ typedef struct xyz_writer {
 
 static void *xyz_open_write(const char *path, long natoms, ms_perr *err)
 {
-    xyz_writer *w = calloc(1, sizeof *w);
-    if (!w) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_out_open(&w->out, path, err) != MS_PLUGIN_OK) {
-        free(w);
-        return NULL;
-    }
+    xyz_writer *w = ms_out_create(sizeof *w, path, err);
+    if (!w) return NULL;
     return w;
 }
 
@@ -201,9 +194,7 @@ static int xyz_write_frame(void *h, const ms_struct_view *v, const ms_frame_in *
 static int xyz_close_write(void *h, ms_perr *err)
 {
     xyz_writer *w = h;
-    int rc = ms_out_close(&w->out, err);
-    free(w);
-    return rc;
+    return ms_out_destroy(w, err);
 }
 
 static const ms_plugin xyz_plugin = {
