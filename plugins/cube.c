@@ -26,9 +26,7 @@ typedef struct cube_reader {
 
 static void cube_close_read(void *h)
 {
-    cube_reader *r = h;
-    ms_lines_close(&r->in);
-    free(r);
+    ms_lines_destroy(h);
 }
 
 /* A line of whitespace-separated numbers; returns how many parsed (up to max). */
@@ -105,15 +103,8 @@ static int find_data(cube_reader *r, ms_perr *err)
 
 static void *cube_open_read(const char *path, long *natoms, ms_perr *err)
 {
-    cube_reader *r = calloc(1, sizeof *r);
-    if (!r) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_lines_open(&r->in, path, err) != MS_PLUGIN_OK) {
-        free(r);
-        return NULL;
-    }
+    cube_reader *r = ms_lines_create(sizeof *r, path, err);
+    if (!r) return NULL;
     if (read_grid_header(r, err) != MS_PLUGIN_OK || find_data(r, err) != MS_PLUGIN_OK) {
         cube_close_read(r);
         return NULL;

@@ -29,9 +29,8 @@ static char *ms_strdup_p(const char *s)
 static void dx_close_read(void *h)
 {
     dx_reader *r = h;
-    ms_lines_close(&r->in);
     free(r->rest);
-    free(r);
+    ms_lines_destroy(r);
 }
 
 /* Parse up to n numbers after `key` in a header line. */
@@ -106,15 +105,8 @@ static int read_header(dx_reader *r, ms_perr *err)
 
 static void *dx_open_read(const char *path, long *natoms, ms_perr *err)
 {
-    dx_reader *r = calloc(1, sizeof *r);
-    if (!r) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_lines_open(&r->in, path, err) != MS_PLUGIN_OK) {
-        free(r);
-        return NULL;
-    }
+    dx_reader *r = ms_lines_create(sizeof *r, path, err);
+    if (!r) return NULL;
     if (read_header(r, err) != MS_PLUGIN_OK) {
         dx_close_read(r);
         return NULL;

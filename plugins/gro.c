@@ -30,15 +30,8 @@ typedef struct gro_frame {
 
 static void *gro_open_read(const char *path, long *natoms, ms_perr *err)
 {
-    gro_reader *r = calloc(1, sizeof *r);
-    if (!r) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_lines_open(&r->in, path, err) != MS_PLUGIN_OK) {
-        free(r);
-        return NULL;
-    }
+    gro_reader *r = ms_lines_create(sizeof *r, path, err);
+    if (!r) return NULL;
     struct stat sb;
     r->size = fstat(fileno(r->in.fp), &sb) == 0 ? (long long)sb.st_size : 0;
     *natoms = -1;
@@ -47,9 +40,7 @@ static void *gro_open_read(const char *path, long *natoms, ms_perr *err)
 
 static void gro_close_read(void *h)
 {
-    gro_reader *r = h;
-    ms_lines_close(&r->in);
-    free(r);
+    ms_lines_destroy(h);
 }
 
 /* "t= 12.5" in a title gives the frame's time (ps). */

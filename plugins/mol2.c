@@ -19,24 +19,15 @@ typedef struct mol2_reader {
 
 static void *mol2_open_read(const char *path, long *natoms, ms_perr *err)
 {
-    mol2_reader *r = calloc(1, sizeof *r);
-    if (!r) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_lines_open(&r->in, path, err) != MS_PLUGIN_OK) {
-        free(r);
-        return NULL;
-    }
+    mol2_reader *r = ms_lines_create(sizeof *r, path, err);
+    if (!r) return NULL;
     *natoms = -1;
     return r;
 }
 
 static void mol2_close_read(void *h)
 {
-    mol2_reader *r = h;
-    ms_lines_close(&r->in);
-    free(r);
+    ms_lines_destroy(h);
 }
 
 static int is_section(const char *l, const char *name)

@@ -73,15 +73,8 @@ static enum rec record_type(const char *l, size_t n)
 
 static void *pdb_open_read(const char *path, long *natoms, ms_perr *err)
 {
-    pdb_reader *r = calloc(1, sizeof *r);
-    if (!r) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_lines_open(&r->in, path, err) != MS_PLUGIN_OK) {
-        free(r);
-        return NULL;
-    }
+    pdb_reader *r = ms_lines_create(sizeof *r, path, err);
+    if (!r) return NULL;
     r->frame2 = -1;
     *natoms = -1;
     return r;
@@ -90,10 +83,9 @@ static void *pdb_open_read(const char *path, long *natoms, ms_perr *err)
 static void pdb_close_read(void *h)
 {
     pdb_reader *r = h;
-    ms_lines_close(&r->in);
     free(r->serial);
     free(r->chain);
-    free(r);
+    ms_lines_destroy(r);
 }
 
 /* Parse x, y, z of an ATOM/HETATM line; MS_PLUGIN_ERROR with a message naming the line. */

@@ -34,6 +34,26 @@ void ms_lines_close(ms_lines *r)
     memset(r, 0, sizeof *r);
 }
 
+void *ms_lines_create(size_t size, const char *path, ms_perr *err)
+{
+    ms_lines *r = calloc(1, size < sizeof *r ? sizeof *r : size);
+    if (!r) {
+        ms_perr_set(err, "out of memory");
+        return NULL;
+    }
+    if (ms_lines_open(r, path, err) != MS_PLUGIN_OK) {
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+void ms_lines_destroy(void *reader)
+{
+    ms_lines_close((ms_lines *)reader);
+    free(reader);
+}
+
 /* Move unread bytes to the front and read more. Returns bytes added (0 at EOF/error). */
 static size_t lines_refill(ms_lines *r)
 {

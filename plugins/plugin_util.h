@@ -27,6 +27,11 @@ typedef struct ms_lines {
 
 int ms_lines_open(ms_lines *r, const char *path, ms_perr *err);
 void ms_lines_close(ms_lines *r);
+/* A reader's state: `size` zeroed bytes of a struct whose first member is an ms_lines, with
+ * it opened on path. NULL with err set. */
+void *ms_lines_create(size_t size, const char *path, ms_perr *err);
+/* Close the ms_lines at the start of a reader's state and free the state. */
+void ms_lines_destroy(void *reader);
 /* The next line, or NULL at the end of the file (r->error set on a read error). The
  * returned text stays valid until the next call. */
 const char *ms_lines_next(ms_lines *r);

@@ -27,24 +27,15 @@ static int is_end(const char *l)
 
 static void *pqr_open_read(const char *path, long *natoms, ms_perr *err)
 {
-    pqr_reader *r = calloc(1, sizeof *r);
-    if (!r) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_lines_open(&r->in, path, err) != MS_PLUGIN_OK) {
-        free(r);
-        return NULL;
-    }
+    pqr_reader *r = ms_lines_create(sizeof *r, path, err);
+    if (!r) return NULL;
     *natoms = -1;
     return r;
 }
 
 static void pqr_close_read(void *h)
 {
-    pqr_reader *r = h;
-    ms_lines_close(&r->in);
-    free(r);
+    ms_lines_destroy(h);
 }
 
 /* Split an atom line into its fields: 10 without a chain, 11 with one. */

@@ -26,21 +26,13 @@ static const psf_cols psf_standard = {8, 4}, psf_extended = {10, 8};
 
 static void *psf_open_read(const char *path, long *natoms, ms_perr *err)
 {
-    psf_reader *r = calloc(1, sizeof *r);
-    if (!r) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_lines_open(&r->in, path, err) != MS_PLUGIN_OK) {
-        free(r);
-        return NULL;
-    }
+    psf_reader *r = ms_lines_create(sizeof *r, path, err);
+    if (!r) return NULL;
     struct stat sb;
     r->size = fstat(fileno(r->in.fp), &sb) == 0 ? (long long)sb.st_size : 0;
     const char *l = ms_lines_next(&r->in);
     if (!l || strncmp(l, "PSF", 3) != 0) {
-        ms_lines_close(&r->in);
-        free(r);
+        ms_lines_destroy(r);
         ms_perr_set(err, "line 1: not a PSF file (it does not start with 'PSF')");
         return NULL;
     }
@@ -56,9 +48,7 @@ static void *psf_open_read(const char *path, long *natoms, ms_perr *err)
 
 static void psf_close_read(void *h)
 {
-    psf_reader *r = h;
-    ms_lines_close(&r->in);
-    free(r);
+    ms_lines_destroy(h);
 }
 
 /* The count before a "!NAME" section tag, or -1 when the line is not that section's

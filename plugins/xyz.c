@@ -45,15 +45,8 @@ static int element_like(const char *s)
 
 static void *xyz_open_read(const char *path, long *natoms, ms_perr *err)
 {
-    xyz_reader *r = calloc(1, sizeof *r);
-    if (!r) {
-        ms_perr_set(err, "out of memory");
-        return NULL;
-    }
-    if (ms_lines_open(&r->in, path, err) != MS_PLUGIN_OK) {
-        free(r);
-        return NULL;
-    }
+    xyz_reader *r = ms_lines_create(sizeof *r, path, err);
+    if (!r) return NULL;
     struct stat sb;
     r->size = fstat(fileno(r->in.fp), &sb) == 0 ? (long long)sb.st_size : 0;
     *natoms = -1;
@@ -62,9 +55,7 @@ static void *xyz_open_read(const char *path, long *natoms, ms_perr *err)
 
 static void xyz_close_read(void *h)
 {
-    xyz_reader *r = h;
-    ms_lines_close(&r->in);
-    free(r);
+    ms_lines_destroy(h);
 }
 
 /* The count line of the next frame: MS_PLUGIN_EOF when only blank lines remain. */
