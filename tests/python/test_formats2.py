@@ -17,40 +17,11 @@ import subprocess
 import sys
 import warnings
 
-SUITE = "formats2"
-failures = 0
+import mstest
 
-
-def report(ok, name, detail=""):
-    global failures
-    if ok:
-        print("PASS: %s: %s" % (SUITE, name))
-    else:
-        failures += 1
-        print("FAIL: %s: %s: %s" % (SUITE, name, detail))
-
-
-def msdump(exe, files):
-    out = subprocess.run([exe] + files, capture_output=True, text=True)
-    if out.returncode != 0:
-        raise RuntimeError(out.stderr.strip())
-    d = {"atoms": [], "cells": [], "xyz": [], "volumes": []}
-    for line in out.stdout.splitlines():
-        f = line.split("\t")
-        if f[0] == "natoms":
-            d["natoms"] = int(f[1])
-        elif f[0] == "nframes":
-            d["nframes"] = int(f[1])
-        elif f[0] == "atom":
-            d["atoms"].append((f[2], f[3], int(f[4]), f[5], f[6]))
-        elif f[0] == "cell":
-            d["cells"].append([float(x) for x in f[2:8]])
-            d["xyz"].append([])
-        elif f[0] == "xyz":
-            d["xyz"][int(f[1])].append([float(x) for x in f[3:6]])
-        elif f[0] == "volume":
-            d["volumes"].append([float(x) for x in f[2:]])
-    return d
+R = mstest.Reporter("formats2")
+report = R.report
+msdump = mstest.msdump
 
 
 def run(exe, args):
@@ -115,7 +86,7 @@ def small_formats(mda, np, exe, p, tmp):
     mol2 = p("small03_1.mol2")
     for name, path in (("APBS 1a63.pqr", pqr), ("PyMOL small03.mol2 (first molecule)", mol2)):
         if not os.path.exists(path):
-            print("SKIP: %s: %s: %s is missing" % (SUITE, name, path))
+            print("SKIP: %s: %s: %s is missing" % (R.suite, name, path))
             continue
         u = mda.Universe(path)
         ours = msdump(exe, [path])
@@ -136,7 +107,7 @@ def small_formats(mda, np, exe, p, tmp):
 
 def with_gemmi(np, exe, p, tmp):
     if not shutil.which("gemmi"):
-        print("SKIP: %s: gemmi: the gemmi program is not installed" % SUITE)
+        print("SKIP: %s: gemmi: the gemmi program is not installed" % R.suite)
         return
     cif = tmp("1tii.cif")
     subprocess.run(["gemmi", "convert", p("1tii.pdb"), cif], check=True, capture_output=True)
@@ -180,7 +151,7 @@ def grids(np, exe, p, tmp):
     try:
         import gridData
     except ImportError:
-        print("SKIP: %s: gridData: python3-griddataformats is not installed" % SUITE)
+        print("SKIP: %s: gridData: python3-griddataformats is not installed" % R.suite)
         return
     dx = tmp("ours.dx")
     run(exe, ["-o", dx, p("grid345.cube")])
@@ -214,7 +185,7 @@ def main():
         import numpy as np
         import MDAnalysis as mda
     except ImportError:
-        print("SKIP: %s: python3-mdanalysis is not installed" % SUITE)
+        print("SKIP: %s: python3-mdanalysis is not installed" % R.suite)
         return 0
     srcdir = os.environ.get("MS_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
     builddir = os.environ.get("MS_BUILDDIR", srcdir)
@@ -222,7 +193,7 @@ def main():
     outdir = os.environ.get("MS_TEST_OUT", "/tmp")
     exe = os.path.join(builddir, "tests", "tools", "msdump")
     if not os.access(exe, os.X_OK):
-        print("FAIL: %s: %s is not built (make check-build)" % (SUITE, exe))
+        print("FAIL: %s: %s is not built (make check-build)" % (R.suite, exe))
         return 1
     corpus = os.path.join(srcdir, "tests", "fuzz", "corpus")
     seeds = {"small03_1.mol2": os.path.join(corpus, "mol2", "small03_1.mol2"),
@@ -235,7 +206,7 @@ def main():
             step()
         except (RuntimeError, subprocess.CalledProcessError) as e:
             report(False, "a step failed", str(e))
-    return 1 if failures else 0
+    return 1 if R.failures else 0
 
 
 if __name__ == "__main__":

@@ -11,39 +11,12 @@ import subprocess
 import sys
 import warnings
 
-SUITE = "mdanalysis"
+import mstest
+
+R = mstest.Reporter("mdanalysis")
+report = R.report
+msdump = mstest.msdump
 TOL = 1e-3
-failures = 0
-
-
-def report(ok, name, detail=""):
-    global failures
-    if ok:
-        print("PASS: %s: %s" % (SUITE, name))
-    else:
-        failures += 1
-        print("FAIL: %s: %s: %s" % (SUITE, name, detail))
-
-
-def msdump(exe, files):
-    out = subprocess.run([exe] + files, capture_output=True, text=True)
-    if out.returncode != 0:
-        raise RuntimeError(out.stderr.strip())
-    d = {"atoms": [], "cells": [], "xyz": []}
-    for line in out.stdout.splitlines():
-        f = line.split("\t")
-        if f[0] == "natoms":
-            d["natoms"] = int(f[1])
-        elif f[0] == "nframes":
-            d["nframes"] = int(f[1])
-        elif f[0] == "atom":
-            d["atoms"].append((f[2], f[3], int(f[4]), f[5], f[6]))
-        elif f[0] == "cell":
-            d["cells"].append([float(x) for x in f[2:8]])
-            d["xyz"].append([])
-        elif f[0] == "xyz":
-            d["xyz"][int(f[1])].append([float(x) for x in f[3:6]])
-    return d
 
 
 def compare_atoms(name, ours, u, segids):
@@ -98,14 +71,14 @@ def main():
         warnings.simplefilter("ignore")
         import MDAnalysis as mda
     except ImportError:
-        print("SKIP: %s: python3-mdanalysis is not installed" % SUITE)
+        print("SKIP: %s: python3-mdanalysis is not installed" % R.suite)
         return 0
     srcdir = os.environ.get("MS_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
     builddir = os.environ.get("MS_BUILDDIR", srcdir)
     data = os.environ.get("MS_TEST_DATA", os.path.join(srcdir, "tests", "data"))
     exe = os.path.join(builddir, "tests", "tools", "msdump")
     if not os.access(exe, os.X_OK):
-        print("FAIL: %s: %s is not built (make check-build)" % (SUITE, exe))
+        print("FAIL: %s: %s is not built (make check-build)" % (R.suite, exe))
         return 1
     p = lambda f: os.path.join(data, f)
     cases = [
@@ -136,7 +109,7 @@ def main():
         u = mda.Universe(*mda_args)
         compare(name, ours, u, skip, **opts)
     check_writers(mda, exe, p, os.environ.get("MS_TEST_OUT", "/tmp"))
-    return 1 if failures else 0
+    return 1 if R.failures else 0
 
 
 def check_writers(mda, exe, p, outdir):
