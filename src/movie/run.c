@@ -270,7 +270,8 @@ int ms_movie_run(const ms_movie_opts *o, ms_movie_frame_fn fn, void *ctx,
             return -1;
         }
     }
-    rc = ms_par_for_observed(0, p.nmissing - 1, loop_item, &c, loop_done, &c, err);
+    rc = ms_par_for_observed(0, p.nmissing - 1, loop_item, &c, loop_done, &c, "movie make",
+                             err);
     if (rc) { /* one rank (with several, a failed frame has ended the job) */
         ms_movie_monitor_finish(c.mon, 0, NULL, NULL);
         free(p.missing);

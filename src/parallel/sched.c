@@ -49,6 +49,7 @@ typedef struct sched {
     void *ctx;
     ms_par_done_fn done;   /* the observer (may be NULL) */
     void *done_ctx;
+    const char *what;      /* names a failure; NULL: "parallel for: index <i>" */
     long *held;            /* per worker rank: the index it works on */
     uint8_t *holding;      /* per worker rank: whether held[] is valid */
     long next, last;       /* the next index to hand out; the last one */
@@ -111,7 +112,9 @@ static void item_failed(sched *s, long i, ms_error *err)
 {
     /* Hold the lock so the server thread is not inside MPI while we abort. */
     pthread_mutex_lock(&s->lock);
-    ms_par_abort(1, "parallel for: index %ld: %s", i, err->msg[0] ? err->msg : "failed");
+    const char *msg = err->msg[0] ? err->msg : "failed";
+    if (s->what) ms_par_abort(1, "%s: %s", s->what, msg);
+    ms_par_abort(1, "parallel for: index %ld: %s", i, msg);
 }
 
 /* Rank 0: compute alongside the server (thread, or polling between items). */
@@ -157,13 +160,13 @@ static void worker_loop(sched *s, ms_error *err)
 #endif
 
 int ms_par_for_observed(long first, long last, ms_par_item_fn fn, void *ctx,
-                        ms_par_done_fn done, void *done_ctx, ms_error *err)
+                        ms_par_done_fn done, void *done_ctx, const char *what, ms_error *err)
 {
     if (ms_par_size() == 1) return serial_loop(first, last, fn, ctx, done, done_ctx, err);
 #ifdef MS_HAVE_MPI
     int n = ms_par_size();
-    sched s = {.fn = fn, .ctx = ctx, .done = done, .done_ctx = done_ctx, .next = first,
-               .last = last, .workers_left = n - 1};
+    sched s = {.fn = fn, .ctx = ctx, .done = done, .done_ctx = done_ctx, .what = what,
+               .next = first, .last = last, .workers_left = n - 1};
     s.held = calloc((size_t)n, sizeof *s.held);
     s.holding = calloc((size_t)n, 1);
     if (!s.held || !s.holding) /* every rank must take part: end the job */
@@ -176,11 +179,12 @@ int ms_par_for_observed(long first, long last, ms_par_item_fn fn, void *ctx,
     free(s.holding);
     return ms_par_barrier(err);
 #else
+    (void)what;
     return serial_loop(first, last, fn, ctx, done, done_ctx, err);
 #endif
 }
 
 int ms_par_for(long first, long last, ms_par_item_fn fn, void *ctx, ms_error *err)
 {
-    return ms_par_for_observed(first, last, fn, ctx, NULL, NULL, err);
+    return ms_par_for_observed(first, last, fn, ctx, NULL, NULL, NULL, err);
 }
