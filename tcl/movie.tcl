@@ -134,7 +134,7 @@ proc ::molscope::movie::plan_frames {o} {
         if {$last eq "end"} { set last [expr {$nf - 1}] }
         set last [int_option -last $last $first]
         if {$last >= $nf} {
-            error "movie make: -last $last: the top molecule has $nf frames (0 to [expr {$nf - 1}])"
+            error "movie make: -last $last: the top molecule has $nf frame[expr {$nf == 1 ? "" : "s"}] (0 to [expr {$nf - 1}])"
         }
     }
     set n [dict get $o -frames]

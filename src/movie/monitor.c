@@ -27,7 +27,7 @@ struct ms_movie_monitor {
     ms_error enc_err;
     int finishing, aborting;
     double t0, t_last, last_print;
-    long last_step;
+    long last_step, last_shown;   /* the 5 % step and the count last printed */
     pthread_mutex_t lock;
     pthread_cond_t cond;
     pthread_t th;
@@ -71,13 +71,14 @@ static void fmt_time(double s, char *buf, size_t size)
 /* Print progress when due. Caller holds the lock. */
 static void report(ms_movie_monitor *m)
 {
-    if (!m->progress || m->todo == 0 || m->ndone == 0) return;
+    if (!m->progress || m->todo == 0 || m->ndone == 0 || m->ndone == m->last_shown) return;
     double now = ms_now(), el = now - m->t0;
     int last = m->ndone == m->todo;
     long step = m->ndone * 20 / m->todo;
     if (m->progress == 2 && step == m->last_step && !last) return;
     if (m->progress == 3 && now - m->last_print < 0.25 && !last) return;
     m->last_step = step;
+    m->last_shown = m->ndone;
     m->last_print = now;
     double fpm = el > 0 ? m->ndone * 60.0 / el : 0;
     char left[32] = "?";
