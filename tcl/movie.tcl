@@ -211,6 +211,10 @@ proc ::molscope::movie::make {args} {
         if {$video eq ""} { error "movie make: give -basename (frames) or -video (or both)" }
         set base [file rootname $video]
     }
+    if {[string index $base end] eq "/" || [file tail $base] eq ""} {
+        error "movie make: -basename $base: give a folder and a file name prefix, such as\
+               out/frame"
+    }
     if {$video ne "" && [file extension $video] eq ""} {
         error "movie make: -video $video: the name needs an extension that names the format\
                (.mp4, .mkv, .mov ...)"

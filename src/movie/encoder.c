@@ -59,8 +59,7 @@ char *ms_movie_find_ffmpeg(void)
     return p;
 }
 
-/* <dir/stem>.part<.ext> for <dir/stem><.ext>; NULL when the name has no extension. */
-static char *part_name(const char *video)
+char *ms_movie_video_part_path(const char *video)
 {
     const char *slash = strrchr(video, '/');
     const char *dot = strrchr(slash ? slash + 1 : video, '.');
@@ -139,7 +138,7 @@ ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, 
     }
     e->in = e->log = -1;
     e->frame_bytes = (size_t)width * (size_t)height * 3;
-    if (!(e->tmp = part_name(video))) {
+    if (!(e->tmp = ms_movie_video_part_path(video))) {
         ms_error_set(err, "%s: the video's name needs an extension that names its format "
                           "(.mp4, .mkv, .mov ...)", video);
         goto fail;

@@ -59,6 +59,9 @@ typedef struct ms_movie_encoder ms_movie_encoder;
  * that), else ffmpeg on PATH, else the one configure found. malloc'd path, or NULL when it
  * is not there. */
 char *ms_movie_find_ffmpeg(void);
+/* The temporary name of a video while it is encoded: <dir/stem>.part<.ext> for
+ * <dir/stem><.ext>. malloc'd; NULL when the name has no extension (or no memory). */
+char *ms_movie_video_part_path(const char *video);
 /* Start ffmpeg encoding width x height RGB frames at fps into a temporary file beside
  * video (<stem>.part<ext>; the container follows video's extension), H.264 with libx264
  * at constant quality crf (0-51, lower is better), yuv420p; an odd width or height is

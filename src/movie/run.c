@@ -42,6 +42,9 @@ static int plan_rank0(const ms_movie_opts *o, plan *p, ms_error *err)
     if (ms_movie_check_dir(o->basename, err) || (video && ms_movie_check_dir(o->video, err)))
         return -1;
     ms_movie_remove_stale(o->basename);
+    char *part = video ? ms_movie_video_part_path(o->video) : NULL;
+    if (part) unlink(part); /* what a killed encoder left */
+    free(part);
     if (ms_movie_scan(o->basename, o->nframes, o->width, o->height, &p->missing,
                       &p->nmissing, err))
         return -1;
