@@ -28,7 +28,7 @@ namespace eval ::molscope::movie {
 proc ::molscope::movie::usage {} {
     return "movie make ?-basename path? ?-video file.mp4? ?-type trajectory|rotation|rock|user\
             (or a list of them)? ?-frames N? ?-first F? ?-last L? ?-axis x|y|z? ?-angle deg?\
-            ?-proc command? ?-renderer method? ?-size W H? ?-fps F? ?-crf Q? ?-keepframes 0|1?\
+            ?-proc command? ?-renderer method? ?-size W H? ?-fps F? ?-crf Q? ?-preset P? ?-keepframes 0|1?\
             ?-progress auto|on|off?"
 }
 
@@ -55,7 +55,7 @@ proc ::molscope::movie::int_option {name value min} {
 proc ::molscope::movie::parse {arglist} {
     set o [dict create -basename "" -video "" -type "" -frames "" -first 0 -last end \
                -axis y -angle "" -proc "" -renderer snapshot -size "" -fps 30 -crf 18 \
-               -keepframes 1 -progress auto]
+               -preset veryfast -keepframes 1 -progress auto]
     for {set i 0} {$i < [llength $arglist]} {incr i} {
         set k [lindex $arglist $i]
         if {![dict exists $o $k]} {
@@ -229,6 +229,12 @@ proc ::molscope::movie::make {args} {
     if {![string is integer -strict $crf] || $crf < 0 || $crf > 51} {
         error "movie make: -crf: expected a quality from 0 (best) to 51, got '$crf'"
     }
+    set preset [dict get $o -preset]
+    set presets {ultrafast superfast veryfast faster fast medium slow slower veryslow placebo}
+    if {$preset ni $presets} {
+        error "movie make: -preset: expected one of x264's presets ([join $presets {, }]),\
+               got '$preset'"
+    }
     set progress [dict get [dict create auto -1 on 1 off 0] \
                       [string tolower [dict get $o -progress]]]
 
@@ -241,7 +247,7 @@ proc ::molscope::movie::make {args} {
                  angle $angle pose $pose userproc [dict get $o -proc] renderer $renderer]
     display resize $w $h
     set rc [catch {run ::molscope::movie::frame -basename $base -frames $n -width $w \
-                       -height $h -video $video -fps $fps -crf $crf -keepframes $keep \
+                       -height $h -video $video -fps $fps -crf $crf -preset $preset -keepframes $keep \
                        -progress $progress -started [started] \
                        -scriptdone $::molscope::movie::library_loaded} result opts]
     display resize {*}$saved_size

@@ -102,7 +102,7 @@ echo "(script and state: rank 0 / slowest rank; efficiency: geometry+rendering o
 # The encoder alone: the same job again finds every frame and only encodes.
 n=${ranks%% *}
 r=$(run_again "$n" "$out/movie_$n" "$frames")
-echo "encoding only (every frame there, $n rank(s)): $(get "$r" encode_tail) s for $frames frames, $(awk -v f="$frames" -v t="$(get "$r" encode_tail)" 'BEGIN{printf "%.1f", f / t}') frames/s (PNG read back + ffmpeg libx264 medium at ${w}x$h)"
+echo "encoding only (every frame there, $n rank(s)): $(get "$r" encode_tail) s for $frames frames, $(awk -v f="$frames" -v t="$(get "$r" encode_tail)" 'BEGIN{printf "%.1f", f / t}') frames/s (PNG read back + ffmpeg libx264 veryfast at ${w}x$h)"
 
 echo
 echo "state loading (mol new + mol addfile of the PDB and the DCD, rank 0 / slowest rank, s), a 4-frame movie:"

@@ -2,7 +2,8 @@
  * ::molscope::movie namespace. The user's command is `movie`, defined in Tcl.
  *
  *   ::molscope::movie::run <framecmd> -basename B -frames N -width W -height H
- *       ?-video V -fps F -crf Q -keepframes 0|1 -progress -1|0|1 -started T -scriptdone T?
+ *       ?-video V -fps F -crf Q -preset P -keepframes 0|1 -progress -1|0|1 -started T
+ *       -scriptdone T?
  *       Collective (every rank): makes the movie with ms_movie_run, calling
  *       `{*}framecmd <frame> <file>` to render each missing frame into <file>. Returns a
  *       dict: frames rendered reused ranks video note script script_max state state_max
@@ -65,6 +66,7 @@ static int run_opts(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], ms_movi
         int rc = TCL_OK;
         if (!strcmp(k, "-basename")) o->basename = Tcl_GetString(v);
         else if (!strcmp(k, "-video")) o->video = Tcl_GetString(v);
+        else if (!strcmp(k, "-preset")) o->preset = Tcl_GetString(v);
         else if (!strcmp(k, "-frames")) rc = ms_cmd_get_count(interp, v, 99999999, "movie: -frames", &n);
         else if (!strcmp(k, "-width")) rc = ms_cmd_get_count(interp, v, MS_IMAGE_MAX_SIDE, "movie: -width", &w);
         else if (!strcmp(k, "-height")) rc = ms_cmd_get_count(interp, v, MS_IMAGE_MAX_SIDE, "movie: -height", &h);
@@ -79,6 +81,8 @@ static int run_opts(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], ms_movi
     }
     if (!o->basename || !*o->basename || n < 0 || w < 1 || h < 1)
         return ms_cmd_error(interp, "movie: -basename, -frames, -width and -height are required");
+    if (o->preset && !ms_movie_preset_ok(o->preset))
+        return ms_cmd_error(interp, "movie: -preset: unknown x264 preset '%s'", o->preset);
     if (!(o->fps > 0 && o->fps <= 1000))
         return ms_cmd_error(interp, "movie: -fps must be above 0 and at most 1000");
     o->nframes = n;

@@ -127,9 +127,25 @@ static int spawn(ms_movie_encoder *e, const char *ffmpeg, char *const argv[], ms
     return 0;
 }
 
-ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, int width,
-                                         int height, double fps, int crf, ms_error *err)
+int ms_movie_preset_ok(const char *name)
 {
+    static const char *const presets[] = {"ultrafast", "superfast", "veryfast", "faster",
+                                          "fast", "medium", "slow", "slower", "veryslow",
+                                          "placebo"};
+    for (size_t i = 0; i < MS_COUNTOF(presets); i++)
+        if (!strcmp(name, presets[i])) return 1;
+    return 0;
+}
+
+ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, int width,
+                                         int height, double fps, int crf, const char *preset,
+                                         ms_error *err)
+{
+    if (!preset) preset = "veryfast";
+    if (!ms_movie_preset_ok(preset)) {
+        ms_error_set(err, "unknown x264 preset '%s'", preset);
+        return NULL;
+    }
     ms_movie_encoder *e = calloc(1, sizeof *e);
     if (!e || !(e->video = ms_strdup(video))) {
         free(e);
@@ -155,7 +171,7 @@ ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, 
     const char *head[] = {"ffmpeg", "-hide_banner", "-nostats", "-loglevel", "error", "-y",
                           "-f", "rawvideo", "-pix_fmt", "rgb24", "-video_size", size,
                           "-framerate", rate, "-i", "pipe:0", "-an", "-c:v", "libx264",
-                          "-preset", "medium", "-crf", q, "-pix_fmt", "yuv420p"};
+                          "-preset", preset, "-crf", q, "-pix_fmt", "yuv420p"};
     for (size_t k = 0; k < MS_COUNTOF(head); k++) argv[n++] = head[k];
     if ((width | height) & 1) {
         argv[n++] = "-vf";

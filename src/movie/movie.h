@@ -62,12 +62,15 @@ char *ms_movie_find_ffmpeg(void);
 /* The temporary name of a video while it is encoded: <dir/stem>.part<.ext> for
  * <dir/stem><.ext>. malloc'd; NULL when the name has no extension (or no memory). */
 char *ms_movie_video_part_path(const char *video);
+/* Whether name is one of x264's presets (ultrafast ... veryslow, placebo). */
+int ms_movie_preset_ok(const char *name);
 /* Start ffmpeg encoding width x height RGB frames at fps into a temporary file beside
  * video (<stem>.part<ext>; the container follows video's extension), H.264 with libx264
- * at constant quality crf (0-51, lower is better), yuv420p; an odd width or height is
- * padded by one black pixel. NULL with err on failure. */
+ * at constant quality crf (0-51, lower is better) and the given x264 preset, yuv420p; an
+ * odd width or height is padded by one black pixel. NULL with err on failure. */
 ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, int width,
-                                         int height, double fps, int crf, ms_error *err);
+                                         int height, double fps, int crf, const char *preset,
+                                         ms_error *err);
 /* Append one frame (3 * width * height bytes, top row first). 0, or -1 with err when
  * ffmpeg has gone (its last message is in err). */
 int ms_movie_encoder_put(ms_movie_encoder *e, const uint8_t *rgb, ms_error *err);
@@ -86,6 +89,7 @@ typedef struct ms_movie_opts {
     const char *video;         /* NULL or "": frames only */
     double fps;
     int crf;
+    const char *preset;        /* x264's speed preset (NULL: veryfast) */
     int keep_frames;           /* 0: remove the frames once the video is complete */
     int progress;              /* -1: on a terminal, updated in place, else every 5 %; 0 off; 1 lines */
     double started, script_done;  /* this rank's process start and end of script loading

@@ -59,7 +59,8 @@ static int plan_rank0(const ms_movie_opts *o, plan *p, ms_error *err)
         fprintf(stderr, "movie: %s\n", p->note);
         return 0;
     }
-    p->enc = ms_movie_encoder_start(ffmpeg, o->video, o->width, o->height, o->fps, o->crf, err);
+    p->enc = ms_movie_encoder_start(ffmpeg, o->video, o->width, o->height, o->fps, o->crf,
+                                    o->preset, err);
     free(ffmpeg);
     return p->enc ? 0 : -1;
 }
