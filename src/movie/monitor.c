@@ -18,7 +18,7 @@ struct ms_movie_monitor {
     char *basename;
     long nframes, todo, reused;
     int width, height;
-    int progress;            /* 0 off, 1 a line per frame, 2 every 5 %, 3 in place */
+    int progress;            /* 0 off, 1 a line per wake-up, 2 every 5 %, 3 in place */
     uint8_t *done;           /* per frame */
     long next;               /* the next frame for the encoder */
     long ndone;              /* frames completed by this run */

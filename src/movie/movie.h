@@ -91,7 +91,8 @@ typedef struct ms_movie_opts {
     int crf;
     const char *preset;        /* x264's speed preset (NULL: veryfast) */
     int keep_frames;           /* 0: remove the frames once the video is complete */
-    int progress;              /* -1: on a terminal, updated in place, else every 5 %; 0 off; 1 lines */
+    int progress;              /* -1: in place on a terminal, else a line every 5 %; 0: off;
+                                * 1: a line whenever frames complete */
     double started, script_done;  /* this rank's process start and end of script loading
                                    * (seconds since the epoch; < 0: unknown) */
 } ms_movie_opts;
