@@ -176,6 +176,8 @@ int ms_movie_monitor_finish(ms_movie_monitor *m, int ok, double *last_done_at,
     pthread_cond_signal(&m->cond);
     pthread_mutex_unlock(&m->lock);
     pthread_join(m->th, NULL);
+    if (m->progress == 3 && m->last_shown > 0 && m->last_shown < m->todo)
+        fputc('\n', stderr); /* end the line updated in place */
     int rc = 0;
     ms_error e = {{0}};
     if (m->enc_failed) {
