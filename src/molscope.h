@@ -16,6 +16,8 @@
  *   parallel/   MPI: start-up and shutdown, collectives, the dynamic for-loop, loading a
  *               file on rank 0 and broadcasting the molecule (also the core of the
  *               molscope::parallel Tcl package, ../tcl/parallel)
+ *   movie/      movies: frame files and resuming, frames handed out across ranks, the
+ *               ffmpeg encoder fed in frame order, progress (the command: ../tcl/movie.tcl)
  *   surf/       QuickSurf: Gaussian density maps, marching cubes, the surface engine
  *   gl/         offscreen OpenGL (OSMesa, EGL): the display device and `render snapshot`
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
@@ -53,6 +55,7 @@
 #include "vecmath/vecmath.h"
 #include "measure/measure.h"
 #include "parallel/parallel.h"
+#include "movie/movie.h"
 #include "surf/qsurf.h"
 #include "gl/gl.h"
 #include "app/app.h"

@@ -17,7 +17,7 @@ if {[catch {package require molscope::parallel} ::molscope::err]} {
 unset -nocomplain ::molscope::err
 
 # Library scripts, in order; each defines procs only.
-foreach ::molscope::script {vectors.tcl} {
+foreach ::molscope::script {vectors.tcl movie.tcl} {
     source [file join $::molscope::libdir $::molscope::script]
 }
 unset -nocomplain ::molscope::script

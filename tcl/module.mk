@@ -1,5 +1,5 @@
 # tcl: the Tcl library shipped with molscope.
-tcllib_DATA += tcl/init.tcl tcl/vectors.tcl
+tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl
 
 # The molscope::parallel package: a loadable Tcl extension (libtool module) with its
 # pkgIndex.tcl, in tcl/parallel/ of the Tcl library. It carries its own copy of the MPI

@@ -386,4 +386,5 @@ void ms_commands_register(ms_app *app)
     ms_cmd_measure_register(app);
     ms_cmd_measure_geom_register(app);
     ms_cmd_volmap_register(app);
+    ms_cmd_movie_register(app);
 }

@@ -78,6 +78,9 @@ void ms_cmd_vector_register(ms_app *app);
 void ms_cmd_volmap_register(ms_app *app);
 /* mol ssrecalc (cmd_ss.c): secondary structure recomputed on request. */
 void ms_cmd_ss_register(ms_app *app);
+/* The C commands under the Tcl movie library (cmd_movie.c): ::molscope::movie::run,
+ * frameok, pose, started, ffmpeg. */
+void ms_cmd_movie_register(ms_app *app);
 /* The rep subcommands of mol (addrep, modstyle, ...) and molinfo's rep keywords
  * (cmd_rep.c); creates the rep module's state. */
 void ms_cmd_rep_register(ms_app *app);

@@ -5,7 +5,7 @@ src_libmscore_la_SOURCES += \
 	src/commands/cmd_mol.c src/commands/cmd_animate.c src/commands/cmd_vmdinfo.c \
 	src/commands/tclvec.h src/commands/tclvec.c src/commands/cmd_vector.c \
 	src/commands/cmd_measure.c src/commands/cmd_measure_geom.c src/commands/cmd_ss.c \
-	src/commands/cmd_volmap.c
+	src/commands/cmd_volmap.c src/commands/cmd_movie.c
 # the scene-side commands (scenecmds.h)
 src_libmscore_la_SOURCES += \
 	src/commands/scenecmds.h src/commands/cmd_scene.c src/commands/cmd_color.c \

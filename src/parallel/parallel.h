@@ -90,6 +90,16 @@ typedef int (*ms_par_item_fn)(void *ctx, long index, ms_error *err);
  * rank: a plain loop that stops at the first failure (-1, err). With several, a failure
  * ends the whole job with the item's message (the others cannot go on without it). */
 int ms_par_for(long first, long last, ms_par_item_fn fn, void *ctx, ms_error *err);
+/* Told on rank 0 that index is done (its item returned, on whichever rank ran it). Called
+ * from rank 0's server thread or its main thread, so it must be thread-safe, quick, and
+ * make no MPI call. Never called on the other ranks. */
+typedef void (*ms_par_done_fn)(void *ctx, long index);
+/* ms_par_for with an observer of completions (the movie driver feeds its encoder in frame
+ * order as frames complete). done may be NULL. A failed item on one of several ranks ends
+ * the job with "<what>: <the item's message>" (what NULL: "parallel for: index <i>: ..."),
+ * for items whose messages name what they were. */
+int ms_par_for_observed(long first, long last, ms_par_item_fn fn, void *ctx,
+                        ms_par_done_fn done, void *done_ctx, const char *what, ms_error *err);
 
 /* ---- loading a molecule once and broadcasting it (bcastload.c) ---- */
 

@@ -1,5 +1,5 @@
-/* sched.c: ms_par_for, the dynamically balanced loop behind `parallel for` (and, later,
- * the movie driver handing out frames).
+/* sched.c: ms_par_for, the dynamically balanced loop behind `parallel for` and the movie
+ * driver (which also learns on rank 0 when each frame is done: ms_par_for_observed).
  *
  * Protocol, on the layer's own communicator, two tags:
  *   ASK  (worker -> rank 0, no payload): "give me an index"
@@ -16,6 +16,11 @@
  * Rank 0 finishes when it has no index left and every worker has had its stop; then all
  * ranks meet in a barrier, so the loop returns everywhere only when every item is done.
  *
+ * Completion: a worker sends its next ASK only after its previous item returned, so an ASK
+ * from rank r tells rank 0 that the index it last gave r is done; rank 0's own items are
+ * done when its call returns. The observer is told of each from wherever rank 0 learns it
+ * (its server thread or its main thread), with no extra message.
+ *
  * A failing item ends the job (ms_par_abort) when there are several ranks: the index it
  * held could only be redone by a protocol much less simple than this one. */
 #include "config.h"
@@ -25,11 +30,14 @@
 #include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 
-static int serial_loop(long first, long last, ms_par_item_fn fn, void *ctx, ms_error *err)
+static int serial_loop(long first, long last, ms_par_item_fn fn, void *ctx,
+                       ms_par_done_fn done, void *done_ctx, ms_error *err)
 {
     for (long i = first; i <= last; i++) {
         if (fn(ctx, i, err)) return -1;
+        if (done) done(done_ctx, i);
         if (i == LONG_MAX) break;
     }
     return 0;
@@ -39,6 +47,11 @@ static int serial_loop(long first, long last, ms_par_item_fn fn, void *ctx, ms_e
 typedef struct sched {
     ms_par_item_fn fn;
     void *ctx;
+    ms_par_done_fn done;   /* the observer (may be NULL) */
+    void *done_ctx;
+    const char *what;      /* names a failure; NULL: "parallel for: index <i>" */
+    long *held;            /* per worker rank: the index it works on */
+    uint8_t *holding;      /* per worker rank: whether held[] is valid */
     long next, last;       /* the next index to hand out; the last one */
     int exhausted;         /* every index was handed out (also when last is LONG_MAX) */
     int workers_left;      /* workers that have not yet had their stop */
@@ -68,9 +81,13 @@ static int serve_pending(sched *s)
         MPI_Iprobe(MPI_ANY_SOURCE, TAG_ASK, comm, &flag, &st);
         if (!flag) return served;
         MPI_Recv(NULL, 0, MPI_BYTE, st.MPI_SOURCE, TAG_ASK, comm, MPI_STATUS_IGNORE);
+        int r = st.MPI_SOURCE;
+        if (s->holding[r] && s->done) s->done(s->done_ctx, s->held[r]);
         long i = 0;
         int64_t give[2] = {take(s, &i), 0};
         give[1] = i;
+        s->holding[r] = (uint8_t)give[0];
+        s->held[r] = i;
         if (!give[0]) s->workers_left--;
         MPI_Send(give, 2, MPI_INT64_T, st.MPI_SOURCE, TAG_GIVE, comm);
         served++;
@@ -95,7 +112,9 @@ static void item_failed(sched *s, long i, ms_error *err)
 {
     /* Hold the lock so the server thread is not inside MPI while we abort. */
     pthread_mutex_lock(&s->lock);
-    ms_par_abort(1, "parallel for: index %ld: %s", i, err->msg[0] ? err->msg : "failed");
+    const char *msg = err->msg[0] ? err->msg : "failed";
+    if (s->what) ms_par_abort(1, "%s: %s", s->what, msg);
+    ms_par_abort(1, "parallel for: index %ld: %s", i, msg);
 }
 
 /* Rank 0: compute alongside the server (thread, or polling between items). */
@@ -112,6 +131,7 @@ static void rank0_loop(sched *s, ms_error *err)
         pthread_mutex_unlock(&s->lock);
         if (!more) break;
         if (s->fn(s->ctx, i, err)) item_failed(s, i, err);
+        if (s->done) s->done(s->done_ctx, i);
     }
     if (threaded) {
         pthread_join(th, NULL);
@@ -139,18 +159,32 @@ static void worker_loop(sched *s, ms_error *err)
 }
 #endif
 
-int ms_par_for(long first, long last, ms_par_item_fn fn, void *ctx, ms_error *err)
+int ms_par_for_observed(long first, long last, ms_par_item_fn fn, void *ctx,
+                        ms_par_done_fn done, void *done_ctx, const char *what, ms_error *err)
 {
-    if (ms_par_size() == 1) return serial_loop(first, last, fn, ctx, err);
+    if (ms_par_size() == 1) return serial_loop(first, last, fn, ctx, done, done_ctx, err);
 #ifdef MS_HAVE_MPI
-    sched s = {.fn = fn, .ctx = ctx, .next = first, .last = last,
-               .workers_left = ms_par_size() - 1};
+    int n = ms_par_size();
+    sched s = {.fn = fn, .ctx = ctx, .done = done, .done_ctx = done_ctx, .what = what,
+               .next = first, .last = last, .workers_left = n - 1};
+    s.held = calloc((size_t)n, sizeof *s.held);
+    s.holding = calloc((size_t)n, 1);
+    if (!s.held || !s.holding) /* every rank must take part: end the job */
+        ms_par_abort(1, "parallel for: out of memory");
     pthread_mutex_init(&s.lock, NULL);
     if (ms_par_rank() == 0) rank0_loop(&s, err);
     else worker_loop(&s, err);
     pthread_mutex_destroy(&s.lock);
+    free(s.held);
+    free(s.holding);
     return ms_par_barrier(err);
 #else
-    return serial_loop(first, last, fn, ctx, err);
+    (void)what;
+    return serial_loop(first, last, fn, ctx, done, done_ctx, err);
 #endif
+}
+
+int ms_par_for(long first, long last, ms_par_item_fn fn, void *ctx, ms_error *err)
+{
+    return ms_par_for_observed(first, last, fn, ctx, NULL, NULL, NULL, err);
 }

@@ -1,0 +1,209 @@
+/* frames.c: a movie's frame files: their names, the check that a file is a whole PNG of the
+ * movie's size, the list of frames still to render, and the clean-up of what a killed job
+ * left behind. */
+#include "config.h"
+#include "movie/movie.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+char *ms_movie_frame_path(const char *basename, long i, int part)
+{
+    size_t n = strlen(basename) + 48;
+    char *p = malloc(n);
+    if (p) snprintf(p, n, "%s.%05ld%s.png", basename, i, part ? ".part" : "");
+    return p;
+}
+
+static uint32_t be32(const unsigned char *b)
+{
+    return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | b[3];
+}
+
+/* Walk the chunks after the signature: 1 when they end with IEND exactly at size and
+ * the first is an IHDR of w x h. */
+static int png_chunks_ok(FILE *f, long long size, int w, int h)
+{
+    long long off = 8;
+    int idat = 0;
+    for (int k = 0;; k++) {
+        unsigned char head[8 + 13];
+        if (off + 12 > size || fseeko(f, (off_t)off, SEEK_SET) != 0) return 0;
+        size_t want = k == 0 ? sizeof head : 8;
+        if (fread(head, 1, want, f) != want) return 0;
+        uint32_t len = be32(head);
+        if (len > 0x7fffffffu) return 0;
+        if (k == 0 && (memcmp(head + 4, "IHDR", 4) != 0 || len != 13 ||
+                       be32(head + 8) != (uint32_t)w || be32(head + 12) != (uint32_t)h))
+            return 0;
+        if (!memcmp(head + 4, "IDAT", 4)) idat = 1;
+        off += 12 + (long long)len;
+        if (!memcmp(head + 4, "IEND", 4)) return len == 0 && off == size && idat;
+    }
+}
+
+int ms_movie_frame_ok(const char *path, int width, int height)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    struct stat sb;
+    unsigned char sig[8];
+    int ok = fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) &&
+             fread(sig, 1, 8, f) == 8 && !memcmp(sig, "\x89PNG\r\n\x1a\n", 8) &&
+             png_chunks_ok(f, (long long)sb.st_size, width, height);
+    fclose(f);
+    return ok;
+}
+
+/* The folder and the file-name prefix "<tail>." of a basename (both malloc'd). */
+static int split_base(const char *basename, char **dir, char **prefix)
+{
+    const char *slash = strrchr(basename, '/');
+    *dir = slash ? strndup(basename, (size_t)(slash - basename) + 1) : ms_strdup(".");
+    const char *tail = slash ? slash + 1 : basename;
+    size_t n = strlen(tail);
+    *prefix = malloc(n + 2);
+    if (*prefix) {
+        memcpy(*prefix, tail, n);
+        memcpy(*prefix + n, ".", 2);
+    }
+    if (*dir && *prefix) return 0;
+    free(*dir);
+    free(*prefix);
+    return -1;
+}
+
+/* Is name "<prefix><digits>.part.png" followed by anything? */
+static int is_stale(const char *name, const char *prefix)
+{
+    size_t n = strlen(prefix);
+    if (strncmp(name, prefix, n) != 0) return 0;
+    const char *p = name + n;
+    if (*p < '0' || *p > '9') return 0;
+    while (*p >= '0' && *p <= '9') p++;
+    return !strncmp(p, ".part.png", 9);
+}
+
+long ms_movie_remove_stale(const char *basename)
+{
+    char *dir, *prefix;
+    if (split_base(basename, &dir, &prefix)) return 0;
+    long removed = 0;
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    while (d && (e = readdir(d))) {
+        if (!is_stale(e->d_name, prefix)) continue;
+        size_t n = strlen(dir) + strlen(e->d_name) + 2;
+        char *p = malloc(n);
+        if (!p) break;
+        snprintf(p, n, "%s/%s", dir, e->d_name);
+        if (unlink(p) == 0) removed++;
+        free(p);
+    }
+    if (d) closedir(d);
+    free(dir);
+    free(prefix);
+    return removed;
+}
+
+int ms_movie_scan(const char *basename, long n, int width, int height, long **missing,
+                  long *nmissing, ms_error *err)
+{
+    *missing = NULL;
+    *nmissing = 0;
+    size_t cap = 0;
+    for (long i = 0; i < n; i++) {
+        char *p = ms_movie_frame_path(basename, i, 0);
+        int ok = p && ms_movie_frame_ok(p, width, height);
+        free(p);
+        if (!p || (!ok && ms_grow((void **)missing, &cap, (size_t)*nmissing + 1,
+                                  sizeof **missing))) {
+            free(*missing);
+            *missing = NULL;
+            *nmissing = 0;
+            ms_error_set(err, "out of memory");
+            return -1;
+        }
+        if (!ok) (*missing)[(*nmissing)++] = i;
+    }
+    return 0;
+}
+
+/* mkdir -p of dir (which is modified in place and restored). */
+static int make_dirs(char *dir)
+{
+    for (char *p = dir + 1;; p++) {
+        if (*p != '/' && *p != '\0') continue;
+        char c = *p;
+        *p = '\0';
+        int rc = mkdir(dir, 0777);
+        *p = c;
+        if (rc != 0 && errno != EEXIST) return -1;
+        if (c == '\0') return 0;
+    }
+}
+
+int ms_movie_check_dir(const char *path, ms_error *err)
+{
+    const char *slash = strrchr(path, '/');
+    char *dir = slash ? strndup(path, slash == path ? 1 : (size_t)(slash - path))
+                      : ms_strdup(".");
+    size_t n = dir ? strlen(dir) + 32 : 0;
+    char *probe = dir ? malloc(n) : NULL;
+    if (!probe) {
+        free(dir);
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    struct stat sb;
+    int rc = 0;
+    if (stat(dir, &sb) != 0 && make_dirs(dir) != 0) {
+        ms_error_set(err, "cannot create the folder %s: %s", dir, strerror(errno));
+        rc = -1;
+    } else {
+        snprintf(probe, n, "%s/.molscope-XXXXXX", dir);
+        int fd = mkstemp(probe);
+        if (fd < 0) {
+            ms_error_set(err, "cannot write in the folder %s: %s", dir, strerror(errno));
+            rc = -1;
+        } else {
+            close(fd);
+            unlink(probe);
+        }
+    }
+    free(probe);
+    free(dir);
+    return rc;
+}
+
+double ms_movie_process_start(void)
+{
+    /* starttime is field 22 of /proc/self/stat, in clock ticks since boot: its age is the
+     * boot-time clock now minus that, and the start is that long before the real time. */
+    char buf[1024];
+    FILE *f = fopen("/proc/self/stat", "r");
+    size_t n = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
+    if (f) fclose(f);
+    buf[n] = '\0';
+    char *p = strrchr(buf, ')');
+    unsigned long long ticks = 0;
+    for (int field = 2; p && *p; p++)   /* p at ")": field 2 ends here */
+        if (*p == ' ' && ++field == 22) {
+            ticks = strtoull(p + 1, NULL, 10);
+            break;
+        }
+    long hz = sysconf(_SC_CLK_TCK);
+    struct timespec boot, real;
+    if (!ticks || hz <= 0 || clock_gettime(CLOCK_BOOTTIME, &boot) != 0 ||
+        clock_gettime(CLOCK_REALTIME, &real) != 0)
+        return -1;
+    double age = (double)boot.tv_sec + boot.tv_nsec * 1e-9 - (double)ticks / (double)hz;
+    return (double)real.tv_sec + real.tv_nsec * 1e-9 - age;
+}
