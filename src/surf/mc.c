@@ -383,6 +383,60 @@ static void keep_top_plane(ex_job *j)
     mc->next_z0 = j->z1;
 }
 
+/* Plane z0's crossing bits, as the slab before would have left them; returns their
+ * number. Row ny (free until the next slab's classification) holds plane z0 - 1's inside
+ * bits meanwhile. */
+static size_t rebuild_bits(ex_job *j)
+{
+    size_t n = 0;
+    uint64_t *below = bits(j, (size_t)j->ny, B_IN);
+    for (int y = 0; y < j->ny; y++)
+        ms_qsurf_inside_bits_plain(drow(j, y, j->z0), j->nx, j->mc->iso, bits(j, (size_t)y, B_IN));
+    for (int y = 0; y < j->ny; y++) {
+        const uint64_t *in = bits(j, (size_t)y, B_IN);
+        const uint64_t *iny = y + 1 < j->ny ? bits(j, (size_t)y + 1, B_IN) : NULL;
+        uint64_t *xb = bits(j, (size_t)y, B_X), *yb = bits(j, (size_t)y, B_Y);
+        uint64_t *zb = bits(j, (size_t)y, B_Z);
+        ms_qsurf_inside_bits_plain(drow(j, y, j->z0 - 1), j->nx, j->mc->iso, below);
+        for (int w = 0; w < j->words; w++) {
+            xb[w] = (in[w] ^ next_x(j, in, w)) & has_next_x(j, w);
+            yb[w] = iny ? in[w] ^ iny[w] : 0;
+            zb[w] = in[w] ^ below[w];
+            n += (size_t)(popcount64(xb[w]) + popcount64(yb[w]) + popcount64(zb[w]));
+        }
+    }
+    return n;
+}
+
+int ms_qsurf_extract_resume(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0,
+                            ms_error *err)
+{
+    ex_job j = {.mc = mc, .s = s, .z0 = z0, .z1 = z0, .nx = mc->n[0], .ny = mc->n[1],
+                .words = mc->words};
+    if (z0 <= 0 || z0 >= mc->n[2] - 1 || mc->maxlayers < 1 || s->zb > z0 - 1 || s->ze < z0) {
+        ms_error_set(err, "marching cubes: cannot resume at plane %d", z0);
+        return -1;
+    }
+    size_t n = rebuild_bits(&j);
+    if (n > mc->mesh->nv) {
+        ms_error_set(err, "marching cubes: the mesh lacks plane %d's vertices", z0);
+        return -1;
+    }
+    uint32_t v = (uint32_t)(mc->mesh->nv - n);
+    for (int y = 0; y < j.ny; y++) {
+        const uint64_t *xb = bits(&j, (size_t)y, B_X), *yb = bits(&j, (size_t)y, B_Y);
+        const uint64_t *zb = bits(&j, (size_t)y, B_Z);
+        for (int w = 0; w < j.words; w++)
+            for (uint64_t m = xb[w] | yb[w] | zb[w]; m; m &= m - 1) {
+                int b = __builtin_ctzll(m);
+                mc->vbase[point(&j, 64 * w + b, y, z0)] = v;
+                v += (uint32_t)((xb[w] >> b & 1) + (yb[w] >> b & 1) + (zb[w] >> b & 1));
+            }
+    }
+    mc->next_z0 = z0;
+    return 0;
+}
+
 int ms_qsurf_extract_slab(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0, int z1,
                           ms_error *err)
 {
