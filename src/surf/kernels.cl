@@ -79,8 +79,9 @@ void qs_density(__global const float4 *atoms, __global const float4 *colors,
 
 /* ---------------------------------------------------------------- marching cubes
  * dims = (nx, ny, nz, zb): the grid and the first plane the slab holds; span = (z0, z1,
- * nix, 0): the slab's cell layers [z0, z1) and the work-items per row (four points each).
- * Work-item (ix, y, z - z0) takes points x = 4 ix .. 4 ix + 3 of row (y, z). */
+ * nix, 0): the slab's cell layers [z0, z1) and the work-items per row. Work-item (ix, y,
+ * z - z0) takes points x0 = 4 ix .. x0 + 3 of row (y, z) and the cells at them; it reads
+ * each row around them once, as bits: bit i of a row = point x0 + i is inside. */
 
 typedef struct qs_grid {
     int nx, ny, nz, zb, z0, z1, nix;
@@ -98,28 +99,57 @@ static size_t qs_at(qs_grid g, int x, int y, int z)
     return ((size_t)(z - g.zb) * g.ny + y) * g.nx + x;
 }
 
-static int qs_in(qs_grid g, __global const float *dens, int x, int y, int z)
+static size_t qs_item(qs_grid g, int ix, int y, int z)
 {
-    return dens[qs_at(g, x, y, z)] > g.iso;
+    return ((size_t)(z - g.z0) * g.ny + y) * g.nix + ix;
 }
 
-/* The edges point (x, y, z) owns that cross the surface: bit 0 +x, bit 1 +y, bit 2 -z. */
-static int qs_edges(qs_grid g, __global const float *dens, int x, int y, int z)
+/* Inside bits of points x0 .. x0 + n - 1 of row (y, z); 0 past the grid. */
+static uint qs_row(qs_grid g, __global const float *dens, int x0, int y, int z, int n)
 {
-    int in = qs_in(g, dens, x, y, z), m = 0;
-    if (x + 1 < g.nx && qs_in(g, dens, x + 1, y, z) != in) m |= 1;
-    if (y + 1 < g.ny && qs_in(g, dens, x, y + 1, z) != in) m |= 2;
-    if (z > 0 && qs_in(g, dens, x, y, z - 1) != in) m |= 4;
-    return m;
+    uint bits = 0;
+    if (y >= g.ny) return 0;
+    __global const float *d = dens + qs_at(g, x0, y, z);
+    for (int i = 0; i < n && x0 + i < g.nx; i++) bits |= (uint)(d[i] > g.iso) << i;
+    return bits;
 }
 
-/* Inside bits of the cell's corners: corner i = dx + 2 dy + 4 dz. */
-static int qs_cube(qs_grid g, __global const float *dens, int x, int y, int z)
+/* Bits of the points x0 .. x0 + n - 1 that have a +x neighbour. */
+static uint qs_with_next(qs_grid g, int x0, int n)
 {
-    int cube = 0;
-    for (int i = 0; i < 8; i++)
-        cube |= qs_in(g, dens, x + (i & 1), y + (i >> 1 & 1), z + (i >> 2)) << i;
-    return cube;
+    int k = min(n, g.nx - 1 - x0);
+    return k <= 0 ? 0u : (1u << k) - 1;
+}
+
+/* The crossing edges the item's points own: +x, +y, -z (bit i for point x0 + i). */
+typedef struct qs_edges {
+    uint x, y, z;
+} qs_edges;
+
+static qs_edges qs_edges_of(qs_grid g, __global const float *dens, int x0, int y, int z)
+{
+    uint r = qs_row(g, dens, x0, y, z, 5), pts = (1u << min(4, g.nx - x0)) - 1;
+    qs_edges e = {(r ^ r >> 1) & qs_with_next(g, x0, 4), 0, 0};
+    if (y + 1 < g.ny) e.y = (r ^ qs_row(g, dens, x0, y + 1, z, 4)) & pts;
+    if (z > 0) e.z = (r ^ qs_row(g, dens, x0, y, z - 1, 4)) & pts;
+    return e;
+}
+
+/* The corner bits of cell x0 + i (corner dx + 2 dy + 4 dz, as mc.c) from the rows
+ * r[dz][dy] around it. */
+static uint qs_cube(const uint r[2][3], int i)
+{
+    uint c = 0;
+    for (int k = 0; k < 4; k++) c |= (r[k >> 1][k & 1] >> i & 3) << (2 * k);
+    return c;
+}
+
+/* Rows (y + dy, z + dz), dy 0..2, dz 0..1, of n points from x0. */
+static void qs_rows(qs_grid g, __global const float *dens, int x0, int y, int z, int n,
+                    uint r[2][3])
+{
+    for (int dz = 0; dz < 2; dz++)
+        for (int dy = 0; dy < 3; dy++) r[dz][dy] = qs_row(g, dens, x0, y + dy, z + dz, n);
 }
 
 /* Vertices are made for the points of planes (z0, z1], and of plane 0 in the first slab;
@@ -129,27 +159,23 @@ static int qs_makes_vertices(qs_grid g, int z)
     return z > g.z0 || z == 0;
 }
 
-static int qs_has_cell(qs_grid g, int x, int y, int z)
-{
-    return z < g.z1 && y + 1 < g.ny && x + 1 < g.nx;
-}
-
-static size_t qs_item(qs_grid g, int ix, int y, int z)
-{
-    return ((size_t)(z - g.z0) * g.ny + y) * g.nix + ix;
-}
-
 __kernel __attribute__((reqd_work_group_size(2, 8, 8)))
 void qs_count(__global const float *dens, int4 dims, int4 span, float iso,
               __constant uchar *ntri, __global uint2 *counts)
 {
     qs_grid g = qs_grid_of(dims, span, iso);
-    int ix = get_global_id(0), y = get_global_id(1), z = g.z0 + get_global_id(2);
+    int ix = get_global_id(0), y = get_global_id(1), z = g.z0 + get_global_id(2), x0 = 4 * ix;
     if (ix >= g.nix || y >= g.ny || z > g.z1) return;
     uint nv = 0, nt = 0;
-    for (int x = 4 * ix; x < min(4 * ix + 4, g.nx); x++) {
-        if (qs_makes_vertices(g, z)) nv += popcount(qs_edges(g, dens, x, y, z));
-        if (qs_has_cell(g, x, y, z)) nt += ntri[qs_cube(g, dens, x, y, z)];
+    if (qs_makes_vertices(g, z)) {
+        qs_edges e = qs_edges_of(g, dens, x0, y, z);
+        nv = popcount(e.x) + popcount(e.y) + popcount(e.z);
+    }
+    if (z < g.z1 && y + 1 < g.ny) {
+        uint r[2][3], cells = qs_with_next(g, x0, 4);
+        qs_rows(g, dens, x0, y, z, 5, r);
+        for (int i = 0; i < 4; i++)
+            if (cells >> i & 1) nt += ntri[qs_cube(r, i)];
     }
     counts[qs_item(g, ix, y, z)] = (uint2)(nv, nt);
 }
@@ -270,6 +296,9 @@ static void qs_emit(qs_grid g, const qs_tex *tx, float4 origin, qs_out o, uint v
 /* origin = (x, y, z, spacing); vfirst: the mesh index of the slab's first vertex. Writes
  * the slab's vertices from 0 and each point's first vertex (a mesh index) into vbase,
  * which holds planes z0..z1. */
+/* origin = (x, y, z, spacing); vfirst: the mesh index of the slab's first vertex. Writes
+ * the slab's vertices from 0 and each point's first vertex (a mesh index) into vbase,
+ * which holds planes z0..z1. */
 __kernel __attribute__((reqd_work_group_size(2, 8, 8)))
 void qs_vertices(__global const float *dens, __global const float *red,
                  __global const float *green, __global const float *blue, int4 dims,
@@ -278,30 +307,33 @@ void qs_vertices(__global const float *dens, __global const float *red,
                  __global float *pos, __global char *normal, __global uchar *color)
 {
     qs_grid g = qs_grid_of(dims, span, iso);
-    int ix = get_global_id(0), y = get_global_id(1), z = g.z0 + get_global_id(2);
+    int ix = get_global_id(0), y = get_global_id(1), z = g.z0 + get_global_id(2), x0 = 4 * ix;
     if (ix >= g.nix || y >= g.ny || z > g.z1 || !qs_makes_vertices(g, z)) return;
+    qs_edges e = qs_edges_of(g, dens, x0, y, z);
+    uint any = e.x | e.y | e.z, bits[3] = {e.x, e.y, e.z};
+    if (!any) return;
     qs_tex tx = {dens, {red, green, blue}, colored, solid};
     qs_out o = {pos, normal, color};
     uint v = first[qs_item(g, ix, y, z)].x;
-    for (int x = 4 * ix; x < min(4 * ix + 4, g.nx); x++) {
-        int m = qs_edges(g, dens, x, y, z);
-        if (!m) continue;
-        vbase[((size_t)(z - g.z0) * g.ny + y) * g.nx + x] = vfirst + v;
+    for (int i = 0; i < 4; i++) {
+        if (!(any >> i & 1)) continue;
+        vbase[((size_t)(z - g.z0) * g.ny + y) * g.nx + x0 + i] = vfirst + v;
         for (int axis = 0; axis < 3; axis++)
-            if (m >> axis & 1) qs_emit(g, &tx, origin, o, v++, x, y, z, axis);
+            if (bits[axis] >> i & 1) qs_emit(g, &tx, origin, o, v++, x0 + i, y, z, axis);
     }
 }
 
-/* The vertex on edge e of cell (x, y, z): its owner point's first vertex plus the owner's
- * crossing edges before it (x, then y, then z). */
-static uint qs_edge_vertex(qs_grid g, __global const float *dens, __global const uint *vbase,
-                           __constant uchar *edge_from, int x, int y, int z, int e)
+/* The vertex on edge e of cell x0 + i: its owner point's first vertex plus the owner's
+ * crossing edges before it (x, then y, then z), from the rows r around the cell. */
+static uint qs_edge_vertex(qs_grid g, const uint r[2][3], __global const uint *vbase,
+                           __constant uchar *edge_from, int x0, int i, int y, int z, int e)
 {
     int from = edge_from[e], axis = e >> 2;
-    int px = x + (from & 1), py = y + (from >> 1 & 1), pz = z + (from >> 2 & 1) + (axis == 2);
-    int m = qs_edges(g, dens, px, py, pz);
-    uint rank = (axis > 0 ? (m & 1) : 0) + (axis > 1 ? (m >> 1 & 1) : 0);
-    return vbase[((size_t)(pz - g.z0) * g.ny + py) * g.nx + px] + rank;
+    int dx = from & 1, dy = from >> 1 & 1, dz = (from >> 2 & 1) + (axis == 2), p = i + dx;
+    uint row = r[dz][dy], rank = 0;
+    if (axis > 0) rank += (row ^ row >> 1) >> p & 1 & (x0 + p + 1 < g.nx);
+    if (axis > 1) rank += (row ^ r[dz][dy + 1]) >> p & 1 & (y + dy + 1 < g.ny);
+    return vbase[((size_t)(z + dz - g.z0) * g.ny + y + dy) * g.nx + x0 + p] + rank;
 }
 
 __kernel __attribute__((reqd_work_group_size(2, 8, 8)))
@@ -310,14 +342,16 @@ void qs_triangles(__global const float *dens, int4 dims, int4 span, float iso,
                   __global const uint2 *first, __global const uint *vbase, __global uint *index)
 {
     qs_grid g = qs_grid_of(dims, span, iso);
-    int ix = get_global_id(0), y = get_global_id(1), z = g.z0 + get_global_id(2);
-    if (ix >= g.nix || y >= g.ny || z >= g.z1) return;
+    int ix = get_global_id(0), y = get_global_id(1), z = g.z0 + get_global_id(2), x0 = 4 * ix;
+    if (ix >= g.nix || y + 1 >= g.ny || z >= g.z1) return;
+    uint r[2][3], cells = qs_with_next(g, x0, 4);
+    qs_rows(g, dens, x0, y, z, 6, r);
     __global uint *out = index + 3 * (size_t)first[qs_item(g, ix, y, z)].y;
-    for (int x = 4 * ix; x < min(4 * ix + 4, g.nx); x++) {
-        if (!qs_has_cell(g, x, y, z)) continue;
-        int cube = qs_cube(g, dens, x, y, z);
+    for (int i = 0; i < 4; i++) {
+        if (!(cells >> i & 1)) continue;
+        uint cube = qs_cube(r, i);
         for (int k = 0; k < 3 * ntri[cube]; k++)
-            *out++ = qs_edge_vertex(g, dens, vbase, edge_from, x, y, z,
+            *out++ = qs_edge_vertex(g, r, vbase, edge_from, x0, i, y, z,
                                     tri[cube * 3 * QS_MAXTRI + k]);
     }
 }
