@@ -57,9 +57,19 @@ typedef struct ms_qsurf_atomgrid {
     float cw[3];             /* cell width (grid units) */
     float cutmax;            /* the largest cutoff radius (grid units) */
     float *scratch;          /* per thread: scratch_n floats for the per-axis factors */
-    size_t scratch_n;
+    size_t scratch_n;        /* ms_qsurf_scratch_floats */
     float elim;              /* w d^2 below this is beyond the cutoff: -gausslim^2 log2(e) / 2 */
 } ms_qsurf_atomgrid;
+
+/* Planes of a density block (at most). */
+#define MS_QSURF_BLOCK_PLANES 8
+/* Floats of a thread's scratch for a grid of n[0] x n[1] points: per-axis factors of an
+ * atom's x window (and its x distances), y rows and z planes in a block, each run padded
+ * by whole vectors. */
+static inline size_t ms_qsurf_scratch_floats(const int n[3])
+{
+    return 2 * ((size_t)n[0] + 16) + (size_t)n[1] + 16 + MS_QSURF_BLOCK_PLANES + 16;
+}
 
 int ms_qsurf_atomgrid_build(const ms_qsurf_atoms *a, const ms_qsurf_grid *g,
                             ms_qsurf_atomgrid *ag, ms_error *err);

@@ -173,6 +173,41 @@ static void test_one_atom(void)
     check_sphere(0.5f, 1, 2.0f, 0.2f);
 }
 
+/* Every CPU density loop gives the same bits where an atom's cutoff spans several vectors
+ * and the grid is narrower than that span (h 0.25, gausslim 4: 49 voxels across, on a
+ * grid of about 45). */
+static void test_wide_atoms(void)
+{
+    t_suite = "qsurf";
+    float pos[9] = {0.3f, 0.1f, -0.2f, 1.1f, 0.7f, 0.4f, -0.6f, 0.9f, 1.3f};
+    float rad[3] = {1.5f, 1.4f, 1.6f}, rgb[9] = {1, 0, 0, 0, 1, 0, 0.2f, 0.3f, 0.9f};
+    ms_qsurf_atoms a = {.n = 3, .pos = pos, .radius = rad, .rgb = rgb};
+    ms_qsurf_params p;
+    ms_qsurf_grid g;
+    ms_qsurf_atomgrid ag;
+    ms_qsurf_slab s[2];
+    ms_error err = {{0}};
+    ms_qsurf_params_default(&p);
+    p.gridspacing = 0.25f, p.quality = 3;
+    if (ms_qsurf_grid_setup(&a, &p, &g, &err) < 0 || ms_qsurf_atomgrid_build(&a, &g, &ag, &err) < 0)
+        return;
+    size_t n = (size_t)g.n[0] * g.n[1] * g.n[2];
+    for (int k = 0; k < 2; k++) {
+        ms_qsurf_slab_alloc(&s[k], g.n[0], g.n[1], g.n[2], 1);
+        s[k].zb = s[k].cz = 0, s[k].ze = g.n[2] - 1;
+    }
+    ms_qsurf_density_cpu_with(&ag, &s[0], MS_QSURF_K_GATHER);
+    for (int k = 0; k < 4; k++) {
+        ms_qsurf_density_cpu_with(&ag, &s[1], k);
+        int same = !memcmp(s[0].dens, s[1].dens, n * sizeof(float));
+        for (int c = 0; c < 3; c++) same = same && !memcmp(s[0].rgb[c], s[1].rgb[c], n * 4);
+        t_ok(same, "%s: atoms 49 voxels across on a %d-voxel-wide grid, the gather's bits",
+             ms_qsurf_kernel_name(k), g.n[0]);
+    }
+    for (int k = 0; k < 2; k++) ms_qsurf_slab_free(&s[k]);
+    ms_qsurf_atomgrid_free(&ag);
+}
+
 /* Bad input gives an error or is left out, never a crash. */
 static void test_bad_input(void)
 {
@@ -668,6 +703,7 @@ int main(void)
     test_exp2();
     test_grid_rules();
     test_one_atom();
+    test_wide_atoms();
     test_bad_input();
     test_mc_skewed();
     test_1tii();
