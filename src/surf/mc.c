@@ -65,6 +65,9 @@ int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float ori
     }
     mc->iso = iso, mc->colored = colored, mc->maxlayers = maxlayers, mc->mesh = mesh;
     mc->words = (n[0] + 63) / 64;
+    mc->aligned = 1;
+    for (int d = 0; d < 3; d++)
+        for (int k = 0; k < 3; k++) mc->aligned &= d == k || axis[d][k] == 0.0f;
     if (gradient_matrix(mc) < 0) {
         ms_error_set(err, "the volume's axes are degenerate");
         return -1;
@@ -218,11 +221,6 @@ static void count_rows(void *ctx, size_t begin, size_t end, int thread)
     }
 }
 
-static inline float dval(const ex_job *j, const float *grid, int x, int y, int z)
-{
-    return grid[((size_t)(z - j->s->zb) * j->ny + y) * j->nx + x];
-}
-
 /* Density gradient at a grid point in index space (central differences, one-sided at the
  * volume's faces). */
 static void gradient(const ex_job *j, int x, int y, int z, float g[3])
@@ -230,13 +228,19 @@ static void gradient(const ex_job *j, int x, int y, int z, float g[3])
     const float *p = j->s->dens + ((size_t)(z - j->s->zb) * j->ny + y) * j->nx + x;
     ptrdiff_t step[3] = {1, j->nx, (ptrdiff_t)j->nx * j->ny};
     int c[3] = {x, y, z};
+    if (x > 0 && y > 0 && z > 0 && x + 1 < j->nx && y + 1 < j->ny && z + 1 < j->mc->n[2]) {
+        /* Inside the volume: halving is exact, so this is the division below, bit for bit. */
+        for (int d = 0; d < 3; d++) g[d] = (p[step[d]] - p[-step[d]]) * 0.5f;
+        return;
+    }
     for (int d = 0; d < 3; d++) {
         int lo = c[d] > 0, hi = c[d] + 1 < j->mc->n[d];
         g[d] = lo + hi ? (p[hi * step[d]] - p[-lo * step[d]]) / (float)(lo + hi) : 0.0f;
     }
 }
 
-static void vertex_color(const ex_job *j, size_t v, const int p[3], const int q[3], float t)
+/* The colour at t between points a and b (offsets into the colour grids). */
+static void vertex_color(const ex_job *j, size_t v, size_t a, size_t b, float t)
 {
     ms_qsurf_color_t *out = j->mc->mesh->color + 4 * v;
     float c[3], m = 1.0f;
@@ -245,25 +249,27 @@ static void vertex_color(const ex_job *j, size_t v, const int p[3], const int q[
             c[k] = j->mc->solid[k];
             continue;
         }
-        float a = dval(j, j->s->rgb[k], p[0], p[1], p[2]);
-        float b = dval(j, j->s->rgb[k], q[0], q[1], q[2]);
-        c[k] = a + t * (b - a);
+        const float *grid = j->s->rgb[k];
+        c[k] = grid[a] + t * (grid[b] - grid[a]);
         m = MS_MAX(m, c[k]);
     }
-    for (int k = 0; k < 3; k++) out[k] = ms_qsurf_pack_color(c[k] / m);
+    for (int k = 0; k < 3; k++) out[k] = ms_qsurf_pack_color(m == 1.0f ? c[k] : c[k] / m);
     out[3] = ms_qsurf_pack_color(1.0f);
 }
 
-/* Vertex v on the edge from point p along `axis` (x +1, y +1, z -1). */
-static void emit(const ex_job *j, size_t v, int x, int y, int z, int axis)
+static void put_normal(const ex_job *j, size_t v, const double nrm[3], double len)
+{
+    len = len > 0.0 ? 1.0 / sqrt(len) : 0.0;
+    for (int r = 0; r < 3; r++)
+        j->mc->mesh->normal[3 * v + r] =
+            ms_qsurf_pack_normal(len > 0.0 ? (float)(nrm[r] * len) : r == 2 ? 1.0f : 0.0f);
+}
+
+/* Position and normal of vertex v at t from p to q, on any axes. */
+static void place_skewed(const ex_job *j, size_t v, const int p[3], const int q[3], float t,
+                         const float g0[3], const float g1[3])
 {
     const ms_qsurf_extract *mc = j->mc;
-    int p[3] = {x, y, z}, q[3] = {x, y, z};
-    q[axis] += axis == 2 ? -1 : 1;
-    float d0 = dval(j, j->s->dens, x, y, z), d1 = dval(j, j->s->dens, q[0], q[1], q[2]);
-    float t = (mc->iso - d0) / (d1 - d0), g0[3], g1[3];
-    gradient(j, x, y, z, g0);
-    gradient(j, q[0], q[1], q[2], g1);
     double nrm[3] = {0, 0, 0}, len = 0.0;
     for (int r = 0; r < 3; r++) {
         double pos = mc->origin[r];
@@ -274,24 +280,59 @@ static void emit(const ex_job *j, size_t v, int x, int y, int z, int axis)
         mc->mesh->pos[3 * v + r] = (ms_qsurf_pos_t)pos;
         len += nrm[r] * nrm[r];
     }
-    len = len > 0.0 ? 1.0 / sqrt(len) : 0.0;
-    for (int r = 0; r < 3; r++)
-        mc->mesh->normal[3 * v + r] = ms_qsurf_pack_normal(len > 0.0 ? (float)(nrm[r] * len)
-                                                                      : r == 2 ? 1.0f : 0.0f);
-    vertex_color(j, v, p, q, t);
+    put_normal(j, v, nrm, len);
 }
 
-/* Ask for the cache lines the vertices of word w of row (y, z) will read. */
+/* The same on axes along x, y and z: the terms of the other axes, exact zeros there, are
+ * left out, which changes no bit. */
+static void place_aligned(const ex_job *j, size_t v, const int p[3], int axis, int dq, float t,
+                          const float g0[3], const float g1[3])
+{
+    const ms_qsurf_extract *mc = j->mc;
+    double nrm[3], len = 0.0;
+    for (int r = 0; r < 3; r++) {
+        double c = r == axis ? p[r] + (double)t * dq : (double)p[r];
+        mc->mesh->pos[3 * v + r] = (ms_qsurf_pos_t)(mc->origin[r] + c * mc->axis[r][r]);
+        nrm[r] = 0.0 - mc->gradm[r][r] * (g0[r] + t * (g1[r] - g0[r]));
+        len += nrm[r] * nrm[r];
+    }
+    put_normal(j, v, nrm, len);
+}
+
+/* Vertex v on the edge from point p along `axis` (x +1, y +1, z -1). */
+static void emit(const ex_job *j, size_t v, int x, int y, int z, int axis)
+{
+    const ms_qsurf_extract *mc = j->mc;
+    int p[3] = {x, y, z}, q[3] = {x, y, z}, dq = axis == 2 ? -1 : 1;
+    ptrdiff_t step[3] = {1, j->nx, (ptrdiff_t)j->nx * j->ny};
+    q[axis] += dq;
+    size_t a = ((size_t)(z - j->s->zb) * j->ny + y) * j->nx + x;
+    size_t b = (size_t)((ptrdiff_t)a + dq * step[axis]);
+    float d0 = j->s->dens[a], d1 = j->s->dens[b];
+    float t = (mc->iso - d0) / (d1 - d0), g0[3], g1[3];
+    gradient(j, x, y, z, g0);
+    gradient(j, q[0], q[1], q[2], g1);
+    if (mc->aligned) place_aligned(j, v, p, axis, dq, t, g0, g1);
+    else place_skewed(j, v, p, q, t, g0, g1);
+    vertex_color(j, v, a, b, t);
+}
+
+/* Ask for the cache lines the vertices of word w of row (y, z) will read: the density of
+ * the row and its four neighbours, the colour of the row and of the edges' far ends (y + 1,
+ * z - 1). */
 static void prefetch_word(const ex_job *j, int y, int z, int w)
 {
     int zl = MS_MAX(z - 1, j->s->zb), zh = MS_MIN(z + 1, j->s->ze);
     int yl = MS_MAX(y - 1, 0), yh = MS_MIN(y + 1, j->ny - 1);
-    const float *rows[8] = {drow(j, y, z), drow(j, yl, z), drow(j, yh, z), drow(j, y, zl),
-                            drow(j, y, zh), NULL, NULL, NULL};
-    size_t off = ((size_t)(z - j->s->zb) * j->ny + y) * j->nx;
-    for (int k = 0; k < 3 && j->mc->colored; k++) rows[5 + k] = j->s->rgb[k] + off;
+    const float *rows[14] = {drow(j, y, z), drow(j, yl, z), drow(j, yh, z), drow(j, y, zl),
+                             drow(j, y, zh)};
+    size_t at[3] = {((size_t)(z - j->s->zb) * j->ny + y) * j->nx,
+                    ((size_t)(z - j->s->zb) * j->ny + yh) * j->nx,
+                    ((size_t)(zl - j->s->zb) * j->ny + y) * j->nx};
+    for (int k = 0; k < 3 && j->mc->colored; k++)
+        for (int r = 0; r < 3; r++) rows[5 + 3 * k + r] = j->s->rgb[k] + at[r];
     int x0 = 64 * w, n = MS_MIN(64, j->nx - x0);
-    for (int r = 0; r < 8; r++)
+    for (int r = 0; r < 14; r++)
         for (int x = 0; rows[r] && x < n; x += 16) __builtin_prefetch(rows[r] + x0 + x);
 }
 

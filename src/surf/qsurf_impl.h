@@ -209,6 +209,7 @@ typedef struct ms_qsurf_extract {
     int n[3], words;         /* words: 64-bit words per row */
     float iso;
     double origin[3], axis[3][3], gradm[3][3];   /* gradm = inverse transpose of axis */
+    int aligned;             /* the axes run along x, y and z */
     int colored;
     float solid[3];
     int maxlayers;
