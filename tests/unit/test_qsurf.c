@@ -79,6 +79,32 @@ static void test_exp2(void)
     t_ok(worst < 5e-6, "fast exp2 relative error %.2e over [-12, 0] (VMD's: 1.3e-3)", worst);
 }
 
+/* ---------------------------------------------------------------- quantization */
+
+/* The 8-bit normal and colour codes against the rule computed in double precision: v = f *
+ * 127.5 - 0.5 (f * 255 for colours), clamped to the codes' range, rounded half away from
+ * zero; NaN gives the lowest code. */
+static void test_quantize(void)
+{
+    t_suite = "qsurf";
+    int bad_n = 0, bad_c = 0;
+    for (int i = -13000; i <= 13000; i++) {
+        float f = (float)i / 10000.0f;
+        double v = (double)(f * 127.5f - 0.5f), u = (double)(f * 255.0f);
+        v = fmin(fmax(v, -128.0), 127.0), u = fmin(fmax(u, 0.0), 255.0);
+        long wn = v >= 0 ? (long)floor(v + 0.5) : -(long)floor(0.5 - v), wc = (long)floor(u + 0.5);
+        bad_n += ms_qsurf_snorm(f, 127.5f) != wn;
+        bad_c += ms_qsurf_unorm(f, 255.0f) != wc;
+    }
+    t_ok(!bad_n && !bad_c, "8-bit codes of normals and colours over [-1.3, 1.3] follow the rule "
+         "(%d and %d differ)", bad_n, bad_c);
+    t_ok(ms_qsurf_snorm(1.0f, 127.5f) == 127 && ms_qsurf_snorm(-1.0f, 127.5f) == -128 &&
+             ms_qsurf_snorm(0.0f, 127.5f) == -1 && ms_qsurf_snorm(NAN, 127.5f) == -128 &&
+             ms_qsurf_snorm(INFINITY, 127.5f) == 127 && ms_qsurf_unorm(NAN, 255.0f) == 0 &&
+             ms_qsurf_unorm(INFINITY, 255.0f) == 255 && ms_qsurf_unorm(0.5f, 255.0f) == 128,
+         "normal codes: 1 -> 127, -1 -> -128, 0 -> -1, NaN -> -128; colour 0.5 -> 128, NaN -> 0");
+}
+
 /* ---------------------------------------------------------------- grid rules */
 
 static void test_grid_rules(void)
@@ -701,6 +727,7 @@ int main(void)
     ms_registry_init(&reg);
     ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
     test_exp2();
+    test_quantize();
     test_grid_rules();
     test_one_atom();
     test_wide_atoms();
