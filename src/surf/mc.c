@@ -359,18 +359,30 @@ static void vertex_rows(void *ctx, size_t begin, size_t end, int thread)
     }
 }
 
-/* The vertex on edge e of cell (x, y, z): its owner point's first vertex plus the owner's
- * crossing edges before it (x, then y, then z). */
-static inline uint32_t edge_vertex(const ex_job *j, int x, int y, int z, int e)
+/* Where the vertices of a row of cells are found: for each of the four rows of owner
+ * points around it (dy + 2 dz), their first vertices and their x and y crossing bits. */
+typedef struct owner_rows {
+    const uint32_t *vbase[4];
+    const uint64_t *xbits[4], *ybits[4];
+} owner_rows;
+
+static void owner_rows_of(const ex_job *j, int y, int z, owner_rows *o)
 {
-    int from = ms_qsurf_mc_edge_from[e], axis = e >> 2;
-    int px = x + (from & 1), py = y + (from >> 1 & 1), pz = z + (from >> 2 & 1) + (axis == 2);
-    size_t r = row_of(j, py, pz);
-    int w = px >> 6, b = px & 63;
-    uint32_t rank = 0;
-    if (axis > 0) rank += (uint32_t)(bits(j, r, B_X)[w] >> b & 1);
-    if (axis > 1) rank += (uint32_t)(bits(j, r, B_Y)[w] >> b & 1);
-    return j->mc->vbase[point(j, px, py, pz)] + rank;
+    for (int k = 0; k < 4; k++) {
+        int py = y + (k & 1), pz = z + (k >> 1);
+        size_t r = row_of(j, py, pz);
+        o->vbase[k] = j->mc->vbase + point(j, 0, py, pz);
+        o->xbits[k] = bits(j, r, B_X), o->ybits[k] = bits(j, r, B_Y);
+    }
+}
+
+/* The vertex of cell x's edge with owner code `own` (ms_qsurf_mctab): its owner point's
+ * first vertex plus the owner's crossing edges before it (x, then y, then z). */
+static inline uint32_t edge_vertex(const owner_rows *o, int x, int own)
+{
+    int k = own >> 1 & 3, axis = own >> 3, px = x + (own & 1), w = px >> 6, b = px & 63;
+    uint32_t xr = (uint32_t)(o->xbits[k][w] >> b & 1), yr = (uint32_t)(o->ybits[k][w] >> b & 1);
+    return o->vbase[k][px] + (axis > 0 ? xr : 0) + (axis > 1 ? yr : 0);
 }
 
 static void triangle_rows(void *ctx, size_t begin, size_t end, int thread)
@@ -380,13 +392,16 @@ static void triangle_rows(void *ctx, size_t begin, size_t end, int thread)
     for (size_t r = begin; r < end; r++) {
         if (j->mc->trow[r] == j->mc->trow[r + 1]) continue;
         int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
-        uint32_t *out = j->mc->mesh->index + 3 * (size_t)j->mc->trow[r];
+        uint32_t *out = j->mc->mesh->index + 3 * (size_t)j->mc->trow[r], v[12];
+        owner_rows o;
+        owner_rows_of(j, y, z, &o);
         for (int w = 0; w < j->words; w++) {
             uint64_t c[8], act = cell_word(j, y, z, w, c);
             for (; act; act &= act - 1) {
                 int b = __builtin_ctzll(act), cube = cube_at(c, b), x = 64 * w + b;
-                for (int k = 0; k < 3 * tab->ntri[cube]; k++)
-                    *out++ = edge_vertex(j, x, y, z, tab->tri[cube][k]);
+                for (int e = 0; e < tab->nedge[cube]; e++)
+                    v[e] = edge_vertex(&o, x, tab->owner[tab->edges[cube][e]]);
+                for (int k = 0; k < 3 * tab->ntri[cube]; k++) *out++ = v[tab->corner[cube][k]];
             }
         }
     }

@@ -193,6 +193,12 @@ void ms_qsurf_slab_free(ms_qsurf_slab *s);
 typedef struct ms_qsurf_mctab {
     uint8_t ntri[256];
     uint8_t tri[256][3 * MS_QSURF_MC_MAXTRI];
+    /* The same triangles through each case's distinct edges: corner k of the case's
+     * triangles is edge edges[case][corner[case][k]]. */
+    uint8_t nedge[256], edges[256][12], corner[256][3 * MS_QSURF_MC_MAXTRI];
+    /* Where edge e's vertex is found from its cell: bit 0 the owner point's x offset, bits
+     * 1-2 its row (dy + 2 dz), bits 3-4 the edge's axis. */
+    uint8_t owner[12];
     int bad;                 /* loops the rule could not triangulate (none: tested) */
 } ms_qsurf_mctab;
 const ms_qsurf_mctab *ms_qsurf_mc_table(void);
