@@ -1,11 +1,10 @@
 /* simd_avx2.c: the loops that run with AVX2 and FMA, eight voxels of a row at a time: the
- * density scatter (each atom's rows through one window of whole vectors along x, its
- * distances and factors computed once per atom and block), the
- * density gather (eight voxels summing the atoms of the cells around them in registers),
- * and marching cubes' inside bits (compare and movemask). The arithmetic is that of the
- * plain loops lane by lane, so the results are bit for bit the same. Built for every
- * x86-64 compiler and called only when the CPU has AVX2 and FMA; elsewhere these fall back
- * to the plain loops. */
+ * density scatter (each atom's rows through one window of whole vectors along x, whose
+ * distances and factors are computed once per atom and block), the density gather (eight
+ * voxels summing the atoms of the cells around them in registers), and marching cubes'
+ * inside bits (compare and movemask). The arithmetic is that of the plain loops lane by
+ * lane, so the results are bit for bit the same. Built for every x86-64 compiler and
+ * called only when the CPU has AVX2 and FMA; elsewhere these fall back to the plain loops. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 

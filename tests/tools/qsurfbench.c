@@ -96,7 +96,8 @@ static uint64_t mesh_hash(const ms_qsurf_mesh *m)
                        m->nv * 4 * sizeof *m->color, m->nt * 3 * sizeof *m->index};
     uint64_t h = 14695981039346656037u;
     for (int k = 0; k < 4; k++)
-        for (size_t i = 0; i < sizes[k]; i++) h = (h ^ ((const uint8_t *)parts[k])[i]) * 1099511628211u;
+        for (size_t i = 0; i < sizes[k]; i++)
+            h = (h ^ ((const uint8_t *)parts[k])[i]) * 1099511628211u;
     return h;
 }
 
