@@ -266,10 +266,9 @@ static void next_slab(ms_qsurf_slab *s, int z0, int z1, int nz)
 }
 
 /* Slab [z0, z1) on the OpenCL device: 1 when done there. When the device fails it is
- * dropped, and the host takes the slab over (0): all of its density (the planes shared
- * with the slab before were on the device), and marching cubes resumed where the device
- * left the mesh. */
-static int device_slab(run *r, int z0, int z1, ms_error *err)
+ * dropped and the host takes the slab over (0): all of its density, since the planes
+ * shared with the slab before were on the device. */
+static int device_slab(run *r, int z0, int z1)
 {
     ms_error e = {{0}};
     double t[2];
@@ -280,10 +279,7 @@ static int device_slab(run *r, int z0, int z1, ms_error *err)
     }
     drop_device(r, e.msg);
     r->slab.cz = r->slab.zb;
-    double t0 = ms_now();
-    ms_qsurf_density_cpu(&r->ag, &r->slab);
-    r->st->t_density += ms_now() - t0;
-    return z0 > 0 ? ms_qsurf_extract_resume(&r->mc, &r->slab, z0, err) : 0;
+    return 0;
 }
 
 static int slabs(run *r, ms_error *err)
@@ -293,13 +289,15 @@ static int slabs(run *r, ms_error *err)
         z1 = MS_MIN(z0 + r->plan.layers, nz - 1);
         next_slab(&r->slab, z0, z1, nz);
         r->st->nslabs++;
-        int done = r->cl ? device_slab(r, z0, z1, err) : 0;
-        if (done < 0) return -1;
-        if (done) continue;
+        int on_device = r->cl != NULL;
+        if (on_device && device_slab(r, z0, z1)) continue;
         double t = ms_now();
         if (r->slab.cz <= r->slab.ze) ms_qsurf_density_cpu(&r->ag, &r->slab);
         double t2 = ms_now();
         r->st->t_density += t2 - t;
+        /* Marching cubes resumed where the device left the mesh. */
+        if (on_device && z0 > 0 && ms_qsurf_extract_resume(&r->mc, &r->slab, z0, err) < 0)
+            return -1;
         if (ms_qsurf_extract_slab(&r->mc, &r->slab, z0, z1, err) < 0) return -1;
         r->st->t_mc += ms_now() - t2;
     }
