@@ -36,7 +36,7 @@ size_t ms_qsurf_atomgrid_bytes(const ms_qsurf_grid *g, int colored)
     int nc[3];
     ms_qsurf_atomgrid_cells(g, nc);
     size_t cells = ncells_of(nc) + 1, threads = (size_t)ms_threads_count();
-    size_t scratch = threads * ((size_t)g->n[0] + (size_t)g->n[1] + 32) * sizeof(float);
+    size_t scratch = threads * ms_qsurf_scratch_floats(g->n) * sizeof(float);
     return g->natoms * (colored ? 32 : 16) + cells * 4 * (threads + 1) + scratch;
 }
 
@@ -155,7 +155,7 @@ int ms_qsurf_atomgrid_build(const ms_qsurf_atoms *a, const ms_qsurf_grid *g,
     ag->cellstart = ms_alloc_array(c.ncells + 1, sizeof(uint32_t));
     c.slot = ms_calloc_array(c.ncells * (size_t)c.parts, sizeof(uint32_t));
     if (a->rgb) ag->rgb = ms_alloc_array(g->natoms, 4 * sizeof(float));
-    ag->scratch_n = (size_t)g->n[0] + (size_t)g->n[1] + 32;
+    ag->scratch_n = ms_qsurf_scratch_floats(g->n);
     ag->scratch = ms_calloc_array(ag->scratch_n * (size_t)c.parts, sizeof(float));
     if (!ag->xyzw || !ag->cellstart || !c.slot || (a->rgb && !ag->rgb) || !ag->scratch ||
         g->natoms > UINT32_MAX) {

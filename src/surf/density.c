@@ -187,14 +187,16 @@ static void density_blocks(void *ctx, size_t begin, size_t end, int thread)
     }
 }
 
-/* Blocks of up to 4 planes and as many rows as keep the block's voxels (density and colour)
- * within about 1 MB, so that the atoms' writes hit the cache. */
+/* Blocks of up to MS_QSURF_BLOCK_PLANES planes and as many rows (8 at least) as keep the
+ * block's voxels (density and colour) within about 256 KB, so that the atoms' writes hit
+ * the cache. */
 void ms_qsurf_density_cpu_with(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, int kernel)
 {
     if ((kernel & MS_QSURF_K_SIMD) && !ms_qsurf_have_simd()) kernel &= ~MS_QSURF_K_SIMD;
     int planes = s->ze - s->cz + 1, groups;
     size_t voxel = s->rgb[0] ? 16 : 4;
-    density_job j = {.ag = ag, .s = s, .kernel = kernel, .group = MS_MIN(4, planes)};
+    density_job j = {.ag = ag, .s = s, .kernel = kernel,
+                     .group = MS_MIN(MS_QSURF_BLOCK_PLANES, planes)};
     groups = (planes + j.group - 1) / j.group;
     j.band = (int)MS_MAX(8, MS_MIN((size_t)s->ny, (1u << 18) / (voxel * s->nx * j.group)));
     j.nbands = (s->ny + j.band - 1) / j.band;

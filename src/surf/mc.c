@@ -65,6 +65,9 @@ int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float ori
     }
     mc->iso = iso, mc->colored = colored, mc->maxlayers = maxlayers, mc->mesh = mesh;
     mc->words = (n[0] + 63) / 64;
+    mc->aligned = 1;
+    for (int d = 0; d < 3; d++)
+        for (int k = 0; k < 3; k++) mc->aligned &= d == k || axis[d][k] == 0.0f;
     if (gradient_matrix(mc) < 0) {
         ms_error_set(err, "the volume's axes are degenerate");
         return -1;
@@ -218,11 +221,6 @@ static void count_rows(void *ctx, size_t begin, size_t end, int thread)
     }
 }
 
-static inline float dval(const ex_job *j, const float *grid, int x, int y, int z)
-{
-    return grid[((size_t)(z - j->s->zb) * j->ny + y) * j->nx + x];
-}
-
 /* Density gradient at a grid point in index space (central differences, one-sided at the
  * volume's faces). */
 static void gradient(const ex_job *j, int x, int y, int z, float g[3])
@@ -230,13 +228,19 @@ static void gradient(const ex_job *j, int x, int y, int z, float g[3])
     const float *p = j->s->dens + ((size_t)(z - j->s->zb) * j->ny + y) * j->nx + x;
     ptrdiff_t step[3] = {1, j->nx, (ptrdiff_t)j->nx * j->ny};
     int c[3] = {x, y, z};
+    if (x > 0 && y > 0 && z > 0 && x + 1 < j->nx && y + 1 < j->ny && z + 1 < j->mc->n[2]) {
+        /* Inside the volume: halving is exact, so this is the division below, bit for bit. */
+        for (int d = 0; d < 3; d++) g[d] = (p[step[d]] - p[-step[d]]) * 0.5f;
+        return;
+    }
     for (int d = 0; d < 3; d++) {
         int lo = c[d] > 0, hi = c[d] + 1 < j->mc->n[d];
         g[d] = lo + hi ? (p[hi * step[d]] - p[-lo * step[d]]) / (float)(lo + hi) : 0.0f;
     }
 }
 
-static void vertex_color(const ex_job *j, size_t v, const int p[3], const int q[3], float t)
+/* The colour at t between points a and b (offsets into the colour grids). */
+static void vertex_color(const ex_job *j, size_t v, size_t a, size_t b, float t)
 {
     ms_qsurf_color_t *out = j->mc->mesh->color + 4 * v;
     float c[3], m = 1.0f;
@@ -245,25 +249,27 @@ static void vertex_color(const ex_job *j, size_t v, const int p[3], const int q[
             c[k] = j->mc->solid[k];
             continue;
         }
-        float a = dval(j, j->s->rgb[k], p[0], p[1], p[2]);
-        float b = dval(j, j->s->rgb[k], q[0], q[1], q[2]);
-        c[k] = a + t * (b - a);
+        const float *grid = j->s->rgb[k];
+        c[k] = grid[a] + t * (grid[b] - grid[a]);
         m = MS_MAX(m, c[k]);
     }
-    for (int k = 0; k < 3; k++) out[k] = ms_qsurf_pack_color(c[k] / m);
+    for (int k = 0; k < 3; k++) out[k] = ms_qsurf_pack_color(m == 1.0f ? c[k] : c[k] / m);
     out[3] = ms_qsurf_pack_color(1.0f);
 }
 
-/* Vertex v on the edge from point p along `axis` (x +1, y +1, z -1). */
-static void emit(const ex_job *j, size_t v, int x, int y, int z, int axis)
+static void put_normal(const ex_job *j, size_t v, const double nrm[3], double len)
+{
+    len = len > 0.0 ? 1.0 / sqrt(len) : 0.0;
+    for (int r = 0; r < 3; r++)
+        j->mc->mesh->normal[3 * v + r] =
+            ms_qsurf_pack_normal(len > 0.0 ? (float)(nrm[r] * len) : r == 2 ? 1.0f : 0.0f);
+}
+
+/* Position and normal of vertex v at t from p to q, on any axes. */
+static void place_skewed(const ex_job *j, size_t v, const int p[3], const int q[3], float t,
+                         const float g0[3], const float g1[3])
 {
     const ms_qsurf_extract *mc = j->mc;
-    int p[3] = {x, y, z}, q[3] = {x, y, z};
-    q[axis] += axis == 2 ? -1 : 1;
-    float d0 = dval(j, j->s->dens, x, y, z), d1 = dval(j, j->s->dens, q[0], q[1], q[2]);
-    float t = (mc->iso - d0) / (d1 - d0), g0[3], g1[3];
-    gradient(j, x, y, z, g0);
-    gradient(j, q[0], q[1], q[2], g1);
     double nrm[3] = {0, 0, 0}, len = 0.0;
     for (int r = 0; r < 3; r++) {
         double pos = mc->origin[r];
@@ -274,24 +280,59 @@ static void emit(const ex_job *j, size_t v, int x, int y, int z, int axis)
         mc->mesh->pos[3 * v + r] = (ms_qsurf_pos_t)pos;
         len += nrm[r] * nrm[r];
     }
-    len = len > 0.0 ? 1.0 / sqrt(len) : 0.0;
-    for (int r = 0; r < 3; r++)
-        mc->mesh->normal[3 * v + r] = ms_qsurf_pack_normal(len > 0.0 ? (float)(nrm[r] * len)
-                                                                      : r == 2 ? 1.0f : 0.0f);
-    vertex_color(j, v, p, q, t);
+    put_normal(j, v, nrm, len);
 }
 
-/* Ask for the cache lines the vertices of word w of row (y, z) will read. */
+/* The same on axes along x, y and z: the terms of the other axes, exact zeros there, are
+ * left out, which changes no bit. */
+static void place_aligned(const ex_job *j, size_t v, const int p[3], int axis, int dq, float t,
+                          const float g0[3], const float g1[3])
+{
+    const ms_qsurf_extract *mc = j->mc;
+    double nrm[3], len = 0.0;
+    for (int r = 0; r < 3; r++) {
+        double c = r == axis ? p[r] + (double)t * dq : (double)p[r];
+        mc->mesh->pos[3 * v + r] = (ms_qsurf_pos_t)(mc->origin[r] + c * mc->axis[r][r]);
+        nrm[r] = 0.0 - mc->gradm[r][r] * (g0[r] + t * (g1[r] - g0[r]));
+        len += nrm[r] * nrm[r];
+    }
+    put_normal(j, v, nrm, len);
+}
+
+/* Vertex v on the edge from point p along `axis` (x +1, y +1, z -1). */
+static void emit(const ex_job *j, size_t v, int x, int y, int z, int axis)
+{
+    const ms_qsurf_extract *mc = j->mc;
+    int p[3] = {x, y, z}, q[3] = {x, y, z}, dq = axis == 2 ? -1 : 1;
+    ptrdiff_t step[3] = {1, j->nx, (ptrdiff_t)j->nx * j->ny};
+    q[axis] += dq;
+    size_t a = ((size_t)(z - j->s->zb) * j->ny + y) * j->nx + x;
+    size_t b = (size_t)((ptrdiff_t)a + dq * step[axis]);
+    float d0 = j->s->dens[a], d1 = j->s->dens[b];
+    float t = (mc->iso - d0) / (d1 - d0), g0[3], g1[3];
+    gradient(j, x, y, z, g0);
+    gradient(j, q[0], q[1], q[2], g1);
+    if (mc->aligned) place_aligned(j, v, p, axis, dq, t, g0, g1);
+    else place_skewed(j, v, p, q, t, g0, g1);
+    vertex_color(j, v, a, b, t);
+}
+
+/* Ask for the cache lines the vertices of word w of row (y, z) will read: the density of
+ * the row and its four neighbours, the colour of the row and of the edges' far ends (y + 1,
+ * z - 1). */
 static void prefetch_word(const ex_job *j, int y, int z, int w)
 {
     int zl = MS_MAX(z - 1, j->s->zb), zh = MS_MIN(z + 1, j->s->ze);
     int yl = MS_MAX(y - 1, 0), yh = MS_MIN(y + 1, j->ny - 1);
-    const float *rows[8] = {drow(j, y, z), drow(j, yl, z), drow(j, yh, z), drow(j, y, zl),
-                            drow(j, y, zh), NULL, NULL, NULL};
-    size_t off = ((size_t)(z - j->s->zb) * j->ny + y) * j->nx;
-    for (int k = 0; k < 3 && j->mc->colored; k++) rows[5 + k] = j->s->rgb[k] + off;
+    const float *rows[14] = {drow(j, y, z), drow(j, yl, z), drow(j, yh, z), drow(j, y, zl),
+                             drow(j, y, zh)};
+    size_t at[3] = {((size_t)(z - j->s->zb) * j->ny + y) * j->nx,
+                    ((size_t)(z - j->s->zb) * j->ny + yh) * j->nx,
+                    ((size_t)(zl - j->s->zb) * j->ny + y) * j->nx};
+    for (int k = 0; k < 3 && j->mc->colored; k++)
+        for (int r = 0; r < 3; r++) rows[5 + 3 * k + r] = j->s->rgb[k] + at[r];
     int x0 = 64 * w, n = MS_MIN(64, j->nx - x0);
-    for (int r = 0; r < 8; r++)
+    for (int r = 0; r < 14; r++)
         for (int x = 0; rows[r] && x < n; x += 16) __builtin_prefetch(rows[r] + x0 + x);
 }
 
@@ -318,18 +359,30 @@ static void vertex_rows(void *ctx, size_t begin, size_t end, int thread)
     }
 }
 
-/* The vertex on edge e of cell (x, y, z): its owner point's first vertex plus the owner's
- * crossing edges before it (x, then y, then z). */
-static inline uint32_t edge_vertex(const ex_job *j, int x, int y, int z, int e)
+/* Where the vertices of a row of cells are found: for each of the four rows of owner
+ * points around it (dy + 2 dz), their first vertices and their x and y crossing bits. */
+typedef struct owner_rows {
+    const uint32_t *vbase[4];
+    const uint64_t *xbits[4], *ybits[4];
+} owner_rows;
+
+static void owner_rows_of(const ex_job *j, int y, int z, owner_rows *o)
 {
-    int from = ms_qsurf_mc_edge_from[e], axis = e >> 2;
-    int px = x + (from & 1), py = y + (from >> 1 & 1), pz = z + (from >> 2 & 1) + (axis == 2);
-    size_t r = row_of(j, py, pz);
-    int w = px >> 6, b = px & 63;
-    uint32_t rank = 0;
-    if (axis > 0) rank += (uint32_t)(bits(j, r, B_X)[w] >> b & 1);
-    if (axis > 1) rank += (uint32_t)(bits(j, r, B_Y)[w] >> b & 1);
-    return j->mc->vbase[point(j, px, py, pz)] + rank;
+    for (int k = 0; k < 4; k++) {
+        int py = y + (k & 1), pz = z + (k >> 1);
+        size_t r = row_of(j, py, pz);
+        o->vbase[k] = j->mc->vbase + point(j, 0, py, pz);
+        o->xbits[k] = bits(j, r, B_X), o->ybits[k] = bits(j, r, B_Y);
+    }
+}
+
+/* The vertex of cell x's edge with owner code `own` (ms_qsurf_mctab): its owner point's
+ * first vertex plus the owner's crossing edges before it (x, then y, then z). */
+static inline uint32_t edge_vertex(const owner_rows *o, int x, int own)
+{
+    int k = own >> 1 & 3, axis = own >> 3, px = x + (own & 1), w = px >> 6, b = px & 63;
+    uint32_t xr = (uint32_t)(o->xbits[k][w] >> b & 1), yr = (uint32_t)(o->ybits[k][w] >> b & 1);
+    return o->vbase[k][px] + (axis > 0 ? xr : 0) + (axis > 1 ? yr : 0);
 }
 
 static void triangle_rows(void *ctx, size_t begin, size_t end, int thread)
@@ -339,13 +392,16 @@ static void triangle_rows(void *ctx, size_t begin, size_t end, int thread)
     for (size_t r = begin; r < end; r++) {
         if (j->mc->trow[r] == j->mc->trow[r + 1]) continue;
         int z = j->z0 + (int)(r / (size_t)j->ny), y = (int)(r % (size_t)j->ny);
-        uint32_t *out = j->mc->mesh->index + 3 * (size_t)j->mc->trow[r];
+        uint32_t *out = j->mc->mesh->index + 3 * (size_t)j->mc->trow[r], v[12];
+        owner_rows o;
+        owner_rows_of(j, y, z, &o);
         for (int w = 0; w < j->words; w++) {
             uint64_t c[8], act = cell_word(j, y, z, w, c);
             for (; act; act &= act - 1) {
                 int b = __builtin_ctzll(act), cube = cube_at(c, b), x = 64 * w + b;
-                for (int k = 0; k < 3 * tab->ntri[cube]; k++)
-                    *out++ = edge_vertex(j, x, y, z, tab->tri[cube][k]);
+                for (int e = 0; e < tab->nedge[cube]; e++)
+                    v[e] = edge_vertex(&o, x, tab->owner[tab->edges[cube][e]]);
+                for (int k = 0; k < 3 * tab->ntri[cube]; k++) *out++ = v[tab->corner[cube][k]];
             }
         }
     }
@@ -381,6 +437,60 @@ static void keep_top_plane(ex_job *j)
     memmove(mc->vbase, mc->vbase + top * plane, plane * sizeof(uint32_t));
     memmove(mc->bits, mc->bits + top * rowwords, rowwords * sizeof(uint64_t));
     mc->next_z0 = j->z1;
+}
+
+/* Plane z0's crossing bits, as the slab before would have left them; returns their
+ * number. Row ny (free until the next slab's classification) holds plane z0 - 1's inside
+ * bits meanwhile. */
+static size_t rebuild_bits(ex_job *j)
+{
+    size_t n = 0;
+    uint64_t *below = bits(j, (size_t)j->ny, B_IN);
+    for (int y = 0; y < j->ny; y++)
+        ms_qsurf_inside_bits_plain(drow(j, y, j->z0), j->nx, j->mc->iso, bits(j, (size_t)y, B_IN));
+    for (int y = 0; y < j->ny; y++) {
+        const uint64_t *in = bits(j, (size_t)y, B_IN);
+        const uint64_t *iny = y + 1 < j->ny ? bits(j, (size_t)y + 1, B_IN) : NULL;
+        uint64_t *xb = bits(j, (size_t)y, B_X), *yb = bits(j, (size_t)y, B_Y);
+        uint64_t *zb = bits(j, (size_t)y, B_Z);
+        ms_qsurf_inside_bits_plain(drow(j, y, j->z0 - 1), j->nx, j->mc->iso, below);
+        for (int w = 0; w < j->words; w++) {
+            xb[w] = (in[w] ^ next_x(j, in, w)) & has_next_x(j, w);
+            yb[w] = iny ? in[w] ^ iny[w] : 0;
+            zb[w] = in[w] ^ below[w];
+            n += (size_t)(popcount64(xb[w]) + popcount64(yb[w]) + popcount64(zb[w]));
+        }
+    }
+    return n;
+}
+
+int ms_qsurf_extract_resume(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0,
+                            ms_error *err)
+{
+    ex_job j = {.mc = mc, .s = s, .z0 = z0, .z1 = z0, .nx = mc->n[0], .ny = mc->n[1],
+                .words = mc->words};
+    if (z0 <= 0 || z0 >= mc->n[2] - 1 || mc->maxlayers < 1 || s->zb > z0 - 1 || s->ze < z0) {
+        ms_error_set(err, "marching cubes: cannot resume at plane %d", z0);
+        return -1;
+    }
+    size_t n = rebuild_bits(&j);
+    if (n > mc->mesh->nv) {
+        ms_error_set(err, "marching cubes: the mesh lacks plane %d's vertices", z0);
+        return -1;
+    }
+    uint32_t v = (uint32_t)(mc->mesh->nv - n);
+    for (int y = 0; y < j.ny; y++) {
+        const uint64_t *xb = bits(&j, (size_t)y, B_X), *yb = bits(&j, (size_t)y, B_Y);
+        const uint64_t *zb = bits(&j, (size_t)y, B_Z);
+        for (int w = 0; w < j.words; w++)
+            for (uint64_t m = xb[w] | yb[w] | zb[w]; m; m &= m - 1) {
+                int b = __builtin_ctzll(m);
+                mc->vbase[point(&j, 64 * w + b, y, z0)] = v;
+                v += (uint32_t)((xb[w] >> b & 1) + (yb[w] >> b & 1) + (zb[w] >> b & 1));
+            }
+    }
+    mc->next_z0 = z0;
+    return 0;
 }
 
 int ms_qsurf_extract_slab(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0, int z1,

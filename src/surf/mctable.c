@@ -119,9 +119,39 @@ static void build_case(int in)
     table.ntri[in] = (uint8_t)t.nt;
 }
 
+/* The case's distinct edges in order of first use, and its corners as indices into them. */
+static void distinct_edges(int in)
+{
+    int slot[12];
+    for (int e = 0; e < 12; e++) slot[e] = -1;
+    for (int k = 0; k < 3 * table.ntri[in]; k++) {
+        int e = table.tri[in][k];
+        if (slot[e] < 0) {
+            slot[e] = table.nedge[in]++;
+            table.edges[in][slot[e]] = (uint8_t)e;
+        }
+        table.corner[in][k] = (uint8_t)slot[e];
+    }
+}
+
+/* Each point owns the edges to its +x and +y neighbours and to its -z neighbour, so the
+ * owner of a cell's z edge is its corner at dz = 1. */
+static void owners(void)
+{
+    for (int e = 0; e < 12; e++) {
+        int from = ms_qsurf_mc_edge_from[e], axis = e >> 2;
+        int dx = from & 1, dy = from >> 1 & 1, dz = (from >> 2 & 1) + (axis == 2);
+        table.owner[e] = (uint8_t)(dx | (dy + 2 * dz) << 1 | axis << 3);
+    }
+}
+
 static void build_tables(void)
 {
-    for (int in = 0; in < 256; in++) build_case(in);
+    for (int in = 0; in < 256; in++) {
+        build_case(in);
+        distinct_edges(in);
+    }
+    owners();
 }
 
 const ms_qsurf_mctab *ms_qsurf_mc_table(void)

@@ -1,12 +1,10 @@
-/* opencl.c: the OpenCL path of QuickSurf's density. One engine per process: the device
- * (a GPU first, or the one MOLSCOPE_OPENCL_DEVICE names by index or name), its context
- * and queue, and the kernel program built once (PoCL keeps compiled kernels in
- * POCL_CACHE_DIR, set here to a per-user cache when unset). The kernel sums the atoms of
- * the cells around each 8x8x8 block of voxels, each work-item computing four planes, with
- * the CPU loops' arithmetic (same exp2 polynomial and per-axis factors, same fused
- * multiply-adds, same atom order), so its slabs agree with the CPU's bit for bit; marching
- * cubes runs on the host. Every error is returned as a message; the caller falls back to
- * the CPU. Without OpenCL at build time these report its absence. */
+/* opencl.c: the engine of QuickSurf's OpenCL path. One engine per process: the device
+ * (a GPU first, or the one MOLSCOPE_OPENCL_DEVICE names by index or name), its context and
+ * queue, and the kernels of kernels.cl built once (PoCL keeps compiled kernels in
+ * POCL_CACHE_DIR, set here to a per-user cache when unset); and the buffers of the surface
+ * being computed, sized from the device's memory. opencl_slab.c runs the slabs. Every
+ * error is returned as a message; the caller falls back to the CPU. Without OpenCL at
+ * build time these report its absence. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 
@@ -15,10 +13,11 @@
 #include <string.h>
 
 int ms_qsurf_cl_fail_after = -1;
+int ms_qsurf_cl_fail_stage = MS_QSURF_CL_FAIL_DENSITY;
 
 #ifdef MS_HAVE_OPENCL
-#define CL_TARGET_OPENCL_VERSION 120
-#include <CL/cl.h>
+#include "surf/opencl_impl.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <strings.h>
@@ -29,79 +28,17 @@ int ms_qsurf_cl_fail_after = -1;
 #define STR(x) STR_(x)
 
 static const char *kernel_source =
-    "#pragma OPENCL FP_CONTRACT OFF\n"
-    "static float qs_exp2(float e)\n"
-    "{\n"
-    "    float fl = floor(e), f = e - fl;\n"
-    "    float p = fma(fma(fma(fma(" STR(MS_QSURF_EXP2_C4) ", f, " STR(MS_QSURF_EXP2_C3) "), f,\n"
-    "        " STR(MS_QSURF_EXP2_C2) "), f, " STR(MS_QSURF_EXP2_C1) "), f,\n"
-    "        " STR(MS_QSURF_EXP2_C0) ");\n"
-    "    return as_float(as_int(p) + (int)fl * 8388608);\n"
-    "}\n"
-    "static float qs_factor(float w, float d)\n"
-    "{\n"
-    "    return qs_exp2(max(w * (d * d), -126.0f));\n"
-    "}\n"
-    "static int qs_cell(float v, float w, int n)\n"
-    "{\n"
-    "    int c = (int)(v / w);\n"
-    "    return c < 0 ? 0 : c >= n ? n - 1 : c;\n"
-    "}\n"
-    "__kernel __attribute__((reqd_work_group_size(8, 8, 2)))\n"
-    "void qs_density(__global const float4 *atoms, __global const float4 *colors,\n"
-    "                __global const uint *cellstart, int4 nc, float4 cw, float cut, float elim,\n"
-    "                int nx, int ny, int zb, int ze, int colored, __global float *dens,\n"
-    "                __global float *red, __global float *green, __global float *blue)\n"
-    "{\n"
-    "    int x = get_global_id(0), y = get_global_id(1);\n"
-    "    int bx = get_group_id(0) * 8, by = get_group_id(1) * 8, bz = zb + get_group_id(2) * 8;\n"
-    "    int z = bz + get_local_id(2) * 4;\n"
-    "    int cx0 = qs_cell(bx - cut, cw.x, nc.x), cx1 = qs_cell(bx + 7 + cut, cw.x, nc.x);\n"
-    "    int cy0 = qs_cell(by - cut, cw.y, nc.y), cy1 = qs_cell(by + 7 + cut, cw.y, nc.y);\n"
-    "    int cz0 = qs_cell(bz - cut, cw.z, nc.z), cz1 = qs_cell(bz + 7 + cut, cw.z, nc.z);\n"
-    "    float d[4] = {0, 0, 0, 0}, r[4] = {0, 0, 0, 0};\n"
-    "    float g[4] = {0, 0, 0, 0}, b[4] = {0, 0, 0, 0};\n"
-    "    for (int cz = cz0; cz <= cz1; cz++)\n"
-    "        for (int cy = cy0; cy <= cy1; cy++) {\n"
-    "            int row = (cz * nc.y + cy) * nc.x;\n"
-    "            uint end = cellstart[row + cx1 + 1];\n"
-    "            for (uint i = cellstart[row + cx0]; i < end; i++) {\n"
-    "                float4 a = atoms[i];\n"
-    "                float dx = (float)x - a.x, dy = (float)y - a.y;\n"
-    "                float ex = qs_factor(a.w, dx), ey = qs_factor(a.w, dy);\n"
-    "                float4 c = colored ? colors[i] : (float4)(0.0f);\n"
-    "                for (int k = 0; k < 4; k++) {\n"
-    "                    float dz = (float)(z + k) - a.z;\n"
-    "                    float e = a.w * fma(dx, dx, fma(dy, dy, dz * dz));\n"
-    "                    if (e < elim) continue;\n"
-    "                    float v = ex * (ey * qs_factor(a.w, dz));\n"
-    "                    d[k] += v;\n"
-    "                    r[k] = fma(v, c.x, r[k]), g[k] = fma(v, c.y, g[k]);\n"
-    "                    b[k] = fma(v, c.z, b[k]);\n"
-    "                }\n"
-    "            }\n"
-    "        }\n"
-    "    if (x >= nx || y >= ny) return;\n"
-    "    for (int k = 0; k < 4 && z + k <= ze; k++) {\n"
-    "        size_t o = ((size_t)(z + k - zb) * ny + y) * nx + x;\n"
-    "        dens[o] = d[k];\n"
-    "        if (colored) red[o] = r[k], green[o] = g[k], blue[o] = b[k];\n"
-    "    }\n"
-    "}\n";
+#include "src/surf/kernels.inc"
+    ;
 
-struct ms_qsurf_cl {
-    cl_device_id device;
-    cl_device_type type;
-    cl_context ctx;
-    cl_command_queue queue;
-    cl_program program;
-    cl_kernel kernel;
-    cl_ulong globalmem, maxalloc;
-    int named;               /* chosen by MOLSCOPE_OPENCL_DEVICE */
-    char name[256];
-    /* Buffers of the surface being computed. */
-    cl_mem atoms, colors, cells, dens, rgb[3];
-};
+/* The exp2 polynomial and the cube tables' width, shared with the C code. */
+static const char *build_options =
+    "-DQS_C0=" STR(MS_QSURF_EXP2_C0) " -DQS_C1=" STR(MS_QSURF_EXP2_C1)
+    " -DQS_C2=" STR(MS_QSURF_EXP2_C2) " -DQS_C3=" STR(MS_QSURF_EXP2_C3)
+    " -DQS_C4=" STR(MS_QSURF_EXP2_C4) " -DQS_MAXTRI=" STR(MS_QSURF_MC_MAXTRI);
+
+static const char *kernel_names[K_COUNT_OF] = {"qs_density", "qs_count", "qs_scan",
+                                               "qs_scan_add", "qs_vertices", "qs_triangles"};
 
 static pthread_mutex_t engine_lock = PTHREAD_MUTEX_INITIALIZER;
 static ms_qsurf_cl engine;
@@ -126,7 +63,7 @@ static const char *cl_error_name(cl_int e)
     }
 }
 
-static int cl_fail(ms_error *err, const char *what, cl_int e)
+int ms_qsurf_cl_fail(ms_error *err, const char *what, cl_int e)
 {
     ms_error_set(err, "OpenCL: %s failed (%d %s)", what, (int)e, cl_error_name(e));
     return -1;
@@ -177,7 +114,7 @@ static int pick_device(ms_qsurf_cl *cl, ms_error *err)
     cl_int e = clGetPlatformIDs(16, plats, &np);
     if (e != CL_SUCCESS || np == 0) {
         engine_absent = 1;
-        return cl_fail(err, "clGetPlatformIDs (no OpenCL platform)", e);
+        return ms_qsurf_cl_fail(err, "clGetPlatformIDs (no OpenCL platform)", e);
     }
     const char *want = getenv("MOLSCOPE_OPENCL_DEVICE");
     int index = 0, best = 99;
@@ -216,34 +153,65 @@ static int build_program(ms_qsurf_cl *cl, ms_error *err)
 {
     cl_int e;
     cl->program = clCreateProgramWithSource(cl->ctx, 1, &kernel_source, NULL, &e);
-    if (e != CL_SUCCESS) return cl_fail(err, "clCreateProgramWithSource", e);
-    e = clBuildProgram(cl->program, 1, &cl->device, "", NULL, NULL);
+    if (e != CL_SUCCESS) return ms_qsurf_cl_fail(err, "clCreateProgramWithSource", e);
+    e = clBuildProgram(cl->program, 1, &cl->device, build_options, NULL, NULL);
     if (e != CL_SUCCESS) {
         char log[400] = "";
         clGetProgramBuildInfo(cl->program, cl->device, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log,
                               NULL);
-        ms_error_set(err, "OpenCL: the density kernel does not build on %s: %s", cl->name, log);
+        ms_error_set(err, "OpenCL: the QuickSurf kernels do not build on %s: %s", cl->name, log);
         return -1;
     }
-    cl->kernel = clCreateKernel(cl->program, "qs_density", &e);
-    if (e != CL_SUCCESS) return cl_fail(err, "clCreateKernel", e);
+    for (int k = 0; k < K_COUNT_OF; k++) {
+        cl->k[k] = clCreateKernel(cl->program, kernel_names[k], &e);
+        if (e != CL_SUCCESS) return ms_qsurf_cl_fail(err, "clCreateKernel", e);
+    }
     return 0;
 }
 
-/* The context, queue and kernel, made the first time the device is used. */
+/* The prefix sum's work-group: a power of two up to 256 that the kernel allows. */
+static int scan_group(ms_qsurf_cl *cl, ms_error *err)
+{
+    size_t most = 0;
+    cl_int e = clGetKernelWorkGroupInfo(cl->k[K_SCAN], cl->device, CL_KERNEL_WORK_GROUP_SIZE,
+                                        sizeof most, &most, NULL);
+    if (e != CL_SUCCESS) return ms_qsurf_cl_fail(err, "clGetKernelWorkGroupInfo", e);
+    for (cl->scan_local = 256; cl->scan_local > most; cl->scan_local /= 2) {}
+    if (cl->scan_local < 32) {
+        ms_error_set(err, "OpenCL: %s runs work-groups of %zu items only", cl->name, most);
+        return -1;
+    }
+    return 0;
+}
+
+/* The context, queue and kernels, made the first time the device is used. */
 static int start(ms_qsurf_cl *cl, ms_error *err)
 {
     cl_int e;
     cl->ctx = clCreateContext(NULL, 1, &cl->device, NULL, NULL, &e);
-    if (e != CL_SUCCESS) return cl_fail(err, "clCreateContext", e);
+    if (e != CL_SUCCESS) return ms_qsurf_cl_fail(err, "clCreateContext", e);
     cl->queue = clCreateCommandQueue(cl->ctx, cl->device, 0, &e);
-    if (e != CL_SUCCESS) return cl_fail(err, "clCreateCommandQueue", e);
-    return build_program(cl, err);
+    if (e != CL_SUCCESS) return ms_qsurf_cl_fail(err, "clCreateCommandQueue", e);
+    if (build_program(cl, err) < 0) return -1;
+    return scan_group(cl, err);
+}
+
+/* The kernels write float positions, 8-bit normals and 8-bit colours. */
+static int mesh_types_ok(void)
+{
+    return sizeof(ms_qsurf_pos_t) == 4 && (ms_qsurf_pos_t)0.5f != 0 &&
+           sizeof(ms_qsurf_normal_t) == 1 && (ms_qsurf_normal_t)-1 < 0 &&
+           sizeof(ms_qsurf_color_t) == 1 && (ms_qsurf_color_t)-1 > 0;
 }
 
 ms_qsurf_cl *ms_qsurf_cl_acquire(int any_type, int *absent, ms_error *err)
 {
     *absent = 1;
+    if (!mesh_types_ok()) {
+        ms_error_set(err, "OpenCL writes float positions and 8-bit normals and colours, not "
+                          "this build's mesh types");
+        return NULL;
+    }
     pthread_mutex_lock(&engine_lock);
     ms_error e = {{0}};
     if (engine_state == 0) {
@@ -267,15 +235,20 @@ ms_qsurf_cl *ms_qsurf_cl_acquire(int any_type, int *absent, ms_error *err)
     return NULL;
 }
 
+void ms_qsurf_cl_free_mem(cl_mem *m)
+{
+    if (*m) clReleaseMemObject(*m);
+    *m = NULL;
+}
+
 static void free_buffers(ms_qsurf_cl *cl)
 {
-    cl_mem *all[] = {&cl->atoms, &cl->colors, &cl->cells, &cl->dens,
-                     &cl->rgb[0], &cl->rgb[1], &cl->rgb[2]};
-    for (size_t i = 0; i < MS_COUNTOF(all); i++)
-        if (*all[i]) {
-            clReleaseMemObject(*all[i]);
-            *all[i] = NULL;
-        }
+    cl_mem *all[] = {&cl->atoms, &cl->colors, &cl->cells, &cl->ntri, &cl->tri, &cl->edge_from,
+                     &cl->dens, &cl->rgb[0], &cl->rgb[1], &cl->rgb[2], &cl->vbase,
+                     &cl->pos, &cl->normal, &cl->color, &cl->index};
+    for (size_t i = 0; i < MS_COUNTOF(all); i++) ms_qsurf_cl_free_mem(all[i]);
+    for (int l = 0; l < MS_QSURF_CL_LEVELS; l++) ms_qsurf_cl_free_mem(&cl->level[l]);
+    cl->vcap = cl->tcap = 0;
 }
 
 void ms_qsurf_cl_release(ms_qsurf_cl *cl)
@@ -289,91 +262,85 @@ const char *ms_qsurf_cl_device_name(const ms_qsurf_cl *cl)
     return cl->name;
 }
 
-/* Device bytes: the atom table and cells once, then 4 (or 16) bytes per voxel of a slab;
- * three quarters of the device memory at most, no buffer above the allocation limit. */
+/* Device bytes per grid point of a slab's plane: density (and colour), first vertices,
+ * counts (8 bytes per four points), and room for the mesh at 0.1 vertex per point (19
+ * bytes a vertex, two triangles of 12). */
+#define MESH_PER_POINT 4.3
+
+/* Device bytes: the atom table and cells once, then the slab's planes; three quarters of
+ * the device memory at most, no buffer above the allocation limit. */
 int ms_qsurf_cl_max_layers(ms_qsurf_cl *cl, const ms_qsurf_grid *g, int colored)
 {
     int nc[3];
     ms_qsurf_atomgrid_cells(g, nc);
     double cells = (double)nc[0] * nc[1] * nc[2] + 1;
-    double fixed = (double)g->natoms * (colored ? 32 : 16) + cells * 4;
-    double plane = (double)g->n[0] * g->n[1] * sizeof(float);
-    double room = (double)cl->globalmem * 0.75 - fixed;
-    double planes = MS_MIN(room / (plane * (colored ? 4 : 1)), (double)cl->maxalloc / plane);
-    if (fixed > (double)cl->maxalloc || planes < 4.0) return 0;
-    return planes - 3.0 > (double)(1 << 30) ? 1 << 30 : (int)(planes - 3.0);
+    double fixed = (double)g->natoms * (colored ? 32 : 16) + cells * 4 + 8192;
+    double plane = (double)g->n[0] * g->n[1], dens = plane * (colored ? 16 : 4);
+    double perlayer = dens + plane * (4 + 2 + MESH_PER_POINT);
+    double room = (double)cl->globalmem * 0.75 - fixed - 3 * dens;
+    double layers = MS_MIN(room / perlayer, (double)cl->maxalloc / (4 * plane) - 3);
+    if (fixed > (double)cl->maxalloc || !(layers >= 1.0)) return 0;
+    return layers > (double)(1 << 30) ? 1 << 30 : (int)layers;
 }
 
-static cl_mem buffer(ms_qsurf_cl *cl, cl_mem_flags flags, size_t bytes, void *host, cl_int *e)
+cl_mem ms_qsurf_cl_buffer(ms_qsurf_cl *cl, cl_mem_flags flags, size_t bytes, const void *host,
+                          cl_int *e)
 {
     if (*e != CL_SUCCESS) return NULL;
+    if (bytes > cl->maxalloc) {
+        *e = CL_INVALID_BUFFER_SIZE;
+        return NULL;
+    }
     return clCreateBuffer(cl->ctx, flags | (host ? CL_MEM_COPY_HOST_PTR : 0), bytes ? bytes : 16,
-                          host, e);
+                          (void *)host, e);
+}
+
+/* The prefix sum's levels for up to n counts: the counts, then the totals of each group
+ * of the level below, up to a level of one. */
+static void make_levels(ms_qsurf_cl *cl, size_t n, cl_int *e)
+{
+    size_t per = 4 * cl->scan_local;
+    cl->level[0] = ms_qsurf_cl_buffer(cl, CL_MEM_READ_WRITE, n * 8, NULL, e);
+    for (int l = 1; l < MS_QSURF_CL_LEVELS; l++) {
+        n = (n + per - 1) / per;
+        cl->level[l] = ms_qsurf_cl_buffer(cl, CL_MEM_READ_WRITE, n * 8, NULL, e);
+        if (n == 1) return;
+    }
+    if (*e == CL_SUCCESS) *e = CL_INVALID_BUFFER_SIZE;
+}
+
+static void upload_tables(ms_qsurf_cl *cl, cl_int *e)
+{
+    const ms_qsurf_mctab *tab = ms_qsurf_mc_table();
+    cl->ntri = ms_qsurf_cl_buffer(cl, CL_MEM_READ_ONLY, sizeof tab->ntri, tab->ntri, e);
+    cl->tri = ms_qsurf_cl_buffer(cl, CL_MEM_READ_ONLY, sizeof tab->tri, tab->tri, e);
+    cl->edge_from = ms_qsurf_cl_buffer(cl, CL_MEM_READ_ONLY, sizeof ms_qsurf_mc_edge_from,
+                                       ms_qsurf_mc_edge_from, e);
 }
 
 int ms_qsurf_cl_upload(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, int nx, int ny,
-                       int maxplanes, ms_error *err)
+                       int layers, ms_error *err)
 {
     cl_int e = CL_SUCCESS;
-    size_t ncells = (size_t)ag->nc[0] * ag->nc[1] * ag->nc[2];
-    size_t slab = (size_t)nx * ny * (size_t)maxplanes * sizeof(float);
+    size_t ncells = (size_t)ag->nc[0] * ag->nc[1] * ag->nc[2], plane = (size_t)nx * ny;
+    size_t slab = plane * (size_t)(layers + 3) * sizeof(float);
     free_buffers(cl);
-    cl->atoms = buffer(cl, CL_MEM_READ_ONLY, ag->n * 16, ag->xyzw, &e);
-    cl->colors = buffer(cl, CL_MEM_READ_ONLY, ag->rgb ? ag->n * 16 : 16, ag->rgb, &e);
-    cl->cells = buffer(cl, CL_MEM_READ_ONLY, (ncells + 1) * 4, ag->cellstart, &e);
-    cl->dens = buffer(cl, CL_MEM_WRITE_ONLY, slab, NULL, &e);
+    cl->nx = nx, cl->ny = ny, cl->planes = layers + 3, cl->colored = ag->rgb != NULL;
+    cl->held_zb = 0, cl->held_ze = -1;
+    cl->atoms = ms_qsurf_cl_buffer(cl, CL_MEM_READ_ONLY, ag->n * 16, ag->xyzw, &e);
+    cl->colors = ms_qsurf_cl_buffer(cl, CL_MEM_READ_ONLY, ag->rgb ? ag->n * 16 : 16, ag->rgb, &e);
+    cl->cells = ms_qsurf_cl_buffer(cl, CL_MEM_READ_ONLY, (ncells + 1) * 4, ag->cellstart, &e);
+    upload_tables(cl, &e);
+    cl->dens = ms_qsurf_cl_buffer(cl, CL_MEM_READ_WRITE, slab, NULL, &e);
     for (int k = 0; k < 3; k++)
-        cl->rgb[k] = buffer(cl, CL_MEM_WRITE_ONLY, ag->rgb ? slab : 16, NULL, &e);
+        cl->rgb[k] = ms_qsurf_cl_buffer(cl, CL_MEM_READ_WRITE, ag->rgb ? slab : 16, NULL, &e);
+    cl->vbase = ms_qsurf_cl_buffer(cl, CL_MEM_READ_WRITE, plane * (size_t)(layers + 1) * 4, NULL,
+                                   &e);
+    make_levels(cl, (size_t)ms_qsurf_cl_items(nx) * ny * (size_t)(layers + 1), &e);
     if (e != CL_SUCCESS) {
         free_buffers(cl);
-        return cl_fail(err, "allocating the device buffers", e);
+        return ms_qsurf_cl_fail(err, "allocating the device buffers", e);
     }
-    return 0;
-}
-
-static cl_int set_args(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, const ms_qsurf_slab *s)
-{
-    cl_int4 nc = {{ag->nc[0], ag->nc[1], ag->nc[2], 0}};
-    cl_float4 cw = {{ag->cw[0], ag->cw[1], ag->cw[2], 0.0f}};
-    cl_int colored = ag->rgb != NULL;
-    cl_int e = 0;
-    int a = 0;
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(cl_mem), &cl->atoms);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(cl_mem), &cl->colors);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(cl_mem), &cl->cells);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof nc, &nc);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof cw, &cw);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(float), &ag->cutmax);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(float), &ag->elim);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->nx);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->ny);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->cz);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(int), &s->ze);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(cl_int), &colored);
-    e |= clSetKernelArg(cl->kernel, a++, sizeof(cl_mem), &cl->dens);
-    for (int k = 0; k < 3; k++) e |= clSetKernelArg(cl->kernel, a++, sizeof(cl_mem), &cl->rgb[k]);
-    return e ? CL_INVALID_KERNEL_ARGS : CL_SUCCESS;
-}
-
-int ms_qsurf_cl_density(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s,
-                        ms_error *err)
-{
-    if (ms_qsurf_cl_fail_after >= 0 && ms_qsurf_cl_fail_after-- == 0)
-        return cl_fail(err, "the density kernel (injected fault)", CL_OUT_OF_RESOURCES);
-    size_t planes = (size_t)(s->ze - s->cz + 1), bytes = (size_t)s->nx * s->ny * planes * 4;
-    size_t off = (size_t)s->nx * s->ny * (size_t)(s->cz - s->zb);
-    size_t local[3] = {8, 8, 2};
-    size_t global[3] = {((size_t)s->nx + 7) / 8 * 8, ((size_t)s->ny + 7) / 8 * 8,
-                        (planes + 7) / 8 * 2};
-    cl_int e = set_args(cl, ag, s);
-    if (e != CL_SUCCESS) return cl_fail(err, "clSetKernelArg", e);
-    e = clEnqueueNDRangeKernel(cl->queue, cl->kernel, 3, NULL, global, local, 0, NULL, NULL);
-    if (e != CL_SUCCESS) return cl_fail(err, "clEnqueueNDRangeKernel", e);
-    e = clEnqueueReadBuffer(cl->queue, cl->dens, CL_TRUE, 0, bytes, s->dens + off, 0, NULL, NULL);
-    for (int k = 0; e == CL_SUCCESS && ag->rgb && k < 3; k++)
-        e = clEnqueueReadBuffer(cl->queue, cl->rgb[k], CL_TRUE, 0, bytes, s->rgb[k] + off, 0, NULL,
-                                NULL);
-    if (e != CL_SUCCESS) return cl_fail(err, "running the density kernel", e);
     return 0;
 }
 
@@ -394,14 +361,7 @@ int ms_qsurf_cl_max_layers(ms_qsurf_cl *cl, const ms_qsurf_grid *g, int colored)
 }
 
 int ms_qsurf_cl_upload(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, int nx, int ny,
-                       int maxplanes, ms_error *err)
-{
-    ms_error_set(err, "molscope was built without OpenCL");
-    return -1;
-}
-
-int ms_qsurf_cl_density(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s,
-                        ms_error *err)
+                       int layers, ms_error *err)
 {
     ms_error_set(err, "molscope was built without OpenCL");
     return -1;

@@ -1,7 +1,8 @@
 /* qsurf.c: the QuickSurf driver: parameters, VMD's grid rules, and the slab loop that
- * plans memory, builds the acceleration grid, computes each slab's density (OpenCL or
- * CPU, falling back to the CPU on any device error) and extracts it by marching cubes.
- * Also the public density-only and marching-cubes-only entry points. */
+ * plans memory, builds the acceleration grid, and turns each slab into mesh: on the OpenCL
+ * device from density to triangles, or on the CPU (density, then marching cubes), the
+ * CPU taking over from the device on any device error. Also the public density-only and
+ * marching-cubes-only entry points. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 #include "base/threads.h"
@@ -242,28 +243,15 @@ static int prepare(run *r, ms_error *err)
         return -1;
     }
     ms_error e = {{0}};
-    if (r->cl && ms_qsurf_cl_upload(r->cl, &r->ag, g->n[0], g->n[1], planes, &e) < 0)
+    if (r->cl && ms_qsurf_cl_upload(r->cl, &r->ag, g->n[0], g->n[1], r->plan.layers, &e) < 0)
         drop_device(r, e.msg);
     return ms_qsurf_extract_begin(&r->mc, g->n, g->origin, axis, g->isovalue, r->colored,
                                   r->a->solid, r->plan.layers, r->mc.mesh, err);
 }
 
-static void slab_density(run *r)
-{
-    if (r->cl) {
-        ms_error e = {{0}};
-        if (ms_qsurf_cl_density(r->cl, &r->ag, &r->slab, &e) == 0) {
-            r->st->opencl++;
-            return;
-        }
-        drop_device(r, e.msg);
-    }
-    ms_qsurf_density_cpu(&r->ag, &r->slab);
-}
-
 /* Move the planes the next slab [z0, z1) shares with the current one to the start of the
  * buffers; the next slab computes only the planes after them. Both slabs then see the very
- * same density on their shared plane, whichever device computed it. */
+ * same density on their shared plane. */
 static void next_slab(ms_qsurf_slab *s, int z0, int z1, int nz)
 {
     int zb = MS_MAX(z0 - 1, 0), kept = z0 > 0 ? s->ze - zb + 1 : 0;
@@ -277,19 +265,41 @@ static void next_slab(ms_qsurf_slab *s, int z0, int z1, int nz)
     s->zb = zb, s->ze = MS_MIN(z1 + 1, nz - 1), s->cz = zb + kept;
 }
 
+/* Slab [z0, z1) on the OpenCL device: 1 when done there. When the device fails it is
+ * dropped and the host takes the slab over (0): all of its density, since the planes
+ * shared with the slab before were on the device. */
+static int device_slab(run *r, int z0, int z1)
+{
+    ms_error e = {{0}};
+    double t[2];
+    if (ms_qsurf_cl_slab(r->cl, &r->ag, &r->slab, &r->mc, z0, z1, t, &e) == 0) {
+        r->st->opencl++;
+        r->st->t_density += t[0], r->st->t_mc += t[1];
+        return 1;
+    }
+    drop_device(r, e.msg);
+    r->slab.cz = r->slab.zb;
+    return 0;
+}
+
 static int slabs(run *r, ms_error *err)
 {
     int nz = r->g->n[2];
     for (int z0 = 0, z1; z0 < nz - 1; z0 = z1) {
         z1 = MS_MIN(z0 + r->plan.layers, nz - 1);
         next_slab(&r->slab, z0, z1, nz);
+        r->st->nslabs++;
+        int on_device = r->cl != NULL;
+        if (on_device && device_slab(r, z0, z1)) continue;
         double t = ms_now();
-        if (r->slab.cz <= r->slab.ze) slab_density(r);
+        if (r->slab.cz <= r->slab.ze) ms_qsurf_density_cpu(&r->ag, &r->slab);
         double t2 = ms_now();
         r->st->t_density += t2 - t;
+        /* Marching cubes resumed where the device left the mesh. */
+        if (on_device && z0 > 0 && ms_qsurf_extract_resume(&r->mc, &r->slab, z0, err) < 0)
+            return -1;
         if (ms_qsurf_extract_slab(&r->mc, &r->slab, z0, z1, err) < 0) return -1;
         r->st->t_mc += ms_now() - t2;
-        r->st->nslabs++;
     }
     return 0;
 }

@@ -45,25 +45,28 @@ typedef MS_QSURF_POS_TYPE ms_qsurf_pos_t;
 typedef MS_QSURF_NORMAL_TYPE ms_qsurf_normal_t;
 typedef MS_QSURF_COLOR_TYPE ms_qsurf_color_t;
 
-/* Round to the nearest integer, halves away from zero (inline, no libm call). */
+/* Round to the nearest integer, halves away from zero (inline, no libm call, no branch:
+ * v - 0.5 is -(0.5 - v) exactly, and truncation is symmetric). */
 static inline long ms_qsurf_round(float v)
 {
-    return v >= 0.0f ? (long)(v + 0.5f) : -(long)(0.5f - v);
+    return (long)(v + copysignf(0.5f, v));
 }
 
-/* Quantize f in [-1, 1] to a signed integer of half-range `half` (127.5 for 8 bits). */
+/* Quantize f in [-1, 1] to a signed integer of half-range `half` (127.5 for 8 bits):
+ * NaN and values below the range give the lowest code, values above it the highest. */
 static inline long ms_qsurf_snorm(float f, float half)
 {
-    long hi = (long)(half - 0.5f), lo = -hi - 1;
-    float v = f * half - 0.5f;
-    return !(v > (float)lo) ? lo : v >= (float)hi ? hi : ms_qsurf_round(v);
+    float hi = half - 0.5f, v = f * half - 0.5f;
+    v = v > -hi - 1.0f ? v : -hi - 1.0f;
+    return ms_qsurf_round(v < hi ? v : hi);
 }
 
-/* Quantize f in [0, 1] to an unsigned integer of maximum `max`. */
+/* Quantize f in [0, 1] to an unsigned integer of maximum `max` (NaN gives 0). */
 static inline long ms_qsurf_unorm(float f, float max)
 {
     float v = f * max;
-    return !(v > 0.0f) ? 0 : v >= max ? (long)max : ms_qsurf_round(v);
+    v = v > 0.0f ? v : 0.0f;
+    return ms_qsurf_round(v < max ? v : max);
 }
 
 static inline ms_qsurf_normal_t ms_qsurf_pack_normal(float f)

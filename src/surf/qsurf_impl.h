@@ -57,9 +57,19 @@ typedef struct ms_qsurf_atomgrid {
     float cw[3];             /* cell width (grid units) */
     float cutmax;            /* the largest cutoff radius (grid units) */
     float *scratch;          /* per thread: scratch_n floats for the per-axis factors */
-    size_t scratch_n;
+    size_t scratch_n;        /* ms_qsurf_scratch_floats */
     float elim;              /* w d^2 below this is beyond the cutoff: -gausslim^2 log2(e) / 2 */
 } ms_qsurf_atomgrid;
+
+/* Planes of a density block (at most). */
+#define MS_QSURF_BLOCK_PLANES 8
+/* Floats of a thread's scratch for a grid of n[0] x n[1] points: per-axis factors of an
+ * atom's x window (and its x distances), y rows and z planes in a block, each run padded
+ * by whole vectors. */
+static inline size_t ms_qsurf_scratch_floats(const int n[3])
+{
+    return 2 * ((size_t)n[0] + 16) + (size_t)n[1] + 16 + MS_QSURF_BLOCK_PLANES + 16;
+}
 
 int ms_qsurf_atomgrid_build(const ms_qsurf_atoms *a, const ms_qsurf_grid *g,
                             ms_qsurf_atomgrid *ag, ms_error *err);
@@ -183,6 +193,12 @@ void ms_qsurf_slab_free(ms_qsurf_slab *s);
 typedef struct ms_qsurf_mctab {
     uint8_t ntri[256];
     uint8_t tri[256][3 * MS_QSURF_MC_MAXTRI];
+    /* The same triangles through each case's distinct edges: corner k of the case's
+     * triangles is edge edges[case][corner[case][k]]. */
+    uint8_t nedge[256], edges[256][12], corner[256][3 * MS_QSURF_MC_MAXTRI];
+    /* Where edge e's vertex is found from its cell: bit 0 the owner point's x offset, bits
+     * 1-2 its row (dy + 2 dz), bits 3-4 the edge's axis. */
+    uint8_t owner[12];
     int bad;                 /* loops the rule could not triangulate (none: tested) */
 } ms_qsurf_mctab;
 const ms_qsurf_mctab *ms_qsurf_mc_table(void);
@@ -199,6 +215,7 @@ typedef struct ms_qsurf_extract {
     int n[3], words;         /* words: 64-bit words per row */
     float iso;
     double origin[3], axis[3][3], gradm[3][3];   /* gradm = inverse transpose of axis */
+    int aligned;             /* the axes run along x, y and z */
     int colored;
     float solid[3];
     int maxlayers;
@@ -216,6 +233,11 @@ int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float ori
 int ms_qsurf_extract_slab(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0, int z1,
                           ms_error *err);
 void ms_qsurf_extract_end(ms_qsurf_extract *mc);
+/* Take over at slab z0 > 0 from the OpenCL path, which made the mesh up to plane z0 in this
+ * extractor's order: plane z0's bits and first vertices are rebuilt from the slab's
+ * density (it must hold planes z0 - 1 and z0) and the mesh's vertex count. */
+int ms_qsurf_extract_resume(ms_qsurf_extract *mc, const ms_qsurf_slab *s, int z0,
+                            ms_error *err);
 /* Working memory of the extractor for slabs of `layers` layers. */
 size_t ms_qsurf_extract_bytes(int nx, int ny, int layers);
 
@@ -226,8 +248,10 @@ int ms_qsurf_mesh_resize(ms_qsurf_mesh *m, size_t nv, size_t nt);
 void ms_qsurf_advise_huge(void *p, size_t bytes);
 
 /* ---------------------------------------------------------------- OpenCL engine
- * One engine per process (device, context, queue, built program), shared by every surface
- * and used by one surface at a time. */
+ * One engine per process (device, context, queue, built kernels), shared by every surface
+ * and used by one surface at a time. A slab runs on the device from density to mesh: its
+ * density stays there, marching cubes runs there, and only the mesh comes back, appended
+ * to the host mesh in the host extractor's order (the same mesh, index for index). */
 typedef struct ms_qsurf_cl ms_qsurf_cl;
 
 /* Lock the engine, starting it on first use. any_type: accept a CPU device; otherwise
@@ -238,14 +262,25 @@ ms_qsurf_cl *ms_qsurf_cl_acquire(int any_type, int *absent, ms_error *err);
 void ms_qsurf_cl_release(ms_qsurf_cl *cl);
 /* Most cell layers per slab the device memory holds for this grid (0: none). */
 int ms_qsurf_cl_max_layers(ms_qsurf_cl *cl, const ms_qsurf_grid *g, int colored);
-/* Upload the atom table; then compute planes cz..ze of slabs on the device. */
+/* Upload the atom table and make the buffers for slabs of up to `layers` cell layers of
+ * nx x ny points. */
 int ms_qsurf_cl_upload(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, int nx, int ny,
-                       int maxplanes, ms_error *err);
-int ms_qsurf_cl_density(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s,
-                        ms_error *err);
+                       int layers, ms_error *err);
+/* Slab [z0, z1) on the device: the density of planes s->zb..s->ze (planes the device
+ * still holds from the slab before are kept), then marching cubes as
+ * ms_qsurf_extract_slab would, the vertices and triangles appended to mc->mesh. The host
+ * slab's buffers are not touched. t[0], t[1]: seconds of density and of marching cubes.
+ * On any error the mesh is left as it was. */
+int ms_qsurf_cl_slab(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, const ms_qsurf_slab *s,
+                     ms_qsurf_extract *mc, int z0, int z1, double t[2], ms_error *err);
 const char *ms_qsurf_cl_device_name(const ms_qsurf_cl *cl);
-/* Fault injection for the tests: when >= 0, the density of the slab after this many fails
- * as a device error would (then the counter is off again). */
-extern int ms_qsurf_cl_fail_after;
+/* Fault injection for the tests: when >= 0, the slab after this many fails at stage
+ * ms_qsurf_cl_fail_stage as a device error would (then the counter is off again). */
+enum {
+    MS_QSURF_CL_FAIL_DENSITY,    /* the density kernel */
+    MS_QSURF_CL_FAIL_ALLOC,      /* growing the mesh buffers (out of device memory) */
+    MS_QSURF_CL_FAIL_READ        /* reading the triangles back, after the vertices */
+};
+extern int ms_qsurf_cl_fail_after, ms_qsurf_cl_fail_stage;
 
 #endif

@@ -1,10 +1,10 @@
 /* simd_avx2.c: the loops that run with AVX2 and FMA, eight voxels of a row at a time: the
- * density scatter (an atom's run of a row in full vectors and one masked tail), the
- * density gather (eight voxels summing the atoms of the cells around them in registers),
- * and marching cubes' inside bits (compare and movemask). The arithmetic is that of the
- * plain loops lane by lane, so the results are bit for bit the same. Built for every
- * x86-64 compiler and called only when the CPU has AVX2 and FMA; elsewhere these fall back
- * to the plain loops. */
+ * density scatter (each atom's rows through one window of whole vectors along x, whose
+ * distances and factors are computed once per atom and block), the density gather (eight
+ * voxels summing the atoms of the cells around them in registers), and marching cubes'
+ * inside bits (compare and movemask). The arithmetic is that of the plain loops lane by
+ * lane, so the results are bit for bit the same. Built for every x86-64 compiler and
+ * called only when the CPU has AVX2 and FMA; elsewhere these fall back to the plain loops. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 
@@ -45,42 +45,83 @@ static inline __m256 lanes_from(int x)
                                                _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
 }
 
-/* Add g * c to the 8 floats at p (lanes where g is 0 keep their value exactly); through a
- * masked load and store when only n < 8 of them may be touched. */
-static inline void add_run(float *p, int n, __m256i mask, __m256 g, const float *c, int k)
+/* Add g * c (or g) to the 8 floats at p (lanes where g is 0 keep their value exactly);
+ * through a masked load and store when only n < 8 of them are in the row. */
+static inline void add_run(float *p, int n, __m256i mask, __m256 g, const __m256 *c)
 {
     __m256 v = n == 8 ? _mm256_loadu_ps(p) : _mm256_maskload_ps(p, mask);
-    v = c ? _mm256_fmadd_ps(g, _mm256_set1_ps(c[k]), v) : _mm256_add_ps(v, g);
+    v = c ? _mm256_fmadd_ps(g, *c, v) : _mm256_add_ps(v, g);
     if (n == 8) _mm256_storeu_ps(p, v);
     else _mm256_maskstore_ps(p, mask, v);
 }
 
-/* Add atom (a, c) to the voxels x0..x1 of one row: dyz = dy^2 + dz^2, ex the x factors
- * (ex[i] for voxel ex0 + i, readable 8 past x1), eyz the row's y and z factors. Vectors are
- * whole 8-voxel runs of the row (the row belongs to this thread), the last one shifted left
- * to end at the row's end, so that stores are plain and forward to the next atom's loads;
- * voxels outside x0..x1 or the cutoff get 0. */
-static void row_avx2(ms_qsurf_slab *s, size_t off, int x0, int x1, const float *a, float dyz,
-                     float elim, const float *c, const float *ex, int ex0, float eyz)
+/* An atom's window along x: nvec whole vectors from xs covering every voxel its cutoff
+ * can reach (ceil(x - r) .. floor(x + r); at 1 A one vector), moved left to end at the
+ * row's end when it would run past it; `tail` lanes of the last vector lie in the row (8
+ * unless the grid is narrower than the window). Its lanes' x distances and factors are
+ * computed once per atom and block; every row of the atom then uses the same vectors. */
+typedef struct window {
+    int xs, nvec, tail;
+    __m256i tailmask;
+    float ax;                /* the atom's x from xs */
+} window;
+
+static int window_of(const ms_qsurf_slab *s, float x, float r, window *wd)
 {
-    __m256 ax = _mm256_set1_ps(a[0]), w = _mm256_set1_ps(a[3]), vdyz = _mm256_set1_ps(dyz);
-    __m256 vel = _mm256_set1_ps(elim), veyz = _mm256_set1_ps(eyz);
-    __m256i lo = _mm256_set1_epi32(x0 - 1), hi = _mm256_set1_epi32(x1 + 1);
-    int full = s->nx >= 8;
-    for (int x = x0; x <= x1; x += 8) {
-        int base = full ? MS_MIN(x, s->nx - 8) : x, n = full ? 8 : MS_MIN(8, x1 - x + 1);
-        __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(base),
-                                       _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-        __m256i mine = _mm256_and_si256(_mm256_cmpgt_epi32(idx, lo), _mm256_cmpgt_epi32(hi, idx));
-        mine = _mm256_and_si256(mine, _mm256_cmpgt_epi32(idx, _mm256_set1_epi32(x - 1)));
-        __m256 dx = _mm256_sub_ps(_mm256_cvtepi32_ps(idx), ax);
-        __m256 in = _mm256_and_ps(inside_avx2(_mm256_fmadd_ps(dx, dx, vdyz), w, vel),
-                                  _mm256_castsi256_ps(mine));
-        __m256 g = _mm256_and_ps(_mm256_mul_ps(_mm256_loadu_ps(ex + (base - ex0)), veyz), in);
-        __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(n),
-                                          _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-        add_run(s->dens + off + base, n, mask, g, NULL, 0);
-        for (int k = 0; c && k < 3; k++) add_run(s->rgb[k] + off + base, n, mask, g, c, k);
+    int lo = MS_MAX(0, (int)ceilf(x - r)), hi = MS_MIN(s->nx - 1, (int)floorf(x + r));
+    if (lo > hi) return 0;
+    wd->nvec = (hi - lo + 8) / 8;
+    wd->xs = MS_MAX(0, MS_MIN(lo, s->nx - 8 * wd->nvec));
+    wd->tail = MS_MIN(8, s->nx - (wd->xs + 8 * (wd->nvec - 1)));
+    wd->tailmask = _mm256_cmpgt_epi32(_mm256_set1_epi32(wd->tail),
+                                      _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    wd->ax = x - (float)wd->xs;
+    return 1;
+}
+
+/* Whether vector k of the window misses a row at squared distance dyz (with margin). */
+static inline int vector_misses(const window *wd, int k, float dyz, float r2)
+{
+    float t = MS_MAX(0.0f, MS_MAX((float)(8 * k) - wd->ax, wd->ax - (float)(8 * k + 7)));
+    return fmaf(t, t, dyz) > r2 * 1.001f + 1e-3f;
+}
+
+/* Per-axis factors exp2(w (v - c)^2) of v = v0..v1, into f[v - v0] (rounded up to 8). */
+static void factors_avx2(float *f, int v0, int v1, float c, __m256 w)
+{
+    __m256 vc = _mm256_set1_ps(c);
+    for (int v = v0; v <= v1; v += 8)
+        _mm256_storeu_ps(f + (v - v0), factor_avx2(w, _mm256_sub_ps(lanes_from(v), vc)));
+}
+
+/* What the rows of one atom share: its window, the window's x distances and factors, the
+ * exponent factor and cutoff, the colour. */
+typedef struct atom_rows {
+    window wd;
+    const float *dx, *ex;
+    __m256 w, elim, c[3];
+    int colored;
+    float r2;
+} atom_rows;
+
+/* Add the atom to the row at offset `off` of the density and colour arrays: dyz = dy^2 +
+ * dz^2, eyz the row's y and z factors. */
+static inline void row_avx2(const atom_rows *ar, ms_qsurf_slab *s, size_t off, float dyz,
+                            float eyz)
+{
+    __m256 vdyz = _mm256_set1_ps(dyz), veyz = _mm256_set1_ps(eyz);
+    int nvec = ar->wd.nvec;
+    off += (size_t)ar->wd.xs;
+    for (int k = 0; k < nvec; k++) {
+        if (nvec > 1 && vector_misses(&ar->wd, k, dyz, ar->r2)) continue;
+        __m256 dx = _mm256_loadu_ps(ar->dx + 8 * k);
+        __m256 in = inside_avx2(_mm256_fmadd_ps(dx, dx, vdyz), ar->w, ar->elim);
+        __m256 g = _mm256_and_ps(_mm256_mul_ps(_mm256_loadu_ps(ar->ex + 8 * k), veyz), in);
+        int n = k + 1 < nvec ? 8 : ar->wd.tail;
+        size_t o = off + 8 * (size_t)k;
+        add_run(s->dens + o, n, ar->wd.tailmask, g, NULL);
+        for (int c = 0; ar->colored && c < 3; c++)
+            add_run(s->rgb[c] + o, n, ar->wd.tailmask, g, &ar->c[c]);
     }
 }
 
@@ -89,28 +130,31 @@ static void row_avx2(ms_qsurf_slab *s, size_t off, int x0, int x1, const float *
 static void atom_avx2(const ms_qsurf_atomgrid *ag, ms_qsurf_slab *s, const ms_qsurf_block *b,
                       const float *a, const float *c)
 {
-    float r2 = ag->elim / a[3], r = ms_qsurf_reach(r2);
+    atom_rows ar;
+    ar.r2 = ag->elim / a[3];
+    float r = ms_qsurf_reach(ar.r2);
     int z0 = MS_MAX(b->z0, (int)floorf(a[2] - r)), z1 = MS_MIN(b->z1, (int)ceilf(a[2] + r));
     int y0 = MS_MAX(b->y0, (int)floorf(a[1] - r)), y1 = MS_MIN(b->y1, (int)ceilf(a[1] + r));
-    int bx0 = MS_MAX(0, (int)floorf(a[0] - r)), bx1 = MS_MIN(s->nx - 1, (int)ceilf(a[0] + r));
-    if (z0 > z1 || y0 > y1 || bx0 > bx1) return;
-    /* x factors for the whole vectors row_avx2 may use: from bx0 - 7 (or 0) on. */
-    int ex0 = MS_MAX(0, bx0 - 7);
-    float *ex = b->scratch, *ey = b->scratch + s->nx + 16;
-    __m256 w = _mm256_set1_ps(a[3]), ax = _mm256_set1_ps(a[0]);
-    for (int x = ex0; x <= bx1; x += 8)
-        _mm256_storeu_ps(ex + (x - ex0), factor_avx2(w, _mm256_sub_ps(lanes_from(x), ax)));
-    for (int y = y0; y <= y1; y++) ey[y - y0] = ms_qsurf_factor(a[3], (float)y - a[1]);
+    if (z0 > z1 || y0 > y1 || !window_of(s, a[0], r, &ar.wd)) return;
+    float *dx = b->scratch, *ex = dx + s->nx + 16, *ey = ex + s->nx + 16;
+    float *ez = ey + s->ny + 16;
+    ar.w = _mm256_set1_ps(a[3]), ar.elim = _mm256_set1_ps(ag->elim);
+    ar.dx = dx, ar.ex = ex, ar.colored = c != NULL;
+    for (int k = 0; k < ar.wd.nvec; k++) {
+        __m256 d = _mm256_sub_ps(lanes_from(ar.wd.xs + 8 * k), _mm256_set1_ps(a[0]));
+        _mm256_storeu_ps(dx + 8 * k, d);
+        _mm256_storeu_ps(ex + 8 * k, factor_avx2(ar.w, d));
+    }
+    for (int k = 0; c && k < 3; k++) ar.c[k] = _mm256_set1_ps(c[k]);
+    factors_avx2(ey, y0, y1, a[1], ar.w);
+    factors_avx2(ez, z0, z1, a[2], ar.w);
     for (int z = z0; z <= z1; z++) {
-        float dz = (float)z - a[2], ez = ms_qsurf_factor(a[3], dz);
+        float dz = (float)z - a[2], dz2 = dz * dz;
         for (int y = y0; y <= y1; y++) {
-            float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz * dz);
+            float dy = (float)y - a[1], dyz = fmaf(dy, dy, dz2);
             if (a[3] * dyz < ag->elim) continue;
-            float half = ms_qsurf_reach(MS_MAX(r2 - dyz, 0.0f));
-            int x0 = MS_MAX(bx0, (int)floorf(a[0] - half));
-            int x1 = MS_MIN(bx1, (int)ceilf(a[0] + half));
             size_t off = ((size_t)(z - s->zb) * s->ny + y) * s->nx;
-            row_avx2(s, off, x0, x1, a, dyz, ag->elim, c, ex, ex0, ey[y - y0] * ez);
+            row_avx2(&ar, s, off, dyz, ey[y - y0] * ez[z - z0]);
         }
     }
 }

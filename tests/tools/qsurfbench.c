@@ -5,7 +5,8 @@
  * molecule (VmHWM reset through /proc/self/clear_refs before the run).
  *
  *   qsurfbench [-h spacing] [-q quality] [-r radscale] [-i iso] [-n runs] [-solid]
- *              [-beads] [-b cpu|opencl|auto] file.pdb */
+ *              [-beads] [-hash] [-b cpu|opencl|auto] file.pdb
+ * -hash adds a hash of the mesh arrays, to check that a change leaves the mesh alone. */
 #include "config.h"
 #include "base/threads.h"
 #include "fileio/load.h"
@@ -21,7 +22,7 @@
 
 typedef struct bench_opts {
     ms_qsurf_params p;
-    int runs, solid, beads;
+    int runs, solid, beads, hash;
     const char *path;
 } bench_opts;
 
@@ -33,6 +34,7 @@ static int parse(int argc, char **argv, bench_opts *o)
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-solid")) o->solid = 1;
         else if (!strcmp(a, "-beads")) o->beads = 1;
+        else if (!strcmp(a, "-hash")) o->hash = 1;
         else if (!v) o->path = a;
         else if (!strcmp(a, "-h")) o->p.gridspacing = (float)atof(v), i++;
         else if (!strcmp(a, "-q")) o->p.quality = atoi(v), i++;
@@ -86,6 +88,19 @@ static void element_rgb(int z, float *c)
     memcpy(c, s, 3 * sizeof(float));
 }
 
+/* FNV-1a over the mesh's arrays. */
+static uint64_t mesh_hash(const ms_qsurf_mesh *m)
+{
+    const void *parts[4] = {m->pos, m->normal, m->color, m->index};
+    size_t sizes[4] = {m->nv * 3 * sizeof *m->pos, m->nv * 3 * sizeof *m->normal,
+                       m->nv * 4 * sizeof *m->color, m->nt * 3 * sizeof *m->index};
+    uint64_t h = 14695981039346656037u;
+    for (int k = 0; k < 4; k++)
+        for (size_t i = 0; i < sizes[k]; i++)
+            h = (h ^ ((const uint8_t *)parts[k])[i]) * 1099511628211u;
+    return h;
+}
+
 static void run_once(const ms_qsurf_atoms *a, const bench_opts *o)
 {
     ms_qsurf_mesh m = {0};
@@ -111,6 +126,7 @@ static void run_once(const ms_qsurf_atoms *a, const bench_opts *o)
            m.nv, m.nt, (size_t)MS_QSURF_VERTEX_BYTES, m.nv ? (double)mesh / (double)m.nv : 0.0,
            mesh / 1048576.0, slab / 1048576.0, added / 1048576.0,
            (double)added / (1.5 * (double)mesh + (double)slab));
+    if (o->hash) printf("hash=%016llx\n", (unsigned long long)mesh_hash(&m));
     if (st.note[0]) printf("note=\"%s\"\n", st.note);
     fflush(stdout);
     ms_qsurf_mesh_free(&m);
@@ -125,7 +141,7 @@ int main(int argc, char **argv)
     mallopt(M_MMAP_THRESHOLD, 256 * 1024);
     if (parse(argc, argv, &o) < 0) {
         fprintf(stderr, "usage: qsurfbench [-h spacing] [-q quality] [-r radscale] [-i iso] "
-                        "[-n runs] [-solid] [-beads] [-b cpu|opencl|auto] file.pdb\n");
+                        "[-n runs] [-solid] [-beads] [-hash] [-b cpu|opencl|auto] file.pdb\n");
         return 2;
     }
     ms_registry_init(&reg);

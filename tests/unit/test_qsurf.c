@@ -79,6 +79,32 @@ static void test_exp2(void)
     t_ok(worst < 5e-6, "fast exp2 relative error %.2e over [-12, 0] (VMD's: 1.3e-3)", worst);
 }
 
+/* ---------------------------------------------------------------- quantization */
+
+/* The 8-bit normal and colour codes against the rule computed in double precision: v = f *
+ * 127.5 - 0.5 (f * 255 for colours), clamped to the codes' range, rounded half away from
+ * zero; NaN gives the lowest code. */
+static void test_quantize(void)
+{
+    t_suite = "qsurf";
+    int bad_n = 0, bad_c = 0;
+    for (int i = -13000; i <= 13000; i++) {
+        float f = (float)i / 10000.0f;
+        double v = (double)(f * 127.5f - 0.5f), u = (double)(f * 255.0f);
+        v = fmin(fmax(v, -128.0), 127.0), u = fmin(fmax(u, 0.0), 255.0);
+        long wn = v >= 0 ? (long)floor(v + 0.5) : -(long)floor(0.5 - v), wc = (long)floor(u + 0.5);
+        bad_n += ms_qsurf_snorm(f, 127.5f) != wn;
+        bad_c += ms_qsurf_unorm(f, 255.0f) != wc;
+    }
+    t_ok(!bad_n && !bad_c, "8-bit codes of normals and colours over [-1.3, 1.3] follow the rule "
+         "(%d and %d differ)", bad_n, bad_c);
+    t_ok(ms_qsurf_snorm(1.0f, 127.5f) == 127 && ms_qsurf_snorm(-1.0f, 127.5f) == -128 &&
+             ms_qsurf_snorm(0.0f, 127.5f) == -1 && ms_qsurf_snorm(NAN, 127.5f) == -128 &&
+             ms_qsurf_snorm(INFINITY, 127.5f) == 127 && ms_qsurf_unorm(NAN, 255.0f) == 0 &&
+             ms_qsurf_unorm(INFINITY, 255.0f) == 255 && ms_qsurf_unorm(0.5f, 255.0f) == 128,
+         "normal codes: 1 -> 127, -1 -> -128, 0 -> -1, NaN -> -128; colour 0.5 -> 128, NaN -> 0");
+}
+
 /* ---------------------------------------------------------------- grid rules */
 
 static void test_grid_rules(void)
@@ -171,6 +197,41 @@ static void test_one_atom(void)
     check_sphere(1.0f, 0, 1.5f, 0.5f);
     check_sphere(0.25f, 3, 1.5f, 0.5f);
     check_sphere(0.5f, 1, 2.0f, 0.2f);
+}
+
+/* Every CPU density loop gives the same bits where an atom's cutoff spans several vectors
+ * and the grid is narrower than that span (h 0.25, gausslim 4: 49 voxels across, on a
+ * grid of about 45). */
+static void test_wide_atoms(void)
+{
+    t_suite = "qsurf";
+    float pos[9] = {0.3f, 0.1f, -0.2f, 1.1f, 0.7f, 0.4f, -0.6f, 0.9f, 1.3f};
+    float rad[3] = {1.5f, 1.4f, 1.6f}, rgb[9] = {1, 0, 0, 0, 1, 0, 0.2f, 0.3f, 0.9f};
+    ms_qsurf_atoms a = {.n = 3, .pos = pos, .radius = rad, .rgb = rgb};
+    ms_qsurf_params p;
+    ms_qsurf_grid g;
+    ms_qsurf_atomgrid ag;
+    ms_qsurf_slab s[2];
+    ms_error err = {{0}};
+    ms_qsurf_params_default(&p);
+    p.gridspacing = 0.25f, p.quality = 3;
+    if (ms_qsurf_grid_setup(&a, &p, &g, &err) < 0 || ms_qsurf_atomgrid_build(&a, &g, &ag, &err) < 0)
+        return;
+    size_t n = (size_t)g.n[0] * g.n[1] * g.n[2];
+    for (int k = 0; k < 2; k++) {
+        ms_qsurf_slab_alloc(&s[k], g.n[0], g.n[1], g.n[2], 1);
+        s[k].zb = s[k].cz = 0, s[k].ze = g.n[2] - 1;
+    }
+    ms_qsurf_density_cpu_with(&ag, &s[0], MS_QSURF_K_GATHER);
+    for (int k = 0; k < 4; k++) {
+        ms_qsurf_density_cpu_with(&ag, &s[1], k);
+        int same = !memcmp(s[0].dens, s[1].dens, n * sizeof(float));
+        for (int c = 0; c < 3; c++) same = same && !memcmp(s[0].rgb[c], s[1].rgb[c], n * 4);
+        t_ok(same, "%s: atoms 49 voxels across on a %d-voxel-wide grid, the gather's bits",
+             ms_qsurf_kernel_name(k), g.n[0]);
+    }
+    for (int k = 0; k < 2; k++) ms_qsurf_slab_free(&s[k]);
+    ms_qsurf_atomgrid_free(&ag);
 }
 
 /* Bad input gives an error or is left out, never a crash. */
@@ -360,6 +421,54 @@ static void note(void *ctx, const char *msg)
     snprintf(ctx, 512, "%s", msg);
 }
 
+/* A mesh made on the OpenCL device against the CPU's: the same vertices and triangles,
+ * index for index (the density is the CPU's bit for bit and the order is the host's); the
+ * vertex attributes computed in float on the device instead of double: positions within
+ * 1e-3 A, normals and colours within one step of 8 bits; area within 0.1 %; closed. */
+static void compare_device(const char *what, const ms_qsurf_mesh *ref, const ms_qsurf_mesh *m)
+{
+    double a0 = ms_qsurf_mesh_area(ref), a1 = ms_qsurf_mesh_area(m), dpos = 0.0;
+    int dn = 0, dc = 0;
+    int same = m->nv == ref->nv && m->nt == ref->nt &&
+               !memcmp(m->index, ref->index, 3 * m->nt * sizeof *m->index);
+    for (size_t i = 0; same && i < 3 * m->nv; i++) {
+        dpos = MS_MAX(dpos, fabs((double)m->pos[i] - ref->pos[i]));
+        dn = MS_MAX(dn, abs((int)m->normal[i] - (int)ref->normal[i]));
+    }
+    for (size_t i = 0; same && i < 4 * m->nv; i++)
+        dc = MS_MAX(dc, abs((int)m->color[i] - (int)ref->color[i]));
+    t_ok(same, "1tii %s: the CPU's %zu vertices and %zu triangles, index for index (%zu, %zu)",
+         what, ref->nv, ref->nt, m->nv, m->nt);
+    t_ok(same && dpos < 1e-3 && dn <= 1 && dc <= 1, "1tii %s: positions within %.1e A, normals "
+         "within %d, colours within %d of the CPU's", what, dpos, dn, dc);
+    t_ok(fabs(a1 - a0) <= 1e-3 * a0, "1tii %s: area %.2f (CPU %.2f)", what, a1, a0);
+    t_ok(mesh_defects(m) == 0, "1tii %s: closed and oriented", what);
+}
+
+/* Slabs of 8 layers on the device, failing at the third slab at `stage`: the CPU does the
+ * rest, and the mesh is the same. */
+static void device_failure(const sys *s, const ms_qsurf_mesh *ref, int stage, const char *what,
+                           char said[512])
+{
+    ms_qsurf_mesh m = {0};
+    ms_qsurf_stats st;
+    ms_qsurf_params p;
+    ms_error err = {{0}};
+    ms_qsurf_params_default(&p);
+    ms_qsurf_grid g;
+    ms_qsurf_grid_setup(&s->a, &p, &g, &err);
+    p.backend = MS_QSURF_OPENCL, p.notice = note, p.notice_ctx = said;
+    p.memlimit = ms_qsurf_plan_bytes(&g, 1, 8);
+    ms_qsurf_cl_fail_after = 2, ms_qsurf_cl_fail_stage = stage;
+    int rc = ms_qsurf_surface(&s->a, &p, &m, &st, &err);
+    ms_qsurf_cl_fail_after = -1;
+    t_ok(rc == 0 && st.opencl == 2 && st.nslabs > 4 && strstr(st.note, "injected"),
+         "OpenCL failing in %s at slab 3 of %d: the CPU does the rest (%s)", what, st.nslabs,
+         st.note);
+    if (rc == 0) compare_device(what, ref, &m);
+    ms_qsurf_mesh_free(&m);
+}
+
 static void test_1tii_opencl(const sys *s)
 {
     ms_qsurf_mesh ref = {0}, m = {0};
@@ -372,23 +481,77 @@ static void test_1tii_opencl(const sys *s)
         ms_qsurf_mesh_free(&m);
         return;
     }
-    compare("on OpenCL", &ref, &m);
-    /* Many slabs, the device failing at the third: the rest on the CPU, said once. */
-    char said[512] = "";
+    t_ok(st.nslabs == 1 && st.opencl == 1, "1tii on OpenCL: one slab on the device");
+    compare_device("on OpenCL", &ref, &m);
+    /* Forced slabs of 8 layers, all on the device: seamless. */
     ms_qsurf_params p;
     ms_error err = {{0}};
     ms_qsurf_params_default(&p);
-    p.backend = MS_QSURF_OPENCL, p.notice = note, p.notice_ctx = said;
-    p.memlimit = ms_qsurf_plan_bytes(&st.grid, 1, 8);
-    ms_qsurf_cl_fail_after = 2;
+    p.backend = MS_QSURF_OPENCL, p.memlimit = ms_qsurf_plan_bytes(&st.grid, 1, 8);
     int rc = ms_qsurf_surface(&s->a, &p, &m, &st, &err);
-    ms_qsurf_cl_fail_after = -1;
-    t_ok(rc == 0 && st.opencl == 2 && st.nslabs > 4 && strstr(st.note, "injected"),
-         "an OpenCL error at slab 3 of %d: CPU for the rest (%s)", st.nslabs, st.note);
+    if (t_ok(rc == 0 && st.nslabs > 4 && st.opencl == st.nslabs, "1tii on OpenCL in %d slabs "
+             "of %d layers, all on the device (%s)", st.nslabs, st.slab_layers, err.msg))
+        compare_device("on OpenCL in slabs", &ref, &m);
+    /* Faults at the third slab, at each stage; the fallback said once per process. */
+    char said[512] = "";
+    device_failure(s, &ref, MS_QSURF_CL_FAIL_DENSITY, "the density kernel", said);
     t_ok(strstr(said, "injected") != NULL, "the fallback is said through the notice callback");
-    if (rc == 0) compare("on OpenCL then CPU, in slabs", &ref, &m);
+    said[0] = '\0';
+    device_failure(s, &ref, MS_QSURF_CL_FAIL_ALLOC, "the mesh buffers' allocation", said);
+    device_failure(s, &ref, MS_QSURF_CL_FAIL_READ, "reading the triangles back", said);
+    t_ok(said[0] == '\0', "a fallback is said once per process, not at every surface");
     ms_qsurf_mesh_free(&ref);
     ms_qsurf_mesh_free(&m);
+}
+
+/* The CPU taking over marching cubes from the device: a fresh extractor resumed at a slab
+ * boundary (plane state rebuilt from the density and the mesh) continues the same mesh.
+ * Runs without OpenCL. */
+static void test_1tii_resume(const sys *s)
+{
+    ms_qsurf_mesh ref = {0}, m = {0};
+    ms_qsurf_stats st;
+    ms_qsurf_grid g;
+    ms_qsurf_atomgrid ag;
+    ms_qsurf_slab sl;
+    ms_qsurf_extract mc;
+    ms_error err = {{0}};
+    if (surface(s, MS_QSURF_CPU, &ref, &st) < 0) return;
+    g = st.grid;
+    int layers = 8, nz = g.n[2], rc = 0, resumed = 0;
+    float axis[3][3] = {{g.h, 0, 0}, {0, g.h, 0}, {0, 0, g.h}};
+    ms_qsurf_atomgrid_build(&s->a, &g, &ag, &err);
+    ms_qsurf_slab_alloc(&sl, g.n[0], g.n[1], layers + 3, 1);
+    rc = ms_qsurf_extract_begin(&mc, g.n, g.origin, axis, g.isovalue, 1, s->a.solid, layers, &m,
+                                &err);
+    for (int z0 = 0, z1; rc == 0 && z0 < nz - 1; z0 = z1) {
+        z1 = MS_MIN(z0 + layers, nz - 1);
+        sl.zb = sl.cz = MS_MAX(z0 - 1, 0), sl.ze = MS_MIN(z1 + 1, nz - 1);
+        ms_qsurf_density_cpu(&ag, &sl);
+        if (z0 == 3 * layers || z0 == 4 * layers) {
+            ms_qsurf_extract_end(&mc);
+            rc = ms_qsurf_extract_begin(&mc, g.n, g.origin, axis, g.isovalue, 1, s->a.solid,
+                                        layers, &m, &err);
+            if (rc == 0) rc = ms_qsurf_extract_resume(&mc, &sl, z0, &err);
+            resumed += rc == 0;
+        }
+        if (rc == 0) rc = ms_qsurf_extract_slab(&mc, &sl, z0, z1, &err);
+    }
+    ms_qsurf_extract_end(&mc);
+    t_ok(rc == 0 && resumed == 2 && same_mesh(&ref, &m) && mesh_defects(&m) == 0,
+         "1tii: marching cubes resumed twice by a fresh extractor: the same mesh (%zu "
+         "vertices) %s", m.nv, err.msg);
+    ms_qsurf_mesh_free(&m);
+    sl.zb = sl.cz = 7, sl.ze = 17;
+    ms_qsurf_density_cpu(&ag, &sl);
+    rc = ms_qsurf_extract_begin(&mc, g.n, g.origin, axis, g.isovalue, 1, s->a.solid, layers, &m,
+                                &err);
+    t_ok(rc == 0 && ms_qsurf_extract_resume(&mc, &sl, 8, &err) < 0 && strstr(err.msg, "lacks"),
+         "resuming with a mesh that lacks the plane's vertices is an error (%s)", err.msg);
+    ms_qsurf_extract_end(&mc);
+    ms_qsurf_slab_free(&sl);
+    ms_qsurf_atomgrid_free(&ag);
+    ms_qsurf_mesh_free(&ref);
 }
 
 /* The density map against a double-precision sum over all atoms, at voxels near the
@@ -550,6 +713,7 @@ static void test_1tii(void)
     if (load_1tii(&s) < 0) return;
     test_1tii_slabs(&s);
     test_1tii_opencl(&s);
+    test_1tii_resume(&s);
     test_1tii_density(&s);
     test_switches(&s);
     test_1tii_colors(&s);
@@ -563,8 +727,10 @@ int main(void)
     ms_registry_init(&reg);
     ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     test_exp2();
+    test_quantize();
     test_grid_rules();
     test_one_atom();
+    test_wide_atoms();
     test_bad_input();
     test_mc_skewed();
     test_1tii();
