@@ -200,18 +200,10 @@ static inline uint32_t recip_div(uint32_t x, recip r)
     return (uint32_t)(((unsigned __int128)r.m * x) >> 64);
 }
 
-/* Three integers packed as one number of nbits bits in the radices sizes[] (the first
- * coordinate most significant). */
-static void get_ints(bits *b, int nbits, const uint32_t sizes[3], int32_t out[3])
+/* Three integers packed as one number of more than 64 bits in the radices sizes[] (the
+ * first coordinate most significant). */
+static void get_ints_wide(bits *b, int nbits, const uint32_t sizes[3], int32_t out[3])
 {
-    if (nbits <= 64) {
-        uint64_t v = get_packed(b, nbits);
-        out[2] = (int32_t)(v % sizes[2]);
-        v /= sizes[2];
-        out[1] = (int32_t)(v % sizes[1]);
-        out[0] = (int32_t)(v / sizes[1]);
-        return;
-    }
     unsigned __int128 v = 0;
     int shift = 0;
     while (nbits > 8) {
@@ -226,12 +218,43 @@ static void get_ints(bits *b, int nbits, const uint32_t sizes[3], int32_t out[3]
     out[0] = (int32_t)(v / sizes[1]);
 }
 
+/* v / r.d into *q, the remainder returned: by the reciprocal when v and r.d allow. */
+static inline uint32_t split(uint64_t v, recip r, uint64_t *q)
+{
+    if (v >> 32 == 0 && r.d > 1) {
+        uint32_t w = (uint32_t)v, d = recip_div(w, r);
+        *q = d;
+        return w - d * r.d;
+    }
+    *q = v / r.d;
+    return (uint32_t)(v % r.d);
+}
+
+/* Three integers packed as one number of nbits bits in the radices r[].d, plus min[]. */
+static inline void get_ints(bits *b, int nbits, const recip r[3], const int32_t min[3],
+                            int32_t out[3])
+{
+    uint32_t v[3];
+    if (nbits > 64) {
+        uint32_t s[3] = {r[0].d, r[1].d, r[2].d};
+        get_ints_wide(b, nbits, s, (int32_t *)v);
+    } else {
+        uint64_t q, q2;
+        v[2] = split(get_packed(b, nbits), r[2], &q);
+        v[1] = split(q, r[1], &q2);
+        v[0] = (uint32_t)q2;
+    }
+    out[0] = (int32_t)(v[0] + (uint32_t)min[0]);
+    out[1] = (int32_t)(v[1] + (uint32_t)min[1]);
+    out[2] = (int32_t)(v[2] + (uint32_t)min[2]);
+}
+
 /* Three small differences of one size r.d packed in nbits bits. */
 static inline void get_small(bits *b, int nbits, recip r, int32_t out[3])
 {
     if (nbits > 32) {
         uint32_t s[3] = {r.d, r.d, r.d};
-        get_ints(b, nbits, s, out);
+        get_ints_wide(b, nbits, s, out);
         return;
     }
     uint32_t v = (uint32_t)get_packed(b, nbits), q = recip_div(v, r), q2 = recip_div(q, r);
@@ -324,8 +347,9 @@ static int decode(const xtc_head *h, const unsigned char *data, size_t len, long
     int smallidx = h->smallidx;
     if (smallidx < FIRSTIDX || smallidx >= LASTIDX)
         return ms_perr_set(err, "bad small-difference size index %d", smallidx);
-    recip rs[LASTIDX];
+    recip rs[LASTIDX], rfull[3];
     for (int k = FIRSTIDX; k < LASTIDX; k++) rs[k] = recip_of((uint32_t)magicints[k]);
+    for (int d = 0; d < 3; d++) rfull[d] = recip_of(sizeint[d]);
     float inv = (float)(1.0 / (double)h->precision);
     int smaller = magicints[smallidx - 1 > FIRSTIDX ? smallidx - 1 : FIRSTIDX] / 2;
     int smallnum = magicints[smallidx] / 2;
@@ -335,10 +359,10 @@ static int decode(const xtc_head *h, const unsigned char *data, size_t len, long
     while (i < natoms) {
         int32_t t[3];
         if (large)
-            for (int d = 0; d < 3; d++) t[d] = (int32_t)get_bits(&b, bitsizeint[d]);
+            for (int d = 0; d < 3; d++)
+                t[d] = (int32_t)((uint32_t)get_bits(&b, bitsizeint[d]) + (uint32_t)h->minint[d]);
         else
-            get_ints(&b, bitsize, sizeint, t);
-        for (int d = 0; d < 3; d++) t[d] = (int32_t)((uint32_t)t[d] + (uint32_t)h->minint[d]);
+            get_ints(&b, bitsize, rfull, h->minint, t);
         int is_smaller = 0;
         if (get_bits(&b, 1)) {
             run = (int)get_bits(&b, 5);
