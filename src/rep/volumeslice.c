@@ -4,8 +4,8 @@
  * volume's value there (VMD draws the plane with a 3-D texture; per-vertex colours do the
  * same at the grid's resolution). Quality sets the vertices per grid spacing: 2^(quality -
  * 2), so 2 (the default) puts one vertex on every grid point of the plane, 3 one more
- * between each two (values interpolated), 1 and 0 every second and fourth point; at least
- * two vertices per side. The plane between two grid planes takes values interpolated
+ * between each two, 1 and 0 half and a quarter as many, spread evenly over the plane (values
+ * between grid points interpolated); at least two vertices per side. The plane between two grid planes takes values interpolated
  * between them. The colour range is the rep's when it colours by a scale method with a
  * range other than 0 0 (`Volume n` colouring: volume n's min and max, or `mol
  * scaleminmax`), else the volume's own min and max. */
