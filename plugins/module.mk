@@ -42,7 +42,7 @@ plugins_cube_la_LIBADD = -lm
 plugins_LTLIBRARIES += plugins/xtc.la
 plugins_xtc_la_SOURCES = plugins/xtc.c $(PLUGIN_UTIL)
 plugins_xtc_la_LDFLAGS = $(PLUGIN_FLAGS)
-plugins_xtc_la_LIBADD = -lm
+plugins_xtc_la_LIBADD = -lm $(PTHREAD_LIBS)
 
 plugins_LTLIBRARIES += plugins/trr.la
 plugins_trr_la_SOURCES = plugins/trr.c $(PLUGIN_UTIL)

@@ -9,21 +9,40 @@
  * the second (water molecules compress better that way). Integers are multiplied by
  * 1/precision in single precision, then by 10 for Angstrom, exactly as GROMACS' and
  * MDAnalysis' readers do, so coordinates agree to the bit. Implemented from the format's
- * published description. */
+ * published description.
+ *
+ * Speed: the stream is read 64 bits at a time, the small differences are split by
+ * multiplying with precomputed reciprocals instead of dividing, and each atom goes straight
+ * from its integers to the caller's floats. A frame's stream can only be decoded from its
+ * start, so frames are decoded in parallel instead: once the host reads consecutive frames
+ * of a large system (10000 atoms or more), the reader reads the next frames' compressed
+ * bytes ahead and worker threads decode them into buffers of their own while the host's
+ * thread stores the current frame; a frame no worker has begun when the host asks for it
+ * is decoded by the host's thread straight into the host's array, and while a worker
+ * finishes the frame asked for, the host's thread decodes a later one. Threads: one per
+ * core the load average leaves idle, the host's included (at most 9); MOLSCOPE_THREADS
+ * sets the count, 1 turns reading ahead off. Reading ahead stops while the host skips frames (every second frame or
+ * sparser is read as before, seeking past the others); frames read ahead take at most
+ * XTC_AHEAD_BYTES of memory. */
 #include "ms_plugin.h"
 #include "plugin_util.h"
 
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define XTC_MAGIC 1995
 #define XTC_MAGIC_LARGE 2023
 #define XTC_PI 3.14159265358979323846
 #define FIRSTIDX 9
+#define XTC_AHEAD_MIN_ATOMS 10000
+#define XTC_MAX_WORKERS 8
+#define XTC_AHEAD_BYTES ((size_t)1 << 30)
 
 /* Sizes of the small-difference codes: about 2^(i/3), so three of them fit i bits. */
 static const int magicints[] = {
@@ -37,15 +56,51 @@ static const int magicints[] = {
     10568983, 13316085, 16777216};
 #define LASTIDX ((int)(sizeof magicints / sizeof *magicints))
 
+typedef struct xtc_head {
+    float precision;
+    int32_t minint[3], maxint[3], smallidx;
+} xtc_head;
+
+/* One frame as read from the file, before decoding. */
+typedef struct xtc_frame {
+    int rc;                /* MS_PLUGIN_OK, _EOF or _ERROR (err says why) */
+    ms_perr err;
+    double time;
+    float cell[6];
+    int compressed;        /* else plain[] holds the coordinates (9 atoms at most) */
+    xtc_head head;
+    size_t bytes;          /* of the compressed stream */
+    unsigned char *buf;    /* the stream (padded to 4 bytes) */
+    size_t buf_cap;
+    float plain[27];
+    /* frames read ahead */
+    int state;             /* S_READ, S_BUSY, S_DONE */
+    long natoms;
+    float *pos;            /* decoded coordinates */
+    size_t pos_cap;
+} xtc_frame;
+
+enum { S_READ, S_BUSY, S_DONE };
+
+/* Frames read ahead: frame k of [head, tail) is slot k % nslots; workers decode them in
+ * order (next: the first not taken). */
+typedef struct xtc_ahead {
+    pthread_mutex_t mu;
+    pthread_cond_t work, done;
+    pthread_t th[XTC_MAX_WORKERS];
+    int nthreads, nslots, stop, ended;
+    long head, tail, next, natoms;
+    xtc_frame slot[XTC_MAX_WORKERS + 2];
+} xtc_ahead;
+
 typedef struct xtc_reader {
     FILE *fp;
     long natoms;
     long long size;
-    long frame;            /* frames read so far */
-    unsigned char *buf;    /* compressed bytes of one frame */
-    size_t buf_cap;
-    int32_t *ints;         /* 3 per atom */
-    size_t ints_cap;
+    xtc_frame sync;        /* the frame read without reading ahead */
+    xtc_ahead *ahead;      /* NULL until the host streams a large system */
+    int no_ahead;          /* reading ahead is off, or could not start */
+    int kept;              /* the host wanted the last frame's coordinates */
 } xtc_reader;
 
 /* ---------------------------------------------------------------- XDR input */
@@ -77,69 +132,78 @@ typedef struct bits {
     const unsigned char *p, *end;
     uint64_t acc;          /* the low `n` bits are unread, most significant first */
     int n;
-    int overrun;
+    int overrun;           /* the stream ended: zeros were read past it */
 } bits;
 
-static inline uint32_t get_bits(bits *b, int n)
+/* At least `want` (<= 56) unread bits: whole bytes, eight at a time where the stream has
+ * them. */
+static inline void refill(bits *b, int want)
 {
-    if (b->n < n) {
-        while (b->n <= 56) {
-            if (b->p < b->end) b->acc = (b->acc << 8) | *b->p++;
-            else if (b->n >= n) break;
-            else {
-                b->acc <<= 8;
-                b->overrun = 1;
-            }
-            b->n += 8;
-        }
+    if (b->end - b->p >= 8) {
+        uint64_t w;
+        memcpy(&w, b->p, 8);
+        w = __builtin_bswap64(w);
+        int k = (63 - b->n) >> 3;
+        b->acc = (b->acc << (8 * k)) | (w >> (64 - 8 * k));
+        b->p += k;
+        b->n += 8 * k;
+        return;
     }
-    b->n -= n;
-    return (uint32_t)(b->acc >> b->n) & (uint32_t)((1ull << n) - 1);
+    while (b->n <= 56) {
+        if (b->p < b->end) b->acc = (b->acc << 8) | *b->p++;
+        else if (b->n >= want) break;
+        else {
+            b->acc <<= 8;
+            b->overrun = 1;
+        }
+        b->n += 8;
+    }
 }
 
-/* Up to 56 bits, most significant first. */
-static inline uint64_t get_bits56(bits *b, int n)
+/* The next n (<= 56) bits, most significant first. */
+static inline uint64_t get_bits(bits *b, int n)
 {
-    if (b->n < n) {
-        while (b->n <= 56) {
-            if (b->p < b->end) b->acc = (b->acc << 8) | *b->p++;
-            else if (b->n >= n) break;
-            else {
-                b->acc <<= 8;
-                b->overrun = 1;
-            }
-            b->n += 8;
-        }
-    }
+    if (b->n < n) refill(b, n);
     b->n -= n;
     return (b->acc >> b->n) & ((1ull << n) - 1);
 }
 
-/* Three integers packed as one number of nbits bits in the radices sizes[] (the first
- * coordinate most significant). The bits come in bytes, least significant byte first, each
- * byte most significant bit first, the last byte holding the 1..8 bits left: the full bytes
- * are read in one go and byte-reversed. */
-static inline void get_ints(bits *b, int nbits, const uint32_t sizes[3], int32_t out[3])
+/* A number of nbits (<= 64) bits stored as bytes least significant first, each byte most
+ * significant bit first, the last byte holding the 1..8 bits left: the full bytes are read
+ * in one go and byte-reversed. */
+static inline uint64_t get_packed(bits *b, int nbits)
 {
-    if (nbits <= 64) {
-        int full = (nbits - 1) / 8, rest = nbits - 8 * full;
-        uint64_t v = 0;
-        if (full) v = __builtin_bswap64(get_bits56(b, 8 * full)) >> (64 - 8 * full);
-        v |= (uint64_t)get_bits(b, rest) << (8 * full);
-        if (v >> 32 == 0) {
-            uint32_t w = (uint32_t)v;
-            out[2] = (int32_t)(w % sizes[2]);
-            w /= sizes[2];
-            out[1] = (int32_t)(w % sizes[1]);
-            out[0] = (int32_t)(w / sizes[1]);
-            return;
-        }
-        out[2] = (int32_t)(v % sizes[2]);
-        v /= sizes[2];
-        out[1] = (int32_t)(v % sizes[1]);
-        out[0] = (int32_t)(v / sizes[1]);
-        return;
-    }
+    int full = (nbits - 1) / 8, rest = nbits - 8 * full;
+    uint64_t v = 0;
+    if (full) v = __builtin_bswap64(get_bits(b, 8 * full)) >> (64 - 8 * full);
+    return v | get_bits(b, rest) << (8 * full);
+}
+
+/* ---------------------------------------------------------------- splitting numbers */
+
+/* x / d for a 32-bit x and a d >= 2 as a product with the reciprocal m = 2^64 / d rounded
+ * up: exact for every 32-bit x (Lemire, Kaser and Kurz, "Faster remainder by direct
+ * computation", 2019). */
+typedef struct recip {
+    uint64_t m;
+    uint32_t d;
+} recip;
+
+static inline recip recip_of(uint32_t d)
+{
+    recip r = {UINT64_MAX / d + 1, d};
+    return r;
+}
+
+static inline uint32_t recip_div(uint32_t x, recip r)
+{
+    return (uint32_t)(((unsigned __int128)r.m * x) >> 64);
+}
+
+/* Three integers packed as one number of more than 64 bits in the radices sizes[] (the
+ * first coordinate most significant). */
+static void get_ints_wide(bits *b, int nbits, const uint32_t sizes[3], int32_t out[3])
+{
     unsigned __int128 v = 0;
     int shift = 0;
     while (nbits > 8) {
@@ -152,6 +216,51 @@ static inline void get_ints(bits *b, int nbits, const uint32_t sizes[3], int32_t
     v /= sizes[2];
     out[1] = (int32_t)(v % sizes[1]);
     out[0] = (int32_t)(v / sizes[1]);
+}
+
+/* v / r.d into *q, the remainder returned: by the reciprocal when v and r.d allow. */
+static inline uint32_t split(uint64_t v, recip r, uint64_t *q)
+{
+    if (v >> 32 == 0 && r.d > 1) {
+        uint32_t w = (uint32_t)v, d = recip_div(w, r);
+        *q = d;
+        return w - d * r.d;
+    }
+    *q = v / r.d;
+    return (uint32_t)(v % r.d);
+}
+
+/* Three integers packed as one number of nbits bits in the radices r[].d, plus min[]. */
+static inline void get_ints(bits *b, int nbits, const recip r[3], const int32_t min[3],
+                            int32_t out[3])
+{
+    uint32_t v[3];
+    if (nbits > 64) {
+        uint32_t s[3] = {r[0].d, r[1].d, r[2].d};
+        get_ints_wide(b, nbits, s, (int32_t *)v);
+    } else {
+        uint64_t q, q2;
+        v[2] = split(get_packed(b, nbits), r[2], &q);
+        v[1] = split(q, r[1], &q2);
+        v[0] = (uint32_t)q2;
+    }
+    out[0] = (int32_t)(v[0] + (uint32_t)min[0]);
+    out[1] = (int32_t)(v[1] + (uint32_t)min[1]);
+    out[2] = (int32_t)(v[2] + (uint32_t)min[2]);
+}
+
+/* Three small differences of one size r.d packed in nbits bits. */
+static inline void get_small(bits *b, int nbits, recip r, int32_t out[3])
+{
+    if (nbits > 32) {
+        uint32_t s[3] = {r.d, r.d, r.d};
+        get_ints_wide(b, nbits, s, out);
+        return;
+    }
+    uint32_t v = (uint32_t)get_packed(b, nbits), q = recip_div(v, r), q2 = recip_div(q, r);
+    out[2] = (int32_t)(v - q * r.d);
+    out[1] = (int32_t)(q - q2 * r.d);
+    out[0] = (int32_t)q2;
 }
 
 /* Bits needed for values up to `size` (the count of bits of size). */
@@ -176,46 +285,84 @@ static int bits_of_product(const uint32_t s[3])
 
 /* ---------------------------------------------------------------- decoding */
 
-typedef struct xtc_head {
-    float precision;
-    int32_t minint[3], maxint[3], smallidx;
-} xtc_head;
-
-/* Decode natoms integer triples from the stream into ip. */
-static int decode(const xtc_head *h, const unsigned char *data, size_t len, long natoms,
-                  int32_t *ip, ms_perr *err)
+/* Sizes of the full triples: packed together (*bitsize) or, for large ranges, in separate
+ * fields (bitsizeint[]). */
+static int full_sizes(const xtc_head *h, uint32_t sizeint[3], int bitsizeint[3], int *bitsize,
+                      int *large, ms_perr *err)
 {
-    uint32_t sizeint[3], sizesmall[3];
-    int bitsizeint[3] = {0, 0, 0}, bitsize = 0, large = 0;
+    *large = 0;
     for (int d = 0; d < 3; d++) {
         int64_t s = (int64_t)h->maxint[d] - h->minint[d] + 1;
         if (s < 1 || s > 0xffffffffLL)
             return ms_perr_set(err, "bad coordinate range %d..%d", (int)h->minint[d],
                                (int)h->maxint[d]);
         sizeint[d] = (uint32_t)s;
-        if (s > 0xffffff) large = 1;
+        if (s > 0xffffff) *large = 1;
     }
-    if (large)
-        for (int d = 0; d < 3; d++) bitsizeint[d] = bits_of(sizeint[d]);
-    else
-        bitsize = bits_of_product(sizeint);
+    *bitsize = 0;
+    for (int d = 0; d < 3; d++) bitsizeint[d] = *large ? bits_of(sizeint[d]) : 0;
+    if (!*large) *bitsize = bits_of_product(sizeint);
+    return MS_PLUGIN_OK;
+}
+
+/* An atom's integers to Angstrom: times 1/precision in single precision, then times 10. */
+static inline void put_atom(float *p, const int32_t v[3], float inv)
+{
+    for (int d = 0; d < 3; d++) {
+        float nm = (float)v[d] * inv;
+        p[d] = nm * 10.0f;
+    }
+}
+
+/* A run of small differences following the atom `full` (its integers), whose coordinates
+ * go to p: the run's first atom was stored before `full` (water molecules compress better
+ * that way), so it goes to p and `full` after it. Returns the atoms written. */
+static long small_run(bits *b, int run, int smallidx, recip r, int smallnum,
+                      const int32_t full[3], float inv, float *p)
+{
+    int32_t prev[3] = {full[0], full[1], full[2]};
+    for (int k = 0; k < run; k += 3) {
+        int32_t s[3];
+        get_small(b, smallidx, r, s);
+        for (int d = 0; d < 3; d++)
+            prev[d] = (int32_t)((uint32_t)s[d] + (uint32_t)prev[d] - (uint32_t)smallnum);
+        put_atom(p, prev, inv);
+        p += 3;
+        if (k == 0) {
+            put_atom(p, full, inv);
+            p += 3;
+        }
+    }
+    return run / 3 + 1;
+}
+
+/* Decode natoms atoms from the stream into pos (3 floats each, Angstrom). */
+static int decode(const xtc_head *h, const unsigned char *data, size_t len, long natoms,
+                  float *pos, ms_perr *err)
+{
+    uint32_t sizeint[3];
+    int bitsizeint[3], bitsize = 0, large;
+    if (full_sizes(h, sizeint, bitsizeint, &bitsize, &large, err) != MS_PLUGIN_OK)
+        return MS_PLUGIN_ERROR;
     int smallidx = h->smallidx;
     if (smallidx < FIRSTIDX || smallidx >= LASTIDX)
         return ms_perr_set(err, "bad small-difference size index %d", smallidx);
+    recip rs[LASTIDX], rfull[3];
+    for (int k = FIRSTIDX; k < LASTIDX; k++) rs[k] = recip_of((uint32_t)magicints[k]);
+    for (int d = 0; d < 3; d++) rfull[d] = recip_of(sizeint[d]);
+    float inv = (float)(1.0 / (double)h->precision);
     int smaller = magicints[smallidx - 1 > FIRSTIDX ? smallidx - 1 : FIRSTIDX] / 2;
     int smallnum = magicints[smallidx] / 2;
-    sizesmall[0] = sizesmall[1] = sizesmall[2] = (uint32_t)magicints[smallidx];
     bits b = {data, data + len, 0, 0, 0};
     long i = 0;
     int run = 0;
     while (i < natoms) {
-        int32_t *t = ip + 3 * i, prev[3];
+        int32_t t[3];
         if (large)
-            for (int d = 0; d < 3; d++) t[d] = (int32_t)get_bits(&b, bitsizeint[d]);
+            for (int d = 0; d < 3; d++)
+                t[d] = (int32_t)((uint32_t)get_bits(&b, bitsizeint[d]) + (uint32_t)h->minint[d]);
         else
-            get_ints(&b, bitsize, sizeint, t);
-        i++;
-        for (int d = 0; d < 3; d++) prev[d] = t[d] = (int32_t)((uint32_t)t[d] + (uint32_t)h->minint[d]);
+            get_ints(&b, bitsize, rfull, h->minint, t);
         int is_smaller = 0;
         if (get_bits(&b, 1)) {
             run = (int)get_bits(&b, 5);
@@ -224,27 +371,12 @@ static int decode(const xtc_head *h, const unsigned char *data, size_t len, long
             is_smaller--;
         }
         if (run > 0) {
-            if (i + run / 3 > natoms)
+            if (i + 1 + run / 3 > natoms)
                 return ms_perr_set(err, "a run of %d atoms passes the atom count %ld", run / 3,
                                    natoms);
-            t += 3;
-            for (int k = 0; k < run; k += 3, t += 3) {
-                get_ints(&b, smallidx, sizesmall, t);
-                i++;
-                for (int d = 0; d < 3; d++)
-                    t[d] = (int32_t)((uint32_t)t[d] + (uint32_t)prev[d] - (uint32_t)smallnum);
-                if (k == 0) {
-                    /* The first atom of a run was stored second: swap them back. */
-                    for (int d = 0; d < 3; d++) {
-                        int32_t tmp = t[d];
-                        t[d] = prev[d];
-                        prev[d] = tmp;
-                        t[d - 3] = prev[d];
-                    }
-                } else {
-                    memcpy(prev, t, sizeof prev);
-                }
-            }
+            i += small_run(&b, run, smallidx, rs[smallidx], smallnum, t, inv, pos + 3 * i);
+        } else {
+            put_atom(pos + 3 * i++, t, inv);
         }
         smallidx += is_smaller;
         if (smallidx < FIRSTIDX || smallidx >= LASTIDX)
@@ -256,20 +388,316 @@ static int decode(const xtc_head *h, const unsigned char *data, size_t len, long
             smaller = smallnum;
             smallnum = magicints[smallidx] / 2;
         }
-        sizesmall[0] = sizesmall[1] = sizesmall[2] = (uint32_t)magicints[smallidx];
         if (b.overrun) return ms_perr_set(err, "the compressed coordinates end early");
     }
     return MS_PLUGIN_OK;
 }
 
-/* ---------------------------------------------------------------- frames */
+/* Decode a frame's stream into pos (3 natoms floats). */
+static int decode_frame(const xtc_frame *f, long natoms, float *pos, ms_perr *err)
+{
+    return decode(&f->head, f->buf, f->bytes, natoms, pos, err);
+}
+
+/* ---------------------------------------------------------------- reading frames */
+
+/* Box vectors (nm) -> a b c (Angstrom) alpha beta gamma (degrees). */
+static void box_to_cell(const float v[9], float cell[6])
+{
+    double len[3];
+    for (int k = 0; k < 3; k++)
+        len[k] = sqrt((double)v[3 * k] * v[3 * k] + (double)v[3 * k + 1] * v[3 * k + 1] +
+                      (double)v[3 * k + 2] * v[3 * k + 2]);
+    static const int pair[3][2] = {{1, 2}, {0, 2}, {0, 1}};
+    for (int k = 0; k < 3; k++) {
+        const float *a = v + 3 * pair[k][0], *b = v + 3 * pair[k][1];
+        double la = len[pair[k][0]], lb = len[pair[k][1]], ang = 90.0;
+        if (la > 0 && lb > 0) {
+            double c = ((double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]) / (la * lb);
+            ang = c == 0 ? 90.0 : acos(c > 1 ? 1 : c < -1 ? -1 : c) * 180.0 / XTC_PI;
+        }
+        cell[k] = (float)(10.0 * len[k]);
+        cell[3 + k] = (float)ang;
+    }
+}
+
+static int grow_buf(xtc_frame *f, size_t bytes, ms_perr *err)
+{
+    if (bytes <= f->buf_cap) return MS_PLUGIN_OK;
+    unsigned char *b = realloc(f->buf, bytes);
+    if (!b) return ms_perr_set(err, "out of memory for %zu bytes", bytes);
+    f->buf = b;
+    f->buf_cap = bytes;
+    return MS_PLUGIN_OK;
+}
+
+/* The compressed coordinates' header and stream (skipped when !keep). */
+static int read_stream(xtc_reader *r, xtc_frame *f, int large, int keep, ms_perr *err)
+{
+    unsigned char h[44];
+    if (read_exact(r->fp, h, large ? 40 : 36) != 1)
+        return ms_perr_set(err, "truncated: the file ends in the coordinate header");
+    f->head.precision = be_float(h);
+    for (int d = 0; d < 3; d++) {
+        f->head.minint[d] = (int32_t)be32(h + 4 + 4 * d);
+        f->head.maxint[d] = (int32_t)be32(h + 16 + 4 * d);
+    }
+    f->head.smallidx = (int32_t)be32(h + 28);
+    uint64_t bytes = large ? ((uint64_t)be32(h + 32) << 32 | be32(h + 36)) : be32(h + 32);
+    if (bytes > (uint64_t)r->size)
+        return ms_perr_set(err, "bad compressed size %llu bytes", (unsigned long long)bytes);
+    size_t padded = (size_t)((bytes + 3) & ~(uint64_t)3);
+    f->bytes = (size_t)bytes;
+    if (!keep)
+        return fseeko(r->fp, (off_t)padded, SEEK_CUR) == 0 ? MS_PLUGIN_OK
+                                                            : ms_perr_set(err, "seek failed");
+    if (!(f->head.precision > 0) || !isfinite(f->head.precision))
+        return ms_perr_set(err, "bad precision %g", (double)f->head.precision);
+    if (grow_buf(f, padded, err) != MS_PLUGIN_OK) return MS_PLUGIN_ERROR;
+    if (read_exact(r->fp, f->buf, padded) != 1)
+        return ms_perr_set(err, "truncated: the file ends in the compressed coordinates");
+    return MS_PLUGIN_OK;
+}
+
+/* Read the next frame of natoms atoms from the file into f, up to decoding (the stream is
+ * skipped when !keep). */
+static int read_raw(xtc_reader *r, xtc_frame *f, long natoms, int keep, ms_perr *err)
+{
+    unsigned char b[56];
+    int got = read_exact(r->fp, b, 56);
+    if (got == 0) return MS_PLUGIN_EOF;
+    if (got < 0) return ms_perr_set(err, "truncated: the file ends in the frame header");
+    int32_t magic = (int32_t)be32(b), n = (int32_t)be32(b + 4);
+    if (magic != XTC_MAGIC && magic != XTC_MAGIC_LARGE)
+        return ms_perr_set(err, "bad magic number %d at byte %lld", (int)magic,
+                           (long long)ftello(r->fp) - 56);
+    if (n != natoms || (int32_t)be32(b + 52) != n)
+        return ms_perr_set(err, "the frame has %d atoms, expected %ld", (int)n, natoms);
+    f->time = be_float(b + 12);
+    float box[9];
+    for (int k = 0; k < 9; k++) box[k] = be_float(b + 16 + 4 * k);
+    box_to_cell(box, f->cell);
+    f->compressed = n > 9;
+    if (f->compressed) return read_stream(r, f, magic == XTC_MAGIC_LARGE, keep, err);
+    unsigned char p[9 * 12];
+    if (read_exact(r->fp, p, (size_t)n * 12) != 1)
+        return ms_perr_set(err, "truncated: the file ends in the coordinates");
+    for (long k = 0; k < 3 * (long)n; k++) f->plain[k] = be_float(p + 4 * k) * 10.0f;
+    return MS_PLUGIN_OK;
+}
+
+/* The frame's time, cell and coordinates (when the host wants them) into fr. */
+static int finish(const xtc_frame *f, long natoms, ms_frame_out *fr, ms_perr *err)
+{
+    fr->time = f->time;
+    fr->has_time = 1;
+    memcpy(fr->cell, f->cell, sizeof fr->cell);
+    fr->has_cell = 1;
+    if (!fr->pos) return MS_PLUGIN_OK;
+    if (f->compressed) return decode_frame(f, natoms, fr->pos, err);
+    memcpy(fr->pos, f->plain, (size_t)natoms * 3 * sizeof *fr->pos);
+    return MS_PLUGIN_OK;
+}
+
+/* ---------------------------------------------------------------- reading ahead */
+
+/* Decode a frame read ahead into its own coordinate array. */
+static void decode_ahead(xtc_frame *f)
+{
+    size_t n = (size_t)f->natoms * 3;
+    if (n > f->pos_cap) {
+        float *p = realloc(f->pos, n * sizeof *p);
+        if (!p) {
+            f->rc = ms_perr_set(&f->err, "out of memory for %zu coordinates", n);
+            return;
+        }
+        f->pos = p;
+        f->pos_cap = n;
+    }
+    f->rc = decode_frame(f, f->natoms, f->pos, &f->err);
+}
+
+/* The next frame read ahead that no thread decodes yet, claimed; NULL when there is none.
+ * Called under the lock. */
+static xtc_frame *claim_next(xtc_ahead *a)
+{
+    while (a->next < a->tail) {
+        xtc_frame *f = &a->slot[a->next++ % a->nslots];
+        if (f->state == S_READ) {
+            f->state = S_BUSY;
+            return f;
+        }
+    }
+    return NULL;
+}
+
+/* Decode a claimed frame into its slot: the lock is held on entry and on return. */
+static void decode_claimed(xtc_ahead *a, xtc_frame *f)
+{
+    pthread_mutex_unlock(&a->mu);
+    decode_ahead(f);
+    pthread_mutex_lock(&a->mu);
+    f->state = S_DONE;
+    pthread_cond_broadcast(&a->done);
+}
+
+static void *worker(void *arg)
+{
+    xtc_ahead *a = arg;
+    pthread_mutex_lock(&a->mu);
+    while (!a->stop) {
+        xtc_frame *f = claim_next(a);
+        if (f) decode_claimed(a, f);
+        else pthread_cond_wait(&a->work, &a->mu);
+    }
+    pthread_mutex_unlock(&a->mu);
+    return NULL;
+}
+
+/* Threads decoding (the host's thread is one of them): MOLSCOPE_THREADS, else the cores
+ * online that the load average leaves idle (on a machine whose cores are all busy, more
+ * threads only wait for each other), at most XTC_MAX_WORKERS + 1. */
+static int thread_count(void)
+{
+    const char *e = getenv("MOLSCOPE_THREADS");
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    double load;
+    if (e && *e) n = strtol(e, NULL, 10);
+    else if (getloadavg(&load, 1) == 1 && load > 0) n = (long)((double)n - load + 0.5);
+    return n < 1 ? 1 : n > XTC_MAX_WORKERS + 1 ? XTC_MAX_WORKERS + 1 : (int)n;
+}
+
+static void ahead_stop(xtc_ahead *a)
+{
+    pthread_mutex_lock(&a->mu);
+    a->stop = 1;
+    pthread_cond_broadcast(&a->work);
+    pthread_mutex_unlock(&a->mu);
+    for (int k = 0; k < a->nthreads; k++) pthread_join(a->th[k], NULL);
+    for (int k = 0; k < a->nslots; k++) {
+        free(a->slot[k].buf);
+        free(a->slot[k].pos);
+    }
+    pthread_mutex_destroy(&a->mu);
+    pthread_cond_destroy(&a->work);
+    pthread_cond_destroy(&a->done);
+    free(a);
+}
+
+/* Start reading ahead frames of natoms atoms, NULL when it would not help (one core, a
+ * small system, too little memory for two frames) or cannot start. */
+static xtc_ahead *ahead_start(long natoms)
+{
+    int workers = thread_count() - 1;
+    size_t frame = (size_t)natoms * 16;   /* coordinates and a generous stream */
+    size_t slots = XTC_AHEAD_BYTES / (frame ? frame : 1);
+    if (slots > (size_t)workers + 3) slots = (size_t)workers + 3;
+    if (workers < 1 || natoms < XTC_AHEAD_MIN_ATOMS || slots < 2) return NULL;
+    xtc_ahead *a = calloc(1, sizeof *a);
+    if (!a) return NULL;
+    a->nslots = (int)slots;
+    a->natoms = natoms;
+    pthread_mutex_init(&a->mu, NULL);
+    pthread_cond_init(&a->work, NULL);
+    pthread_cond_init(&a->done, NULL);
+    while (a->nthreads < workers && a->nthreads < a->nslots &&
+           pthread_create(&a->th[a->nthreads], NULL, worker, a) == 0)
+        a->nthreads++;
+    if (a->nthreads == 0) {
+        ahead_stop(a);
+        return NULL;
+    }
+    return a;
+}
+
+/* Read frames into every free slot and hand them to the workers. */
+static void ahead_fill(xtc_reader *r)
+{
+    xtc_ahead *a = r->ahead;
+    while (!a->ended && a->tail - a->head < a->nslots) {
+        xtc_frame *f = &a->slot[a->tail % a->nslots];
+        f->natoms = a->natoms;
+        f->err.msg[0] = '\0';
+        f->rc = read_raw(r, f, a->natoms, 1, &f->err);
+        if (f->rc != MS_PLUGIN_OK) a->ended = 1;
+        pthread_mutex_lock(&a->mu);
+        f->state = f->rc == MS_PLUGIN_OK && f->compressed ? S_READ : S_DONE;
+        a->tail++;
+        pthread_cond_signal(&a->work);
+        pthread_mutex_unlock(&a->mu);
+    }
+}
+
+/* A frame a worker decoded: its data into fr. */
+static int deliver(const xtc_frame *f, long natoms, ms_frame_out *fr, ms_perr *err)
+{
+    if (f->rc != MS_PLUGIN_OK) {
+        *err = f->err;
+        return f->rc;
+    }
+    fr->time = f->time;
+    fr->has_time = 1;
+    memcpy(fr->cell, f->cell, sizeof fr->cell);
+    fr->has_cell = 1;
+    if (fr->pos)
+        memcpy(fr->pos, f->compressed ? f->pos : f->plain, (size_t)natoms * 3 * sizeof *fr->pos);
+    return MS_PLUGIN_OK;
+}
+
+/* The next frame from the frames read ahead. When no thread has begun it, the host's
+ * thread decodes it straight into the host's array (no copy); while a worker is on it, the
+ * host's thread decodes a later frame meanwhile. */
+static int from_ahead(xtc_reader *r, ms_frame_out *fr, ms_perr *err)
+{
+    xtc_ahead *a = r->ahead;
+    xtc_frame *f = &a->slot[a->head % a->nslots];
+    int direct = 0;
+    pthread_mutex_lock(&a->mu);
+    while (f->state != S_DONE) {
+        if (f->state == S_READ) {
+            f->state = S_BUSY;
+            direct = 1;
+            break;
+        }
+        xtc_frame *later = claim_next(a);
+        if (later) decode_claimed(a, later);
+        else pthread_cond_wait(&a->done, &a->mu);
+    }
+    pthread_mutex_unlock(&a->mu);
+    int rc = direct ? finish(f, a->natoms, fr, err) : deliver(f, a->natoms, fr, err);
+    a->head++;
+    if (rc == MS_PLUGIN_OK && fr->pos && r->kept) ahead_fill(r);
+    r->kept = fr->pos != NULL;
+    return rc;
+}
+
+/* ---------------------------------------------------------------- the plugin */
+
+static int xtc_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
+{
+    xtc_reader *r = h;
+    if (r->ahead && r->ahead->head < r->ahead->tail) {
+        if (natoms == r->ahead->natoms) return from_ahead(r, fr, err);
+        return ms_perr_set(err, "the frame has %ld atoms, expected %ld", r->ahead->natoms, natoms);
+    }
+    xtc_frame *f = &r->sync;
+    int rc = read_raw(r, f, natoms, fr->pos != NULL, err);
+    if (rc == MS_PLUGIN_OK) rc = finish(f, natoms, fr, err);
+    int consecutive = r->kept && fr->pos;
+    r->kept = fr->pos != NULL;
+    if (rc != MS_PLUGIN_OK || !consecutive || r->no_ahead) return rc;
+    /* The host reads consecutive frames: read ahead from now on. */
+    if (!r->ahead && !(r->ahead = ahead_start(natoms))) r->no_ahead = 1;
+    if (r->ahead) ahead_fill(r);
+    return MS_PLUGIN_OK;
+}
 
 static void xtc_close_read(void *h)
 {
     xtc_reader *r = h;
+    if (r->ahead) ahead_stop(r->ahead);
     if (r->fp) fclose(r->fp);
-    free(r->buf);
-    free(r->ints);
+    free(r->sync.buf);
     free(r);
 }
 
@@ -308,106 +736,6 @@ static void *xtc_open_read(const char *path, long *natoms, ms_perr *err)
 fail:
     xtc_close_read(r);
     return NULL;
-}
-
-/* Box vectors (nm) -> a b c (Angstrom) alpha beta gamma (degrees). */
-static void box_to_cell(const float v[9], float cell[6])
-{
-    double len[3];
-    for (int k = 0; k < 3; k++)
-        len[k] = sqrt((double)v[3 * k] * v[3 * k] + (double)v[3 * k + 1] * v[3 * k + 1] +
-                      (double)v[3 * k + 2] * v[3 * k + 2]);
-    static const int pair[3][2] = {{1, 2}, {0, 2}, {0, 1}};
-    for (int k = 0; k < 3; k++) {
-        const float *a = v + 3 * pair[k][0], *b = v + 3 * pair[k][1];
-        double la = len[pair[k][0]], lb = len[pair[k][1]], ang = 90.0;
-        if (la > 0 && lb > 0) {
-            double c = ((double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]) / (la * lb);
-            ang = c == 0 ? 90.0 : acos(c > 1 ? 1 : c < -1 ? -1 : c) * 180.0 / XTC_PI;
-        }
-        cell[k] = (float)(10.0 * len[k]);
-        cell[3 + k] = (float)ang;
-    }
-}
-
-static int grow_buf(xtc_reader *r, size_t bytes, ms_perr *err)
-{
-    if (bytes <= r->buf_cap) return MS_PLUGIN_OK;
-    unsigned char *b = realloc(r->buf, bytes);
-    if (!b) return ms_perr_set(err, "out of memory for %zu bytes", bytes);
-    r->buf = b;
-    r->buf_cap = bytes;
-    return MS_PLUGIN_OK;
-}
-
-/* The compressed coordinates of a frame of more than 9 atoms. */
-static int read_compressed(xtc_reader *r, int large, long n, ms_frame_out *fr, ms_perr *err)
-{
-    unsigned char h[44];
-    if (read_exact(r->fp, h, large ? 40 : 36) != 1)
-        return ms_perr_set(err, "truncated: the file ends in the coordinate header");
-    xtc_head head;
-    head.precision = be_float(h);
-    for (int d = 0; d < 3; d++) {
-        head.minint[d] = (int32_t)be32(h + 4 + 4 * d);
-        head.maxint[d] = (int32_t)be32(h + 16 + 4 * d);
-    }
-    head.smallidx = (int32_t)be32(h + 28);
-    uint64_t bytes = large ? ((uint64_t)be32(h + 32) << 32 | be32(h + 36)) : be32(h + 32);
-    if (bytes > (uint64_t)r->size)
-        return ms_perr_set(err, "bad compressed size %llu bytes", (unsigned long long)bytes);
-    size_t padded = (size_t)((bytes + 3) & ~(uint64_t)3);
-    if (!fr->pos) /* skipped frame */
-        return fseeko(r->fp, (off_t)padded, SEEK_CUR) == 0 ? MS_PLUGIN_OK
-                                                            : ms_perr_set(err, "seek failed");
-    if (!(head.precision > 0) || !isfinite(head.precision))
-        return ms_perr_set(err, "bad precision %g", (double)head.precision);
-    if (grow_buf(r, padded, err) != MS_PLUGIN_OK) return MS_PLUGIN_ERROR;
-    if (read_exact(r->fp, r->buf, padded) != 1)
-        return ms_perr_set(err, "truncated: the file ends in the compressed coordinates");
-    if ((size_t)n * 3 > r->ints_cap) {
-        int32_t *ni = realloc(r->ints, (size_t)n * 3 * sizeof *ni);
-        if (!ni) return ms_perr_set(err, "out of memory");
-        r->ints = ni;
-        r->ints_cap = (size_t)n * 3;
-    }
-    if (decode(&head, r->buf, (size_t)bytes, n, r->ints, err) != MS_PLUGIN_OK)
-        return MS_PLUGIN_ERROR;
-    float inv = (float)(1.0 / (double)head.precision);
-    for (size_t k = 0; k < (size_t)n * 3; k++) {
-        float nm = (float)r->ints[k] * inv;
-        fr->pos[k] = nm * 10.0f;
-    }
-    return MS_PLUGIN_OK;
-}
-
-static int xtc_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
-{
-    xtc_reader *r = h;
-    unsigned char b[56];
-    int got = read_exact(r->fp, b, 56);
-    if (got == 0) return MS_PLUGIN_EOF;
-    if (got < 0) return ms_perr_set(err, "truncated: the file ends in the frame header");
-    int32_t magic = (int32_t)be32(b), n = (int32_t)be32(b + 4), step = (int32_t)be32(b + 8);
-    (void)step;
-    if (magic != XTC_MAGIC && magic != XTC_MAGIC_LARGE)
-        return ms_perr_set(err, "bad magic number %d at byte %lld", (int)magic,
-                           (long long)ftello(r->fp) - 56);
-    if (n != natoms || (int32_t)be32(b + 52) != n)
-        return ms_perr_set(err, "the frame has %d atoms, expected %ld", (int)n, natoms);
-    fr->time = be_float(b + 12);
-    fr->has_time = 1;
-    float box[9];
-    for (int k = 0; k < 9; k++) box[k] = be_float(b + 16 + 4 * k);
-    box_to_cell(box, fr->cell);
-    fr->has_cell = 1;
-    r->frame++;
-    if (n > 9) return read_compressed(r, magic == XTC_MAGIC_LARGE, n, fr, err);
-    unsigned char p[9 * 12];
-    if (read_exact(r->fp, p, (size_t)n * 12) != 1)
-        return ms_perr_set(err, "truncated: the file ends in the coordinates");
-    for (long k = 0; fr->pos && k < 3 * (long)n; k++) fr->pos[k] = be_float(p + 4 * k) * 10.0f;
-    return MS_PLUGIN_OK;
 }
 
 static const ms_plugin xtc_plugin = {

@@ -16,7 +16,8 @@
  *   molinfo <molid> get {numreps "rep i" "selection i" "color i" "material i"}
  *
  * A new structure loaded by mol new / mol addfile resets the current settings to the
- * defaults and gets one rep made from them (VMD's rule). Every error names the command and
+ * defaults and gets one rep made from them (VMD's rule); a molecule of volumetric data
+ * alone gets an Isosurface rep. Every error names the command and
  * the bad value, and changes nothing. */
 #include "config.h"
 #include "commands/commands.h"
@@ -163,7 +164,7 @@ static int m_modrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     ms_rep *r = target(app, interp, objv, 1, "mol modrep", &m, NULL);
     ms_error err = {{0}};
     if (!r) return TCL_ERROR;
-    if (ms_rep_apply_current(app, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
+    if (ms_rep_apply_current(app, m, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
     return settle(app, interp, m, r, "mol modrep");
 }
 
@@ -181,7 +182,7 @@ static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     Tcl_Obj *text = joined(objc, objv, 4);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
-    int rc = ms_rep_modify(app, r, what, Tcl_GetString(text), &err);
+    int rc = ms_rep_modify(app, m, r, what, Tcl_GetString(text), &err);
     Tcl_DecrRefCount(text);
     if (rc) return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
     return what == MS_REP_SELECTION || what == MS_REP_COLOR ? settle(app, interp, m, r, cmd) : TCL_OK;
@@ -449,6 +450,23 @@ static void new_structure(ms_app *app, ms_molecule *m)
         fprintf(stderr, "molscope: molecule %d: no default rep: %s\n", m->id, err.msg);
 }
 
+/* A molecule of volumetric data alone: VMD resets the current settings and draws the data
+ * with an Isosurface rep, here at the method's default parameters (whatever the current
+ * style last used with Isosurface, which might name a volume this molecule lacks). */
+static void new_volumes(ms_app *app, ms_molecule *m)
+{
+    ms_error err = {{0}};
+    if (ms_rep_count(app, m) > 0) return;
+    const ms_rep_method *iso = ms_rep_method_at((size_t)ms_rep_method_find("Isosurface"));
+    char text[256];
+    int len = snprintf(text, sizeof text, "%s", iso->name);
+    for (int i = 0; i < iso->nparams && len < (int)sizeof text; i++)
+        len += snprintf(text + len, sizeof text - (size_t)len, " %g", (double)iso->param[i].def);
+    if (ms_rep_reset_current(app, &err) || ms_rep_set_current(app, MS_REP_STYLE, text, &err) ||
+        ms_rep_set_current(app, MS_REP_STYLE, iso->name, &err) || !ms_rep_add(app, m, &err))
+        fprintf(stderr, "molscope: molecule %d: no default rep: %s\n", m->id, err.msg);
+}
+
 static const ms_subcmd rep_table[] = {
     {"representation", m_current}, {"rep", m_current},        {"selection", m_current},
     {"color", m_current},          {"material", m_current},   {"default", m_default},
@@ -472,4 +490,5 @@ void ms_cmd_rep_register(ms_app *app)
         {"numreps", 0, info_numreps, NULL}};
     for (size_t i = 0; i < MS_COUNTOF(keys); i++) ms_molinfo_add_keyword(&keys[i]);
     ms_cmd_structure_hook = new_structure;
+    ms_cmd_volume_hook = new_volumes;
 }

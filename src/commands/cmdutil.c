@@ -13,6 +13,7 @@
 
 ms_sel_resolver ms_cmd_sel_resolver = NULL;
 void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m) = NULL;
+void (*ms_cmd_volume_hook)(ms_app *app, ms_molecule *m) = NULL;
 
 struct ms_cmdset {
     char *name;
@@ -345,6 +346,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         if (m->nframes) ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
         if (m->atoms.n && ms_cmd_structure_hook) ms_cmd_structure_hook(app, m);
         if (m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES, m, NULL);
+        if (!m->atoms.n && m->nvolumes && ms_cmd_volume_hook) ms_cmd_volume_hook(app, m);
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
         if (m->pending) ms_app_schedule_loading(app);
         else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, m, path);
@@ -362,6 +364,10 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
     }
     if (into->nvolumes != volumes_before) ms_molset_emit(&app->mols, MS_EV_VOLUMES, into, NULL);
+    if (into->atoms.n == 0 && volumes_before == 0 && into->nvolumes && ms_cmd_volume_hook) {
+        ms_cmd_volume_hook(app, into);
+        if (ms_cmd_reset_view) ms_cmd_reset_view(app);
+    }
     if (into->nframes != frames_before) {
         ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, into, NULL);
         ms_molset_set_frame(&app->mols, into, (long)into->nframes - 1);

@@ -60,6 +60,9 @@ extern void (*ms_cmd_reset_view)(ms_app *app);
  * addfile into an empty one), before the view is reset: the rep commands add VMD's default
  * rep there. NULL: nothing happens. */
 extern void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m);
+/* Called by ms_cmd_load when a file gives a molecule with no atoms its first volumetric
+ * data sets, before the view is reset: the rep commands add VMD's Isosurface rep there. */
+extern void (*ms_cmd_volume_hook)(ms_app *app, ms_molecule *m);
 
 /* Register every command of this module. */
 void ms_commands_register(ms_app *app);

@@ -107,14 +107,12 @@ int ms_volume_grid_coords(const ms_volume *v, const float p[3], double g[3])
     return 0;
 }
 
-float ms_volume_value(const ms_volume *v, const float p[3], float outside)
+/* Trilinear interpolation at grid coordinates already inside 0 .. n - 1. */
+static float interpolate(const ms_volume *v, const double g[3])
 {
-    double g[3];
-    if (!v->data || ms_volume_size(v) == 0 || ms_volume_grid_coords(v, p, g)) return outside;
     int i0[3];
     double f[3];
     for (int k = 0; k < 3; k++) {
-        if (!(g[k] >= 0.0 && g[k] <= (double)(v->n[k] - 1))) return outside;
         i0[k] = (int)g[k];
         if (i0[k] >= v->n[k] - 1) i0[k] = v->n[k] > 1 ? v->n[k] - 2 : 0;
         f[k] = g[k] - i0[k];
@@ -134,6 +132,78 @@ float ms_volume_value(const ms_volume *v, const float p[3], float outside)
         if (w != 0) r += w * v->data[off];
     }
     return (float)r;
+}
+
+float ms_volume_value(const ms_volume *v, const float p[3], float outside)
+{
+    double g[3];
+    if (!v->data || ms_volume_size(v) == 0 || ms_volume_grid_coords(v, p, g)) return outside;
+    for (int k = 0; k < 3; k++)
+        if (!(g[k] >= 0.0 && g[k] <= (double)(v->n[k] - 1))) return outside;
+    return interpolate(v, g);
+}
+
+float ms_volume_value_at(const ms_volume *v, const double g[3])
+{
+    if (!v->data || ms_volume_size(v) == 0) return 0.0f;
+    double c[3];
+    for (int k = 0; k < 3; k++) {
+        double hi = (double)(v->n[k] - 1);
+        c[k] = g[k] > 0.0 ? (g[k] < hi ? g[k] : hi) : 0.0;   /* NaN goes to 0 */
+    }
+    return interpolate(v, c);
+}
+
+void ms_volume_point(const ms_volume *v, const double g[3], float p[3])
+{
+    for (int r = 0; r < 3; r++)
+        p[r] = (float)(v->origin[r] + g[0] * v->delta[0][r] + g[1] * v->delta[1][r] +
+                       g[2] * v->delta[2][r]);
+}
+
+void ms_volume_bounds(const ms_volume *v, float lo[3], float hi[3])
+{
+    for (int c = 0; c < 8; c++) {
+        double g[3];
+        float p[3];
+        for (int k = 0; k < 3; k++) g[k] = (c >> k & 1) ? (double)MS_MAX(v->n[k] - 1, 0) : 0.0;
+        ms_volume_point(v, g, p);
+        for (int k = 0; k < 3; k++) {
+            lo[k] = c == 0 || p[k] < lo[k] ? p[k] : lo[k];
+            hi[k] = c == 0 || p[k] > hi[k] ? p[k] : hi[k];
+        }
+    }
+}
+
+void ms_volume_sampler_init(ms_volume_sampler *s, const ms_volume *v)
+{
+    memset(s, 0, sizeof *s);
+    s->v = v;
+    double a[3][3];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) a[r][c] = v->delta[c][r];
+    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    if (!v->data || ms_volume_size(v) == 0 || !(fabs(det) > 1e-30)) return;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            /* inverse[c][r] = cofactor of a[r][c] / det */
+            s->inv[c][r] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
+        }
+    s->ok = 1;
+}
+
+float ms_volume_sample(const ms_volume_sampler *s, const float p[3])
+{
+    if (!s->ok) return 0.0f;
+    const ms_volume *v = s->v;
+    double d[3] = {(double)p[0] - v->origin[0], (double)p[1] - v->origin[1],
+                   (double)p[2] - v->origin[2]};
+    double g[3];
+    for (int k = 0; k < 3; k++) g[k] = s->inv[k][0] * d[0] + s->inv[k][1] * d[1] + s->inv[k][2] * d[2];
+    return ms_volume_value_at(v, g);
 }
 
 long ms_mol_add_volume(ms_molecule *m, ms_volume *v, ms_error *err)

@@ -35,6 +35,25 @@ float ms_volume_value(const ms_volume *v, const float p[3], float outside);
 /* The grid coordinates (i, j, k as reals) of a point in space. Returns -1 when the axes are
  * degenerate. */
 int ms_volume_grid_coords(const ms_volume *v, const float p[3], double g[3]);
+/* The value at grid coordinates g (reals) by trilinear interpolation, each clamped to
+ * 0 .. n - 1 first. */
+float ms_volume_value_at(const ms_volume *v, const double g[3]);
+/* The point in space of grid coordinates g: origin + g[0] delta[0] + g[1] delta[1] + ... */
+void ms_volume_point(const ms_volume *v, const double g[3], float p[3]);
+/* The bounding box of the grid's eight corners. */
+void ms_volume_bounds(const ms_volume *v, float lo[3], float hi[3]);
+
+/* Many lookups in one volume: the inverse of its axes is computed once. */
+typedef struct ms_volume_sampler {
+    const ms_volume *v;
+    double inv[3][3];      /* grid coordinates = inv (p - origin) */
+    int ok;                /* 0 when the volume is empty or its axes are degenerate */
+} ms_volume_sampler;
+
+void ms_volume_sampler_init(ms_volume_sampler *s, const ms_volume *v);
+/* The value at p as a 3-D texture with clamped edges gives it: interpolated at the point of
+ * the grid nearest p in grid coordinates (each clamped to 0 .. n - 1); 0 when !s->ok. */
+float ms_volume_sample(const ms_volume_sampler *s, const float p[3]);
 
 /* Append a volume to a molecule, taking over what v owns (v is zeroed). Statistics are
  * computed. Returns its index, or -1 (out of memory; v is then freed). */

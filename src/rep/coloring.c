@@ -1,10 +1,12 @@
 /* coloring.c: VMD's colouring methods: parsing "ColorID 3" and friends, and the colour id
  * (0..1056) of every atom. Category methods look the atom's value up in its colour category
  * (Name, Element, Resname ...); scale methods map data onto the 1024-entry colour scale
- * between a min and a max taken over all atoms when the method is (re)applied. */
+ * between a min and a max taken over all atoms when the method is (re)applied (`Volume n`:
+ * volume n's value at each atom, between the volume's min and max). */
 #include "config.h"
 #include "rep/rep_int.h"
 #include "molecule/elements.h"
+#include "base/threads.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -317,6 +319,43 @@ static int by_scale(ctx *x, ms_colmethod meth, long frame, int recompute, float 
     return 0;
 }
 
+typedef struct vol_job {
+    ms_volume_sampler s;
+    const float *pos;
+    float *d;
+} vol_job;
+
+static void sample_atoms(void *ctx, size_t begin, size_t end, int thread)
+{
+    vol_job *j = ctx;
+    (void)thread;
+    for (size_t i = begin; i < end; i++) j->d[i] = ms_volume_sample(&j->s, j->pos + 3 * i);
+}
+
+/* Volume n: volume n's value at every atom (at the nearest point of its grid for atoms
+ * outside it, as VMD's clamped 3-D texture), on the scale between the volume's min and max.
+ * White without the volume or a frame. */
+static int by_volume(ctx *x, int k, long frame, int recompute, float *min, float *max)
+{
+    const ms_molecule *m = x->m;
+    const ms_volume *v = k >= 0 && (size_t)k < m->nvolumes ? &m->volumes[k] : NULL;
+    if (recompute) {
+        *min = v ? v->min : 0.0f;
+        *max = v ? v->max : 0.0f;
+    }
+    if (!v || frame < 0 || (size_t)frame >= m->nframes) {
+        fill(x, 8);
+        return 0;
+    }
+    vol_job j = {.pos = m->frames[frame].pos};
+    if (!(j.d = ms_alloc_array(m->atoms.n ? m->atoms.n : 1, sizeof *j.d))) return -1;
+    ms_volume_sampler_init(&j.s, v);
+    ms_parallel_for(m->atoms.n, 4096, sample_atoms, &j);
+    map_scale(j.d, m->atoms.n, *min, *max, x->out);
+    free(j.d);
+    return 0;
+}
+
 /* Timestep, PhysicalTime, Throb: one scale colour for every atom. */
 static void by_time(ctx *x, ms_colmethod meth, long frame, int recompute, float *min, float *max)
 {
@@ -361,7 +400,7 @@ int ms_rep_color_ids(ms_app *app, ms_molecule *m, const ms_rep_coloring *c, long
     case MS_COL_STRUCTURE: by_structure(&x); break;
     case MS_COL_BACKBONE: by_backbone(&x); break;
     case MS_COL_COLORID: fill(&x, c->index); break;
-    case MS_COL_VOLUME: fill(&x, 8); break;   /* white, for a volume texture to modulate */
+    case MS_COL_VOLUME: rc = by_volume(&x, c->index, frame, recompute_range, min, max); break;
     case MS_COL_RESID:
         for (size_t i = 0; i < a->n; i++) {
             int r = a->resid[i] % MS_COLOR_AUTO_CYCLE;

@@ -1,7 +1,6 @@
 /* methods.c: the table of drawing methods, in VMD's order. Each method is one file holding
  * its table entry (name, parameters and defaults, builder); adding one is that file and a
- * line below. Isosurface comes with volumetric data: its entry goes where the comment
- * stands. */
+ * line below. */
 #include "config.h"
 #include "rep/rep_int.h"
 
@@ -9,7 +8,8 @@
 
 extern const ms_rep_method ms_rep_lines, ms_rep_bonds, ms_rep_dynamicbonds, ms_rep_hbonds,
     ms_rep_points, ms_rep_vdw, ms_rep_cpk, ms_rep_licorice, ms_rep_trace, ms_rep_tube,
-    ms_rep_newribbons, ms_rep_newcartoon, ms_rep_quicksurf, ms_rep_beads, ms_rep_dotted;
+    ms_rep_newribbons, ms_rep_newcartoon, ms_rep_quicksurf, ms_rep_volumeslice,
+    ms_rep_isosurface, ms_rep_beads, ms_rep_dotted;
 
 static const ms_rep_method *const methods[] = {
     &ms_rep_lines,
@@ -25,7 +25,8 @@ static const ms_rep_method *const methods[] = {
     &ms_rep_newribbons,
     &ms_rep_newcartoon,
     &ms_rep_quicksurf,
-    /* &ms_rep_isosurface,  isosurface.c */
+    &ms_rep_volumeslice,
+    &ms_rep_isosurface,
     &ms_rep_beads,
     &ms_rep_dotted,
 };
@@ -35,7 +36,7 @@ _Static_assert(MS_COUNTOF(methods) <= MS_REP_MAXMETHODS, "raise MS_REP_MAXMETHOD
 /* VMD's other methods: recognised so that a script using one is told it is missing. */
 static const char *const unavailable[] = {
     "Ribbons", "Cartoon", "Polyhedra", "PaperChain", "Twister", "MSMS",
-    "NanoShaper", "Surf", "VolumeSlice", "Isosurface", "FieldLines", "Orbital", "Solvent",
+    "NanoShaper", "Surf", "FieldLines", "Orbital", "Solvent",
     "LatticeCubes"};
 
 size_t ms_rep_method_count(void)

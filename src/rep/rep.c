@@ -93,9 +93,38 @@ long ms_rep_find(const ms_app *app, const ms_molecule *m, const char *name)
     return -1;
 }
 
+/* The volid a style names (its method's parameter "volid") into *k; 0 when it has none. */
+static int style_volid(const ms_rep_style *s, float *k)
+{
+    const ms_rep_method *meth = ms_rep_method_at((size_t)s->method);
+    for (int i = 0; meth && i < meth->nparams; i++)
+        if (!strcmp(meth->param[i].name, "volid")) {
+            *k = s->param[s->method][i];
+            return 1;
+        }
+    return 0;
+}
+
+static int no_volume(const ms_molecule *m, float k, ms_error *err)
+{
+    if (k >= 0.0f && k < (float)m->nvolumes) return 0;
+    ms_error_set(err, "molecule %d has no volume %g (it has %zu)", m->id, (double)k, m->nvolumes);
+    return -1;
+}
+
+int ms_rep_check_volumes(const ms_molecule *m, const ms_rep_style *s, const ms_rep_coloring *c,
+                         ms_error *err)
+{
+    float k;
+    if (s && style_volid(s, &k) && no_volume(m, k, err)) return -1;
+    if (c && c->method == MS_COL_VOLUME && no_volume(m, (float)c->index, err)) return -1;
+    return 0;
+}
+
 ms_rep *ms_rep_add(ms_app *app, ms_molecule *m, ms_error *err)
 {
     const ms_rep_settings *cur = ms_rep_current(app);
+    if (ms_rep_check_volumes(m, &cur->style, &cur->coloring, err)) return NULL;
     ms_replist *l = list_get(app, m, 1);
     ms_rep *r = calloc(1, sizeof *r);
     if (!l || !r || !(r->cache = ms_rep_cache_new()) || !(r->seltext = ms_strdup(cur->selection)) ||
@@ -158,17 +187,19 @@ static int replace_selection(char **text, ms_selexpr **expr, const char *src, ms
     return 0;
 }
 
-int ms_rep_modify(ms_app *app, ms_rep *r, ms_rep_what what, const char *text, ms_error *err)
+int ms_rep_modify(ms_app *app, const ms_molecule *m, ms_rep *r, ms_rep_what what,
+                  const char *text, ms_error *err)
 {
     ms_rep_cache *c = r->cache;
     if (what == MS_REP_STYLE) {
         ms_rep_style s = r->style;
-        if (ms_rep_style_parse(&s, text, err)) return -1;
+        if (ms_rep_style_parse(&s, text, err) || ms_rep_check_volumes(m, &s, NULL, err)) return -1;
         r->style = s;
         c->style_gen++;
     } else if (what == MS_REP_COLOR) {
         ms_rep_coloring k = r->coloring;
-        if (ms_rep_coloring_parse(&k, text, err)) return -1;
+        if (ms_rep_coloring_parse(&k, text, err) || ms_rep_check_volumes(m, NULL, &k, err))
+            return -1;
         r->coloring = k;
         r->range_auto = 1;   /* VMD retakes the range whenever a colouring is applied */
         c->col_valid = 0;
@@ -183,7 +214,7 @@ int ms_rep_modify(ms_app *app, ms_rep *r, ms_rep_what what, const char *text, ms
     return 0;
 }
 
-int ms_rep_apply_current(ms_app *app, ms_rep *r, ms_error *err)
+int ms_rep_apply_current(ms_app *app, const ms_molecule *m, ms_rep *r, ms_error *err)
 {
     const ms_rep_settings *cur = ms_rep_current(app);
     ms_rep_style s = r->style;
@@ -191,7 +222,8 @@ int ms_rep_apply_current(ms_app *app, ms_rep *r, ms_error *err)
     ms_selexpr *e = ms_sel_compile(cur->selection, err);
     char *t = e ? ms_strdup(cur->selection) : NULL;
     if (!e || !t || ms_rep_style_parse(&s, cur->style.text, err) ||
-        ms_rep_coloring_parse(&k, cur->coloring.text, err)) {
+        ms_rep_coloring_parse(&k, cur->coloring.text, err) ||
+        ms_rep_check_volumes(m, &s, &k, err)) {
         if (e && !t) ms_error_set(err, "out of memory");
         ms_sel_free(e);
         free(t);
@@ -323,6 +355,7 @@ static void on_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg)
     if (!l) return;
     if (ev == MS_EV_STRUCTURE) l->struct_gen++;
     else if (ev == MS_EV_FRAMES_ADDED) l->coord_gen++;
+    else if (ev == MS_EV_VOLUMES) l->vol_gen++;
     else if (ev == MS_EV_FRAME) {
         if (m->frame == l->last_frame) l->coord_gen++;
         l->last_frame = m->frame;

@@ -38,7 +38,11 @@ typedef struct ms_rep_param {
 } ms_rep_param;
 
 enum {
-    MS_REP_NEEDS_SS = 1u << 0   /* draws secondary structure (computed when the file had none) */
+    MS_REP_NEEDS_SS = 1u << 0,  /* draws secondary structure (computed when the file had none) */
+    /* draws the molecule's volumetric data (Isosurface, VolumeSlice): built once, with or
+     * without atoms and frames, whatever drawframes says; a parameter named "volid" picks
+     * the data set */
+    MS_REP_VOLUME = 1u << 1
 };
 
 typedef struct ms_rep_method {
@@ -175,13 +179,20 @@ size_t ms_rep_count(const ms_app *app, const ms_molecule *m);
 ms_rep *ms_rep_get(const ms_app *app, const ms_molecule *m, long i);
 /* The repid of the rep named `name`, or -1. */
 long ms_rep_find(const ms_app *app, const ms_molecule *m, const char *name);
-/* Append a rep made from the current settings; NULL with err set on failure. */
+/* Append a rep made from the current settings; NULL with err set on failure (also when
+ * they name a volume m does not hold). */
 ms_rep *ms_rep_add(ms_app *app, ms_molecule *m, ms_error *err);
 void ms_rep_delete(ms_app *app, ms_molecule *m, size_t i);
-/* modstyle / modcolor / modselect / modmaterial: nothing changes on an error. */
-int ms_rep_modify(ms_app *app, ms_rep *r, ms_rep_what what, const char *text, ms_error *err);
+/* modstyle / modcolor / modselect / modmaterial of rep r of m: nothing changes on an error
+ * (a style or colouring naming a volume m does not hold is one). */
+int ms_rep_modify(ms_app *app, const ms_molecule *m, ms_rep *r, ms_rep_what what,
+                  const char *text, ms_error *err);
 /* modrep: every current setting at once (all or nothing). */
-int ms_rep_apply_current(ms_app *app, ms_rep *r, ms_error *err);
+int ms_rep_apply_current(ms_app *app, const ms_molecule *m, ms_rep *r, ms_error *err);
+/* Does m hold the volumes a style's volid and a `Volume n` colouring name? 0, or -1 with err
+ * saying "molecule M has no volume N (it has K)". */
+int ms_rep_check_volumes(const ms_molecule *m, const ms_rep_style *s, const ms_rep_coloring *c,
+                         ms_error *err);
 int ms_rep_set_frames(ms_rep *r, const char *spec, ms_error *err);
 /* smoothrep: average over frame - n .. frame + n (0: off). */
 void ms_rep_set_smooth(ms_rep *r, int n);

@@ -31,6 +31,15 @@ enum {
 };
 
 /* ---------------------------------------------------------------- the builder's input */
+
+/* The colour ids the volume methods draw with (VMD's): `solid`, the colour of ColorID or
+ * Molecule colouring and Display Foreground for every other method; the volume box's edges
+ * along x, y and z from the origin (Axes X, Y, Z) and its other edges (Display
+ * Foreground). */
+typedef struct ms_rep_volcolors {
+    int solid, axis[3], box;
+} ms_rep_volcolors;
+
 struct ms_rep_build {
     ms_molecule *m;
     const float *pos;           /* coordinates drawn (the frame's, or smoothed) */
@@ -41,6 +50,9 @@ struct ms_rep_build {
     const ms_rgba8 *palette;    /* RGBA of every colour id */
     const float *p;             /* the method's parameters */
     ms_rep_scratch *scratch;
+    const ms_rep_coloring *coloring;
+    float cmin, cmax;           /* the rep's colour scale range */
+    ms_rep_volcolors vc;
 };
 
 static inline ms_rgba8 ms_rep_rgba(const ms_rep_build *b, size_t atom)
@@ -60,6 +72,20 @@ static inline uint16_t ms_rep_res(float v)
 {
     return v < 1 ? 1 : v > 1000 ? 1000 : (uint16_t)v;
 }
+
+/* The colour ids volume methods use for a rep of m coloured by c. */
+void ms_rep_volume_colors(ms_app *app, ms_molecule *m, const ms_rep_coloring *c,
+                          ms_rep_volcolors *out);
+/* Volume k of the builder's molecule, or NULL (a volid a later voldelete removed). */
+const ms_volume *ms_rep_volume(const ms_rep_build *b, float k);
+/* The colour range a volume method maps values of volume v with: the rep's when it colours
+ * by a scale method, unless that is 0 0 (no range was taken: VMD's rule); else v's own min
+ * and max. */
+void ms_rep_volume_range(const ms_rep_build *b, const ms_volume *v, float *lo, float *hi);
+/* out[i] = the colour scale's colour (lo .. hi) of volume v's value at point i of xyz (at
+ * the nearest point of its grid for points outside it), for n points, in parallel. */
+void ms_rep_color_by_volume(const ms_rep_build *b, const ms_volume *v, float lo, float hi,
+                            const float *xyz, size_t n, ms_rgba8 *out);
 
 /* Exclusive prefix sum of v[0..n) in place; returns the total. */
 size_t ms_rep_scan(size_t *v, size_t n);
@@ -160,7 +186,7 @@ int ms_rep_ribbon_divs(float res);
 
 /* What a display list was built from: equal keys, equal lists. */
 typedef struct ms_rep_key {
-    unsigned long style_gen, struct_gen, coord_gen, sel_gen, col_gen, colors_version;
+    unsigned long style_gen, struct_gen, coord_gen, sel_gen, col_gen, colors_version, vol_gen;
     long frame;
     size_t nframes;
 } ms_rep_key;
@@ -197,7 +223,7 @@ typedef struct ms_replist {
     ms_rep **reps;
     size_t n, cap;
     unsigned next_name;
-    unsigned long struct_gen, coord_gen;
+    unsigned long struct_gen, coord_gen, vol_gen;
     long last_frame;
 } ms_replist;
 

@@ -135,6 +135,11 @@ int ms_rep_update_data(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
 
 static int draws_now(const ms_rep *r) { return !strcmp(r->frames, "now"); }
 
+static int draws_volume(const ms_rep *r)
+{
+    return (ms_rep_method_at((size_t)r->style.method)->flags & MS_REP_VOLUME) != 0;
+}
+
 static void make_key(ms_app *app, const ms_molecule *m, const ms_replist *l, const ms_rep *r,
                      ms_rep_key *k)
 {
@@ -145,6 +150,12 @@ static void make_key(ms_app *app, const ms_molecule *m, const ms_replist *l, con
     k->sel_gen = r->cache->sel_gen;
     k->col_gen = r->cache->col_gen;
     k->colors_version = app->colors->version;
+    k->vol_gen = l->vol_gen;
+    if (draws_volume(r)) {   /* the data sets alone: no atoms, no frames */
+        k->struct_gen = k->coord_gen = k->sel_gen = 0;
+        k->frame = -1;
+        return;
+    }
     k->frame = draws_now(r) || strstr(r->frames, "now") ? m->frame : -1;
     k->nframes = !draws_now(r) || r->smooth ? m->nframes : 0;
 }
@@ -152,7 +163,8 @@ static void make_key(ms_app *app, const ms_molecule *m, const ms_replist *l, con
 int ms_rep_update(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
 {
     ms_rep_cache *c = r->cache;
-    if (m->nframes == 0 || m->frame < 0) {   /* nothing to draw (VMD needs a frame too) */
+    if ((m->nframes == 0 || m->frame < 0) && !draws_volume(r)) {
+        /* nothing to draw (VMD needs a frame too, but for volumes) */
         ms_dl_clear(&c->dl);
         c->dl_valid = 0;
         return 0;
@@ -217,13 +229,44 @@ static const float *frame_pos(ms_molecule *m, ms_rep *r, long f, ms_error *err)
     return c->pos;
 }
 
+/* The builder's input common to every frame (coordinates and frame data come later). */
+static void build_input(ms_molecule *m, ms_rep *r, ms_rep_build *b)
+{
+    ms_rep_cache *c = r->cache;
+    memset(b, 0, sizeof *b);
+    b->m = m;
+    b->on = &c->on;
+    b->idx = c->idx;
+    b->nsel = c->nsel;
+    b->color = c->col;
+    b->palette = c->palette;
+    b->p = ms_rep_style_params(&r->style);
+    b->scratch = &c->scratch;
+    b->coloring = &r->coloring;
+    b->cmin = r->cmin;
+    b->cmax = r->cmax;
+}
+
+/* A volume method: one build from the data sets (and the current frame's coordinates, when
+ * there is one). */
+static int build_volume(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
+{
+    ms_rep_build b;
+    build_input(m, r, &b);
+    ms_rep_volume_colors(app, m, &r->coloring, &b.vc);
+    b.pos = m->nframes && m->frame >= 0 ? m->frames[m->frame].pos : NULL;
+    return ms_rep_method_at((size_t)r->style.method)->build(&b, &r->cache->dl, err);
+}
+
 int ms_rep_build_frames(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
 {
     ms_rep_cache *c = r->cache;
-    if (m->nframes == 0 || m->frame < 0 || !c->sel_valid || !c->col_valid) return 0;
-    const ms_rep_method *meth = ms_rep_method_at((size_t)r->style.method);
+    if (!c->sel_valid || !c->col_valid) return 0;
     for (int id = 0; id < MS_COLOR_MAX; id++)
         c->palette[id] = ms_rgba8_from_float(ms_color_rgb(app->colors, id), 1.0f);
+    if (draws_volume(r)) return build_volume(app, m, r, err);
+    if (m->nframes == 0 || m->frame < 0) return 0;
+    const ms_rep_method *meth = ms_rep_method_at((size_t)r->style.method);
     long *frames = NULL, now = m->frame;
     size_t nf = 1;
     if (!draws_now(r) && ms_rep_frames_list(r->frames, (long)m->nframes, m->frame, &frames, &nf, err))
@@ -233,8 +276,8 @@ int ms_rep_build_frames(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
         long f = frames ? frames[k] : now;
         frame_data fd;
         memset(&fd, 0, sizeof fd);
-        ms_rep_build b = {m, NULL, &c->on, c->idx, c->nsel, c->col, c->palette,
-                          ms_rep_style_params(&r->style), &c->scratch};
+        ms_rep_build b;
+        build_input(m, r, &b);
         rc = !(b.pos = frame_pos(m, r, f, err)) || frame_specific(app, m, r, f, &fd, &b, err) ||
              meth->build(&b, &c->dl, err) ? -1 : 0;
         ms_bitset_free(&fd.on);

@@ -220,12 +220,34 @@ void ms_view_points_cov(const float *pos, const uint32_t *idx, size_t n, float c
     atoms_cov(pos, idx, n, center, scale);
 }
 
+/* A molecule of volumes alone: the centre of their boxes' union, scaled as atoms at its
+ * corners would be. */
+static void volumes_cov(const ms_molecule *m, float center[3], float *scale)
+{
+    float lo[3], hi[3], pts[6];
+    for (size_t k = 0; k < m->nvolumes; k++) {
+        float a[3], b[3];
+        ms_volume_bounds(&m->volumes[k], a, b);
+        for (int d = 0; d < 3; d++) {
+            lo[d] = k == 0 || a[d] < lo[d] ? a[d] : lo[d];
+            hi[d] = k == 0 || b[d] > hi[d] ? b[d] : hi[d];
+        }
+    }
+    memcpy(pts, lo, sizeof lo);
+    memcpy(pts + 3, hi, sizeof hi);
+    atoms_cov(pts, NULL, 2, center, scale);
+}
+
 int ms_view_mol_cov(ms_app *app, ms_molecule *m, float center[3], float *scale)
 {
     if (ms_view_cov_hook && ms_view_cov_hook(app, m, center, scale)) return 1;
     const float *pos = ms_mol_pos(m);
     if (pos && m->atoms.n) {
         atoms_cov(pos, NULL, m->atoms.n, center, scale);
+        return 1;
+    }
+    if (m->nvolumes) {
+        volumes_cov(m, center, scale);
         return 1;
     }
     if (app->ugraphics_slot >= 0 && m->ext[app->ugraphics_slot])

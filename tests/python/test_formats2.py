@@ -54,6 +54,7 @@ def trajectories(mda, np, exe, p, tmp):
             report(same and float(np.abs(ours - ref).max()) < 1e-5,
                    "TRR written by MDAnalysis: coordinates within 1e-5 A",
                    "largest difference %s" % (np.abs(ours - ref).max() if same else ours.shape))
+    large_xtc(mda, np, exe, p, tmp)
     # Our TRR writer, read back by MDAnalysis.
     out = tmp("ours.trr")
     run(exe, ["-o", out, p("helix.psf"), p("helix.dcd")])
@@ -63,6 +64,48 @@ def trajectories(mda, np, exe, p, tmp):
                     (u.trajectory[k] or u.atoms for k in range(10))))
     report(len(u.trajectory) == 10 and worst < 1e-4,
            "msdump's TRR read by MDAnalysis: 10 frames within 1e-4 A", "worst %g" % worst)
+
+
+def large_xtc(mda, np, exe, p, tmp):
+    """A system large enough for frames to be decoded ahead on worker threads (1tii
+    replicated to 12000 atoms, 7 frames moved and jittered differently): every frame equal
+    to the bit with three threads and with one, and every second frame with step 2."""
+    pdb, xtc = tmp("big.pdb"), tmp("big.xtc")
+    rep = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "bench",
+                       "replicate.py")
+    subprocess.run([sys.executable, rep, p("1tii.pdb"), "12000", pdb], check=True,
+                   capture_output=True)
+    u = mda.Universe(pdb)
+    rng = np.random.default_rng(7)
+    base = u.atoms.positions.copy()
+    with mda.Writer(xtc, u.atoms.n_atoms) as w:
+        for k in range(7):
+            u.atoms.positions = base + 0.37 * k + rng.normal(0, 0.1 * k, base.shape)
+            w.write(u.atoms)
+    ref = np.array([ts.positions.copy() for ts in mda.Universe(pdb, xtc).trajectory],
+                   dtype=np.float32)
+    for threads, step in (("3", 1), ("1", 1), ("3", 2)):
+        env = dict(os.environ)
+        env["MOLSCOPE_THREADS"] = threads
+        name = "XTC of %d atoms, %s thread(s), step %d%s" % (
+            u.atoms.n_atoms, threads, step,
+            " (frames decoded ahead)" if threads != "1" and step == 1 else "")
+        out = subprocess.run([exe, pdb, "-s", str(step), xtc], capture_output=True, text=True,
+                             env=env)
+        if out.returncode != 0:
+            report(False, name, out.stderr.strip())
+            continue
+        xyz = {}
+        for line in out.stdout.splitlines():
+            if line.startswith("xyz\t"):
+                f = line.split("\t")
+                xyz.setdefault(int(f[1]), []).append([float(x) for x in f[3:6]])
+        ours = np.array([xyz[k] for k in sorted(xyz)][1:], dtype=np.float32)
+        want = ref[::step]
+        same = ours.shape == want.shape
+        report(same and bool((ours == want).all()), name + ": every coordinate equal to the bit",
+               "shapes %s %s, largest difference %s" % (
+                   ours.shape, want.shape, np.abs(ours - want).max() if same else "-"))
 
 
 def same_atoms(name, ours, u, np, names=True, tol=1e-3):

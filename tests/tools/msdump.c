@@ -7,11 +7,11 @@
  *   cell    k a b c alpha beta gamma                (once per frame)
  *   xyz     k i x y z                               (per frame and atom)
  *   volume  v n0 n1 n2 ox oy oz d00 d01 ... d22 min max mean  (once per volume)
- * usage: msdump [-o out] [-a assembly] [-t type] file [[-t type] file ...]: the first file
- * makes the
- * molecule, the others are added to it; with -o the molecule (every frame) is written to
- * `out` instead, in the format its extension names (a volume format writes the first
- * volume); -a builds a biological assembly from the first file. Exit status 1 with the error on stderr
+ * usage: msdump [-o out] [-a assembly] [-s step] [-t type] file [[-t type] file ...]: the
+ * first file makes the molecule, the others are added to it (every step-th frame of those
+ * after -s); with -o the molecule (every frame) is written to `out` instead, in the format
+ * its extension names (a volume format writes the first volume); -a builds a biological
+ * assembly from the first file. Exit status 1 with the error on stderr
  * when a load or the write fails. */
 #include "config.h"
 #include "builtin/builtin.h"
@@ -19,6 +19,7 @@
 #include "fileio/write.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void dump(const ms_molecule *m)
@@ -58,6 +59,7 @@ int main(int argc, char **argv)
     ms_molecule *m = NULL;
     ms_error err = {{0}};
     const char *type = NULL, *out = NULL, *assembly = NULL;
+    long step = 1;
     int status = 0;
     for (int i = 1; i < argc && status == 0; i++) {
         if (!strcmp(argv[i], "-t") && i + 1 < argc) {
@@ -72,9 +74,14 @@ int main(int argc, char **argv)
             assembly = argv[++i];
             continue;
         }
+        if (!strcmp(argv[i], "-s") && i + 1 < argc) {
+            step = strtol(argv[++i], NULL, 10);
+            continue;
+        }
         ms_load_opts o;
         ms_load_opts_default(&o);
         o.waitfor = -1;
+        o.step = step > 0 ? step : 1;
         o.type = type;
         o.assembly = m ? NULL : assembly;
         type = NULL;
@@ -86,7 +93,8 @@ int main(int argc, char **argv)
         }
     }
     if (!m && status == 0) {
-        fprintf(stderr, "usage: msdump [-o out] [-t type] file [[-t type] file ...]\n");
+        fprintf(stderr, "usage: msdump [-o out] [-a assembly] [-s step] [-t type] file "
+                        "[[-t type] file ...]\n");
         status = 1;
     }
     if (status == 0 && out) {

@@ -170,6 +170,56 @@ static void test_gaussian_isosurface(void)
 }
 
 /* An ABI 1 plugin: its shorter description is padded with NULL volume members. */
+/* A skewed 4 x 3 x 5 grid of the linear field f(p) = 1 + 2x - y + 0.5z (trilinear
+ * interpolation reproduces it exactly): the sampler, grid-coordinate interpolation with
+ * clamping, points and bounds, worked out by hand. */
+static void test_sampling(void)
+{
+    t_suite = "volumes";
+    ms_volume v;
+    memset(&v, 0, sizeof v);
+    const float d[3][3] = {{1, 0, 0}, {0.5f, 1, 0}, {0.25f, 0.5f, 2}};
+    v.n[0] = 4, v.n[1] = 3, v.n[2] = 5;
+    v.origin[0] = -1, v.origin[1] = 2, v.origin[2] = 0.5f;
+    memcpy(v.delta, d, sizeof d);
+    float data[60];
+    v.data = data;
+    for (int k = 0; k < 5; k++)
+        for (int j = 0; j < 3; j++)
+            for (int i = 0; i < 4; i++) {
+                double g[3] = {i, j, k};
+                float p[3];
+                ms_volume_point(&v, g, p);
+                data[i + 4 * (j + 3 * k)] = 1 + 2 * p[0] - p[1] + 0.5f * p[2];
+            }
+    float p[3] = {-1 + 1.5f + 0.5f * 1.25f + 0.25f * 2.5f, 2 + 1.25f + 0.5f * 2.5f, 0.5f + 2 * 2.5f};
+    double want = 1 + 2.0 * p[0] - p[1] + 0.5 * p[2];
+    ms_volume_sampler s;
+    ms_volume_sampler_init(&s, &v);
+    t_ok(s.ok && fabs(ms_volume_sample(&s, p) - want) < 1e-4 &&
+             fabs(ms_volume_value(&v, p, -99) - want) < 1e-4,
+         "skewed grid: the sampler and ms_volume_value give the field at grid (1.5, 1.25, 2.5) "
+         "(%g %g, want %g)", ms_volume_sample(&s, p), ms_volume_value(&v, p, -99), want);
+    double g[3] = {-3, 1, 9}, edge[3] = {0, 1, 4};
+    float q[3], e[3];
+    ms_volume_point(&v, edge, e);
+    ms_volume_point(&v, g, q);
+    t_ok(fabs(ms_volume_value_at(&v, g) - data[0 + 4 * (1 + 3 * 4)]) < 1e-5 &&
+             fabs(ms_volume_sample(&s, q) - (1 + 2 * e[0] - e[1] + 0.5f * e[2])) < 1e-4 &&
+             ms_volume_value(&v, q, -99) == -99,
+         "outside: clamped to the nearest grid point (the sampler), the outside value (value)");
+    float lo[3], hi[3];
+    ms_volume_bounds(&v, lo, hi);
+    /* corners: origin + {0,3} a + {0,2} b + {0,4} c */
+    t_ok(lo[0] == -1 && fabsf(hi[0] - (-1 + 3 + 1 + 1)) < 1e-6f && lo[1] == 2 &&
+             fabsf(hi[1] - (2 + 2 + 2)) < 1e-6f && lo[2] == 0.5f && fabsf(hi[2] - 8.5f) < 1e-6f,
+         "bounds of the skewed box's corners (%g..%g %g..%g %g..%g)", lo[0], hi[0], lo[1],
+         hi[1], lo[2], hi[2]);
+    memset(v.delta, 0, sizeof v.delta);
+    ms_volume_sampler_init(&s, &v);
+    t_ok(!s.ok && ms_volume_sample(&s, p) == 0, "degenerate axes: the sampler says so, gives 0");
+}
+
 static void test_abi1(void)
 {
     t_suite = "abi";
@@ -264,6 +314,7 @@ int main(void)
     if (ms_test_add_builtin(&reg)) return 1;
     test_grids();
     test_gaussian_isosurface();
+    test_sampling();
     test_abi1();
     test_errors();
     test_xtc_truncated();
