@@ -7,6 +7,7 @@
  *   scene/      display lists, colours, materials, user graphics, the Scene devices draw
  *   view/       camera and display settings, lights, axes, stage, rotate/translate/scale
  *   render/     the render devices by VMD name and the file exporters (Tachyon, POV3, OBJ)
+ *   rt/         TachyonInternal: the photorealistic CPU ray tracer on Embree
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   app/        the program: command line, startup order, shell
  *   ../plugins  file formats, each a module loaded at run time (ms_plugin.h)
@@ -32,6 +33,7 @@
 #include "scene/scene.h"
 #include "view/view.h"
 #include "render/render.h"
+#include "rt/rt.h"
 #include "app/app.h"
 #include "commands/commands.h"
 

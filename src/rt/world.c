@@ -1,0 +1,382 @@
+/* world.c: the traced world built from a scene. Each placed display list becomes an Embree
+ * scene of one geometry per primitive kind (spheres, cylinders, cones, cap discs, the mesh)
+ * in the list's own coordinates, instanced with the list's model-to-world transform. Lines,
+ * points and text become thin cylinders and spheres in world space, drawn as the Tachyon
+ * exporter draws them, and materials become Tachyon's texture terms, so the two devices
+ * agree. */
+#include "config.h"
+#include "rt/rt_internal.h"
+#include "base/threads.h"
+#include "render/export.h"
+#include "scene/mat4.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const rt_prim *const rt_prims[RT_NKINDS] = {&rt_sphere_prim, &rt_cylinder_prim, &rt_cone_prim,
+                                            &rt_ring_prim, &rt_mesh_prim};
+
+/* ---------------------------------------------------------------- helpers */
+
+float rt_normalize(float v[3])
+{
+    float l = sqrtf(rt_dot(v, v));
+    if (l > 0) {
+        float inv = 1.0f / l;
+        v[0] *= inv;
+        v[1] *= inv;
+        v[2] *= inv;
+    }
+    return l;
+}
+
+void rt_xf_point(const float m[12], const float p[3], float out[3])
+{
+    float x = p[0], y = p[1], z = p[2];
+    for (int r = 0; r < 3; r++) out[r] = m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3];
+}
+
+void rt_m3_vec(const float m[9], const float v[3], float out[3])
+{
+    float x = v[0], y = v[1], z = v[2];
+    for (int r = 0; r < 3; r++) out[r] = m[3 * r] * x + m[3 * r + 1] * y + m[3 * r + 2] * z;
+}
+
+void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err)
+{
+    void *p = ms_alloc_array(n ? n : 1, elsize);
+    if (!p || ms_grow((void **)&w->owned, &w->capowned, w->nowned + 1, sizeof *w->owned)) {
+        free(p);
+        ms_error_set(err, "out of memory");
+        return NULL;
+    }
+    w->owned[w->nowned++] = p;
+    return p;
+}
+
+static ms_displaylist *new_list(rt_world *w, ms_error *err)
+{
+    ms_displaylist *dl = malloc(sizeof *dl);
+    if (!dl || ms_grow((void **)&w->lists, &w->caplists, w->nlists + 1, sizeof *w->lists)) {
+        free(dl);
+        ms_error_set(err, "out of memory");
+        return NULL;
+    }
+    ms_dl_init(dl);
+    w->lists[w->nlists++] = dl;
+    return dl;
+}
+
+/* Tachyon's texture terms for a list, as render/tachyon.c writes them (unlit lists: ambient
+ * 1, no diffuse, no mirror; the highlight stays, as in VMD's files). */
+static void material_terms(const ms_material *m, int lit, rt_material *t)
+{
+    t->ambient = lit ? m->ambient : 1.0f;
+    t->diffuse = lit ? m->diffuse : 0.0f;
+    t->mirror = lit ? m->mirror : 0.0f;
+    t->phong = m->specular;
+    t->phongexp = m->shininess;
+    t->opacity = m->opacity;
+    t->outline = m->outline;
+    t->outlinewidth = m->outlinewidth;
+    t->r3d = m->transmode != 0;
+}
+
+/* xf, its inverse and its normal matrix; -1 when xf is singular (nothing to see). */
+static int item_matrices(rt_item *ri, const float x[16])
+{
+    double a[3][3], inv[3][3];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) a[r][c] = x[4 * r + c];
+    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    if (!(fabs(det) > 1e-30) || !isfinite(det)) return -1;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+            inv[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
+        }
+    for (int r = 0; r < 3; r++) {
+        double t = 0;
+        for (int c = 0; c < 3; c++) {
+            ri->xf[4 * r + c] = (float)a[r][c];
+            ri->inv[4 * r + c] = (float)inv[r][c];
+            ri->nm[3 * r + c] = (float)inv[c][r];
+            t -= inv[r][c] * x[4 * c + 3];
+        }
+        ri->xf[4 * r + 3] = x[4 * r + 3];
+        ri->inv[4 * r + 3] = (float)t;
+    }
+    return 0;
+}
+
+static int any_translucent(const ms_rgba8 *c, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (c[i].a < 255) return 1;
+    return 0;
+}
+
+/* ---------------------------------------------------------------- geometries of a list */
+
+/* Cap discs of closed cylinder ends and of cone bases (the exporter closes cone bases). */
+static int make_caps(rt_world *w, const ms_displaylist *dl, rt_geom *g, ms_error *err)
+{
+    const ms_dl_cylinders *cy = &dl->cylinders;
+    const ms_dl_cones *co = &dl->cones;
+    size_t n = 0;
+    for (size_t i = 0; i < cy->n; i++) n += !!(cy->caps[i] & MS_CAP_BASE) + !!(cy->caps[i] & MS_CAP_APEX);
+    for (size_t i = 0; i < co->n; i++) n += co->rbase[i] > 0;
+    g->n = n;
+    if (!n) return 0;
+    float *c = rt_world_alloc(w, 3 * n, sizeof(float), err), *nr = rt_world_alloc(w, 3 * n, sizeof(float), err);
+    float *ro = rt_world_alloc(w, n, sizeof(float), err), *ri = rt_world_alloc(w, n, sizeof(float), err);
+    ms_rgba8 *col = rt_world_alloc(w, n, sizeof(ms_rgba8), err);
+    if (!c || !nr || !ro || !ri || !col) return -1;
+    size_t k = 0;
+    for (int pass = 0; pass < 3; pass++) {
+        int cones = pass == 2;
+        size_t m = cones ? co->n : cy->n;
+        for (size_t i = 0; i < m; i++) {
+            const float *a = (cones ? co->base : cy->base) + 3 * i, *b = (cones ? co->apex : cy->apex) + 3 * i;
+            int want = cones ? co->rbase[i] > 0 : (cy->caps[i] & (pass ? MS_CAP_APEX : MS_CAP_BASE));
+            if (!want) continue;
+            const float *at = pass == 1 ? b : a;
+            for (int d = 0; d < 3; d++) {
+                c[3 * k + d] = at[d];
+                nr[3 * k + d] = b[d] - a[d];
+            }
+            ro[k] = cones ? co->rbase[i] : cy->radius[i];
+            ri[k] = 0;
+            col[k] = cones ? co->color[i] : cy->color[i];
+            k++;
+        }
+    }
+    g->a = c;
+    g->b = nr;
+    g->ra = ro;
+    g->rb = ri;
+    g->color = col;
+    return 0;
+}
+
+/* The geometry of one kind of a list (g->n == 0: none). */
+static int fill_geom(rt_world *w, const ms_displaylist *dl, rt_kind kind, rt_geom *g, ms_error *err)
+{
+    memset(g, 0, sizeof *g);
+    g->kind = kind;
+    switch (kind) {
+    case RT_SPHERE:
+        g->n = dl->spheres.n, g->a = dl->spheres.xyz, g->ra = dl->spheres.radius;
+        g->color = dl->spheres.color;
+        break;
+    case RT_CYLINDER:
+        g->n = dl->cylinders.n, g->a = dl->cylinders.base, g->b = dl->cylinders.apex;
+        g->ra = dl->cylinders.radius, g->color = dl->cylinders.color;
+        break;
+    case RT_CONE:
+        g->n = dl->cones.n, g->a = dl->cones.base, g->b = dl->cones.apex;
+        g->ra = dl->cones.rbase, g->rb = dl->cones.rapex, g->color = dl->cones.color;
+        break;
+    case RT_RING:
+        return make_caps(w, dl, g, err);
+    default:
+        if (!dl->mesh.nverts) return 0;
+        g->n = dl->mesh.ntris, g->xyz = dl->mesh.xyz, g->normal = dl->mesh.normal;
+        g->color = dl->mesh.color, g->tri = dl->mesh.tri;
+        g->nverts = dl->mesh.nverts, g->vcap = dl->mesh.vcap;
+        break;
+    }
+    return 0;
+}
+
+static int no_scene(rt_world *w, ms_error *err)
+{
+    if (!rt_device_check(w->dev, "Embree scene", err)) ms_error_set(err, "out of memory");
+    return -1;
+}
+
+/* An Embree scene of the list's geometries, placed by xf as instance w->nitems. */
+static int add_item(rt_world *w, const ms_displaylist *dl, const float xf[16], const rt_material *mat,
+                    enum RTCBuildQuality quality, ms_error *err)
+{
+    rt_item *ri = &w->items[w->nitems];     /* room for every item was made up front */
+    memset(ri, 0, sizeof *ri);
+    if (item_matrices(ri, xf)) return 0;
+    ri->mat = *mat;
+    RTCScene sub = rtcNewScene(w->dev);
+    if (!sub) return no_scene(w, err);
+    rtcSetSceneBuildQuality(sub, quality);
+    unsigned mask = 0;
+    for (int k = 0; k < RT_NKINDS; k++) {
+        rt_geom *g = &ri->geoms[ri->ngeoms];
+        if (fill_geom(w, dl, (rt_kind)k, g, err)) goto fail;
+        if (!g->n) continue;
+        g->mat = &ri->mat;
+        g->transparent = mat->opacity < 1.0f ||
+                         any_translucent(g->color, k == RT_MESH ? dl->mesh.nverts : g->n);
+        RTCGeometry geom = rt_prims[k]->geometry(w, g, err);
+        if (!geom) goto fail;
+        unsigned gm = g->transparent ? RT_MASK_TRANS : RT_MASK_OPAQUE;
+        rtcSetGeometryMask(geom, gm);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(sub, geom, (unsigned)ri->ngeoms++);
+        rtcReleaseGeometry(geom);
+        mask |= gm;
+        w->has_trans |= g->transparent;
+        w->nprims += g->n;
+    }
+    rtcCommitScene(sub);
+    if (rt_device_check(w->dev, "Embree build", err)) goto fail;
+    if (ri->ngeoms) {
+        RTCGeometry inst = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, sub);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, ri->xf);
+        rtcSetGeometryMask(inst, mask);
+        rtcCommitGeometry(inst);
+        rtcAttachGeometryByID(w->top, inst, (unsigned)w->nitems++);
+        rtcReleaseGeometry(inst);
+    }
+    rtcReleaseScene(sub);
+    return rt_device_check(w->dev, "Embree instance", err);
+fail:
+    rtcReleaseScene(sub);
+    return -1;
+}
+
+/* ---------------------------------------------------------------- lines, points, text */
+
+typedef struct strokes {
+    ms_displaylist *dl;
+    ms_rgba8 col;
+    float radius, last[3];
+    int have_last, oom;
+} strokes;
+
+static void stroke(void *ud, const float a[3], const float b[3])
+{
+    strokes *s = ud;
+    if (!s->have_last || memcmp(s->last, a, sizeof s->last))
+        s->oom |= ms_dl_sphere(s->dl, a, s->radius, s->col, 12);
+    s->oom |= ms_dl_cylinder(s->dl, a, b, s->radius, s->col, 0, 12);
+    s->oom |= ms_dl_sphere(s->dl, b, s->radius, s->col, 12);
+    memcpy(s->last, b, sizeof s->last);
+    s->have_last = 1;
+}
+
+static void dash(void *ud, const float a[3], const float b[3])
+{
+    strokes *s = ud;
+    s->oom |= ms_dl_cylinder(s->dl, a, b, s->radius, s->col, 0, 12);
+}
+
+/* Lines, points and text of a placed list as world-space cylinders and spheres (sizes in
+ * world units, as the exporter writes them). */
+static int strokes_of(const ms_scene_item *it, ms_displaylist *out)
+{
+    const ms_displaylist *dl = it->dl;
+    strokes s = {out, {0, 0, 0, 0}, 0, {0, 0, 0}, 0, 0};
+    for (size_t i = 0; i < dl->lines.n; i++) {
+        float a[3], b[3];
+        ms_mat4_point(it->xform, dl->lines.a + 3 * i, a);
+        ms_mat4_point(it->xform, dl->lines.b + 3 * i, b);
+        s.radius = dl->lines.width[i] * MS_EXPORT_LINE_RADIUS;
+        s.col = dl->lines.color[i];
+        if (dl->lines.style[i] == MS_LINE_DASHED) ms_export_dashes(a, b, dash, &s);
+        else s.oom |= ms_dl_cylinder(out, a, b, s.radius, s.col, 0, 12);
+    }
+    for (size_t i = 0; i < dl->points.n; i++) {
+        float c[3];
+        ms_mat4_point(it->xform, dl->points.xyz + 3 * i, c);
+        s.oom |= ms_dl_sphere(out, c, dl->points.size[i] * MS_EXPORT_LINE_RADIUS, dl->points.color[i], 12);
+    }
+    for (size_t i = 0; i < dl->texts.n; i++) {
+        float c[3];
+        ms_mat4_point(it->xform, dl->texts.xyz + 3 * i, c);
+        s.radius = dl->texts.thickness[i] * MS_EXPORT_LINE_RADIUS;
+        s.col = dl->texts.color[i];
+        s.have_last = 0;
+        ms_export_text(dl->texts.chars + dl->texts.start[i], c, dl->texts.size[i], stroke, &s);
+    }
+    return s.oom ? -1 : 0;
+}
+
+/* ---------------------------------------------------------------- the world */
+
+/* The secondary-ray offset: a millionth of the scene's size, at least 1e-5. */
+static float world_eps(const ms_scene *s)
+{
+    float big = fabsf(s->cam.eye[0]) + fabsf(s->cam.eye[1]) + fabsf(s->cam.eye[2]);
+    for (size_t i = 0; i < s->nitems; i++) {
+        float lo[3], hi[3], a[3], b[3];
+        if (!ms_dl_bounds(s->items[i].dl, lo, hi)) continue;
+        ms_mat4_point(s->items[i].xform, lo, a);
+        ms_mat4_point(s->items[i].xform, hi, b);
+        for (int k = 0; k < 3; k++)
+            if (isfinite(a[k]) && isfinite(b[k])) big = fmaxf(big, fmaxf(fabsf(a[k]), fabsf(b[k])));
+    }
+    return fmaxf(1e-5f, big * 2e-6f);
+}
+
+static int add_scene_item(rt_world *w, const ms_scene_item *it, enum RTCBuildQuality q, ms_error *err)
+{
+    rt_material mat, flat;
+    material_terms(&it->mat, it->dl->lit, &mat);
+    if (add_item(w, it->dl, it->xform, &mat, q, err)) return -1;
+    const ms_displaylist *dl = it->dl;
+    if (!dl->lines.n && !dl->points.n && !dl->texts.n) return 0;
+    ms_displaylist *extra = new_list(w, err);
+    if (!extra) return -1;
+    if (strokes_of(it, extra)) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    float id[16];
+    ms_mat4_identity(id);
+    material_terms(&it->mat, 0, &flat);
+    return add_item(w, extra, id, &flat, q, err);
+}
+
+int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
+{
+    memset(w, 0, sizeof *w);
+    w->dev = rt_device(err);
+    if (!w->dev) return -1;
+    w->masks = rt_device_has_masks();
+    w->eps = world_eps(s);
+    /* every placed list gives at most two items (its primitives, its lines and text); the
+     * geometries keep pointers into the items, so the array never moves */
+    w->capitems = 2 * s->nitems + 1;
+    w->items = ms_calloc_array(w->capitems, sizeof *w->items);
+    w->top = rtcNewScene(w->dev);
+    if (!w->items || !w->top) {
+        if (!w->top) no_scene(w, err);
+        else ms_error_set(err, "out of memory");
+        goto fail;
+    }
+    rtcSetSceneBuildQuality(w->top, RTC_BUILD_QUALITY_MEDIUM);
+    for (size_t i = 0; i < s->nitems; i++)
+        if (add_scene_item(w, &s->items[i], RTC_BUILD_QUALITY_MEDIUM, err)) goto fail;
+    rtcCommitScene(w->top);
+    if (rt_device_check(w->dev, "Embree build", err)) goto fail;
+    return 0;
+fail:
+    rt_world_free(w);
+    return -1;
+}
+
+void rt_world_free(rt_world *w)
+{
+    if (w->top) rtcReleaseScene(w->top);
+    for (size_t i = 0; i < w->nowned; i++) free(w->owned[i]);
+    for (size_t i = 0; i < w->nlists; i++) {
+        ms_dl_free(w->lists[i]);
+        free(w->lists[i]);
+    }
+    free(w->owned);
+    free(w->lists);
+    free(w->items);
+    memset(w, 0, sizeof *w);
+}
