@@ -10,71 +10,16 @@
 #include "render/render.h"
 #include "scene/displaylist.h"
 #include "scene/mat4.h"
+#include "replica.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-const ms_plugin *ms_plugin_entry(void);
-
-typedef struct sys {
-    size_t n;                 /* atoms */
-    float *pos, *radius;
-    ms_rgba8 *color;
-    uint32_t *bstart, *bto;   /* CSR bonds of the replicated system */
-} sys;
-
-static int make_system(const char *data, int copies, sys *s)
-{
-    ms_registry reg;
-    ms_registry_init(&reg);
-    ms_registry_add(&reg, ms_plugin_entry(), NULL, NULL);
-    char path[1024];
-    snprintf(path, sizeof path, "%s/1tii.pdb", data);
-    ms_load_opts o;
-    ms_load_opts_default(&o);
-    o.waitfor = -1;
-    ms_error err = {{0}};
-    ms_molecule *m = ms_load_new(&reg, path, &o, &err);
-    if (!m) {
-        fprintf(stderr, "bench_scene: %s: %s\n", path, err.msg);
-        return -1;
-    }
-    size_t n0 = m->atoms.n, nb0 = m->bonds.start[n0];
-    s->n = n0 * (size_t)copies;
-    s->pos = malloc(3 * s->n * sizeof(float));
-    s->radius = malloc(s->n * sizeof(float));
-    s->color = malloc(s->n * sizeof(ms_rgba8));
-    s->bstart = malloc((s->n + 1) * sizeof(uint32_t));
-    s->bto = malloc(nb0 * (size_t)copies * sizeof(uint32_t));
-    if (!s->pos || !s->radius || !s->color || !s->bstart || !s->bto) return -1;
-    const float *p0 = ms_mol_pos(m);
-    int side = 1;
-    while (side * side * side < copies) side++;
-    for (int c = 0; c < copies; c++) {
-        float off[3] = {(float)(c % side) * 120.0f, (float)(c / side % side) * 120.0f,
-                        (float)(c / side / side) * 180.0f};
-        for (size_t i = 0; i < n0; i++) {
-            size_t a = (size_t)c * n0 + i;
-            for (int k = 0; k < 3; k++) s->pos[3 * a + k] = p0[3 * i + k] + off[k];
-            s->radius[a] = m->atoms.radius[i];
-            int z = m->atoms.atomicnumber[i];
-            s->color[a] = z == 6 ? (ms_rgba8){64, 191, 191, 255} : z == 8 ? (ms_rgba8){255, 0, 0, 255}
-                          : z == 7 ? (ms_rgba8){0, 0, 255, 255} : (ms_rgba8){255, 255, 0, 255};
-            s->bstart[a] = (uint32_t)((size_t)c * nb0 + m->bonds.start[i]);
-        }
-        for (size_t b = 0; b < nb0; b++) s->bto[(size_t)c * nb0 + b] = m->bonds.to[b] + (uint32_t)((size_t)c * n0);
-    }
-    s->bstart[s->n] = (uint32_t)(nb0 * (size_t)copies);
-    ms_mol_free(m);
-    ms_registry_free(&reg);
-    return 0;
-}
-
 /* ---------------------------------------------------------------- VDW */
 
 typedef struct job {
-    const sys *s;
+    const bench_sys *s;
     ms_displaylist *dl;
     size_t s0, c0;            /* first sphere and cylinder of the block */
 } job;
@@ -103,7 +48,7 @@ typedef struct lic {
 static void fill_bonds(void *ctx, size_t b, size_t e, int t)
 {
     lic *l = ctx;
-    const sys *s = l->j.s;
+    const bench_sys *s = l->j.s;
     ms_dl_cylinders *cy = &l->j.dl->cylinders;
     for (size_t i = b; i < e; i++) {
         size_t c = l->j.c0 + 2 * (size_t)l->first[i];
@@ -163,7 +108,7 @@ static void fill_tube(void *ctx, size_t b, size_t e, int t)
 
 static double now(void) { return ms_now(); }
 
-static void bench_vdw(const sys *s, ms_error *err)
+static void bench_vdw(const bench_sys *s, ms_error *err)
 {
     ms_displaylist dl;
     ms_dl_init(&dl);
@@ -187,7 +132,7 @@ static void bench_vdw(const sys *s, ms_error *err)
     ms_dl_free(&dl);
 }
 
-static void bench_licorice(const sys *s, ms_error *err)
+static void bench_licorice(const bench_sys *s, ms_error *err)
 {
     ms_displaylist dl;
     ms_dl_init(&dl);
@@ -210,7 +155,7 @@ static void bench_licorice(const sys *s, ms_error *err)
 }
 
 /* NewCartoon-like: 10 spline points per residue (1/8 of the atoms), a ring of 12. */
-static void bench_cartoon(const sys *s, ms_error *err)
+static void bench_cartoon(const bench_sys *s, ms_error *err)
 {
     size_t npts = s->n / 8 * 10, ring = 12;
     float *path = malloc(3 * npts * sizeof(float));
@@ -237,7 +182,7 @@ static void bench_cartoon(const sys *s, ms_error *err)
 }
 
 /* The Tachyon exporter on the first 200k spheres. */
-static void bench_export(const sys *s, ms_error *err)
+static void bench_export(const bench_sys *s, ms_error *err)
 {
     ms_displaylist dl;
     ms_dl_init(&dl);
@@ -272,9 +217,9 @@ int main(int argc, char **argv)
 {
     const char *data = argc > 1 ? argv[1] : "tests/data";
     int copies = argc > 2 ? atoi(argv[2]) : 176;
-    sys s;
+    bench_sys s;
     memset(&s, 0, sizeof s);
-    if (copies < 1 || make_system(data, copies, &s)) return 1;
+    if (copies < 1 || bench_sys_make(data, copies, &s)) return 1;
     printf("system: %zu atoms, %u bonds (1tii x %d), %d threads\n", s.n, s.bstart[s.n] / 2,
            copies, ms_threads_count());
     ms_error err = {{0}};
@@ -282,10 +227,6 @@ int main(int argc, char **argv)
     bench_licorice(&s, &err);
     bench_cartoon(&s, &err);
     bench_export(&s, &err);
-    free(s.pos);
-    free(s.radius);
-    free(s.color);
-    free(s.bstart);
-    free(s.bto);
+    bench_sys_free(&s);
     return 0;
 }

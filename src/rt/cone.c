@@ -30,7 +30,7 @@ static void cone_bounds(const struct RTCBoundsFunctionArguments *args)
 }
 
 /* |p_perp|^2 = (ra + k s)^2 along the ray, from an origin moved next to the cone. */
-static int cone_test(const rt_geom *g, unsigned prim, const rt_uray *r, float *t)
+static int cone_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[2])
 {
     const float *A = g->a + 3 * (size_t)prim, *B = g->b + 3 * (size_t)prim;
     float ra = g->ra[prim], ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
@@ -45,18 +45,17 @@ static int cone_test(const rt_geom *g, unsigned prim, const rt_uray *r, float *t
     float qc = rt_dot(oc, oc) - ocs * ocs - r0 * r0, roots[2];
     if (fabsf(qa) < 1e-12f * rt_dot(r->d, r->d)) {
         if (qb == 0.0f) return 0;
-        roots[0] = roots[1] = -0.5f * qc / qb;
+        roots[0] = -0.5f * qc / qb;
+        roots[1] = INFINITY;
     } else if (!rt_quadratic(qa, qb, qc, &roots[0], &roots[1])) {
         return 0;
     }
+    int n = 0;
     for (int j = 0; j < 2; j++) {
         float tt = t0 + roots[j], s = ocs + roots[j] * ds;
-        if (tt > r->tnear && tt < r->tfar && s >= 0.0f && s <= len && ra + k * s >= 0.0f) {
-            *t = tt;
-            return 1;
-        }
+        if (tt > r->tnear && tt < r->tfar && s >= 0.0f && s <= len && ra + k * s >= 0.0f) t[n++] = tt;
     }
-    return 0;
+    return n;
 }
 
 static void cone_intersect(const struct RTCIntersectFunctionNArguments *args)

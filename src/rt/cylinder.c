@@ -26,7 +26,7 @@ static void cylinder_bounds(const struct RTCBoundsFunctionArguments *args)
     o->lower_z = fminf(a[2], b[2]) - e[2], o->upper_z = fmaxf(a[2], b[2]) + e[2];
 }
 
-static int cylinder_test(const rt_geom *g, unsigned prim, const rt_uray *r, float *t)
+static int cylinder_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[2])
 {
     const float *A = g->a + 3 * (size_t)prim, *B = g->b + 3 * (size_t)prim;
     float rad = g->ra[prim], ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
@@ -46,14 +46,12 @@ static int cylinder_test(const rt_geom *g, unsigned prim, const rt_uray *r, floa
     if (!(qa > 0.0f) ||
         !rt_quadratic(qa, rt_dot(dp, ocp), rt_dot(ocp, ocp) - rad * rad, &roots[0], &roots[1]))
         return 0;
+    int n = 0;
     for (int k = 0; k < 2; k++) {
         float tt = t0 + roots[k], s = ocs + roots[k] * ds;
-        if (tt > r->tnear && tt < r->tfar && s >= 0.0f && s <= len) {
-            *t = tt;
-            return 1;
-        }
+        if (tt > r->tnear && tt < r->tfar && s >= 0.0f && s <= len) t[n++] = tt;
     }
-    return 0;
+    return n;
 }
 
 static void cylinder_intersect(const struct RTCIntersectFunctionNArguments *args)

@@ -14,7 +14,6 @@
 
 static pthread_once_t once = PTHREAD_ONCE_INIT;
 static RTCDevice device;
-static int has_masks;
 static char start_error[256];
 
 static atomic_llong held;            /* bytes Embree holds */
@@ -52,7 +51,6 @@ static void make_device(void)
     }
     rtcSetDeviceErrorFunction(device, on_error, NULL);
     rtcSetDeviceMemoryMonitorFunction(device, on_memory, NULL);
-    has_masks = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
 }
 
 RTCDevice rt_device(ms_error *err)
@@ -60,11 +58,6 @@ RTCDevice rt_device(ms_error *err)
     pthread_once(&once, make_device);
     if (!device) ms_error_set(err, "%s", start_error);
     return device;
-}
-
-int rt_device_has_masks(void)
-{
-    return has_masks;
 }
 
 void rt_device_set_budget(size_t bytes)

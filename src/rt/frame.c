@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #define TILE 16
 
@@ -72,7 +73,7 @@ static void trace_tiles(void *ctx, size_t b, size_t e, int thread)
     unsigned fpu = rt_fpu_fast();
     rt_thread th;
     memset(&th, 0, sizeof th);
-    rtcInitIntersectContext(&th.ctx);
+    rtcInitIntersectContext(&th.ctx.ec);
     for (size_t t = b; t < e; t++) trace_tile(f, &th, t);
     for (int k = 0; k < MS_RT_NRAYKINDS; k++) f->rays[thread][k] += th.rays[k];
     rt_fpu_restore(fpu);
@@ -115,6 +116,15 @@ static int plan_memory(const ms_scene *s, ms_error *err)
 
 /* ---------------------------------------------------------------- passes */
 
+/* CPU seconds of the process so far, all threads. */
+static double cpu_now(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+           1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
 static void progress(const ms_rt_stats *st, int total, double t0)
 {
     double el = ms_now() - t0;
@@ -127,7 +137,7 @@ static void run_passes(frame *f, const ms_rt_options *o, ms_rt_stats *st)
     int total = o->aasamples + 1, nthreads = ms_threads_count();
     if (o->max_passes > 0 && o->max_passes < total) total = o->max_passes;
     size_t ntiles = (size_t)f->tiles_x * (size_t)((f->height + TILE - 1) / TILE);
-    double t0 = ms_now();
+    double t0 = ms_now(), c0 = cpu_now();
     for (f->pass = 0; f->pass < total; f->pass++) {
         ms_parallel_for(ntiles, 1, trace_tiles, f);
         st->passes = f->pass + 1;
@@ -138,6 +148,7 @@ static void run_passes(frame *f, const ms_rt_options *o, ms_rt_stats *st)
         if (o->time_budget > 0 && ms_now() - t0 >= o->time_budget) break;
     }
     st->trace_s = ms_now() - t0;
+    st->trace_cpu_s = cpu_now() - c0;
 }
 
 static void to_image(const frame *f, int passes, ms_image *img)
@@ -186,9 +197,10 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     memset(img, 0, sizeof *img);
     if (check_options(s, o, err) || plan_memory(s, err)) return -1;
     rt_world w;
-    double t0 = ms_now();
+    double t0 = ms_now(), c0 = cpu_now();
     int rc = rt_world_build(&w, s, err);
     st->build_s = ms_now() - t0;
+    st->build_cpu_s = cpu_now() - c0;
     if (rc == 0) {
         rc = trace_frame(s, &w, o, img, st, err);
         rt_world_free(&w);

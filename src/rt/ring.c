@@ -25,7 +25,7 @@ static void ring_bounds(const struct RTCBoundsFunctionArguments *args)
     o->lower_z = c[2] - e[2], o->upper_z = c[2] + e[2];
 }
 
-static int ring_test(const rt_geom *g, unsigned prim, const rt_uray *r, float *t)
+static int ring_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[2])
 {
     const float *c = g->a + 3 * (size_t)prim;
     float n[3] = {g->b[3 * (size_t)prim], g->b[3 * (size_t)prim + 1], g->b[3 * (size_t)prim + 2]};
@@ -38,7 +38,7 @@ static int ring_test(const rt_geom *g, unsigned prim, const rt_uray *r, float *t
     float q[3] = {tt * r->d[0] - co[0], tt * r->d[1] - co[1], tt * r->d[2] - co[2]};
     float d2 = rt_dot(q, q), ro = g->ra[prim], ri = g->rb[prim];
     if (d2 > ro * ro || d2 < ri * ri) return 0;
-    *t = tt;
+    t[0] = tt;
     return 1;
 }
 

@@ -39,8 +39,10 @@ enum { MS_RT_PRIMARY, MS_RT_SHADOW, MS_RT_AO, MS_RT_SECONDARY, MS_RT_NRAYKINDS }
 
 typedef struct ms_rt_stats {
     int passes;           /* passes rendered */
-    double build_s;       /* Embree scene build */
-    double trace_s;       /* all passes */
+    double build_s;       /* Embree scene build, wall clock */
+    double trace_s;       /* all passes, wall clock */
+    double build_cpu_s;   /* the same in CPU time of the process (all threads) */
+    double trace_cpu_s;
     uint64_t rays[MS_RT_NRAYKINDS];   /* camera, shadow, occlusion, reflection/transmission */
 } ms_rt_stats;
 

@@ -13,11 +13,6 @@
 #include "scene/displaylist.h"
 #include "scene/scene.h"
 
-/* Ray masks: geometry whose primitives are all opaque, and geometry with transparent ones. */
-#define RT_MASK_OPAQUE 1u
-#define RT_MASK_TRANS 2u
-#define RT_MASK_ALL 3u
-
 /* Tachyon's smallest contribution worth computing (1/512). */
 #define RT_MINCONTRIB 0.001953125f
 
@@ -26,8 +21,6 @@
 /* The process's Embree device, made on first use with ms_threads_count() threads. NULL with
  * err set when Embree cannot start. */
 RTCDevice rt_device(ms_error *err);
-/* Whether the device tests ray masks (else transparency is found by walking hits). */
-int rt_device_has_masks(void);
 /* Bytes Embree may hold from now on (allocations past it fail, and the build reports that
  * the scene does not fit in memory); 0 lifts the limit. */
 void rt_device_set_budget(size_t bytes);
@@ -85,7 +78,6 @@ typedef struct rt_world {
     rt_item *items;             /* by instance id */
     size_t nitems, capitems;
     int has_trans;              /* some geometry is transparent */
-    int masks;                  /* the device tests ray masks */
     float eps;                  /* secondary ray offset, from the scene's size */
     void **owned;               /* arrays made for the build (caps, converted lines) */
     size_t nowned, capowned;
@@ -116,24 +108,43 @@ typedef struct rt_prim {
 extern const rt_prim rt_sphere_prim, rt_cylinder_prim, rt_cone_prim, rt_ring_prim, rt_mesh_prim;
 extern const rt_prim *const rt_prims[RT_NKINDS];
 
+/* ---------------------------------------------------------------- occlusion and transparency */
+
+/* The context of every ray query: Embree's, and for occlusion queries the light each ray
+ * (by its id) still carries through the transparent surfaces it crossed. Shadow and
+ * occlusion rays are answered in one traversal: opaque hits end it, transparent ones are
+ * filtered (Tachyon counts each crossing: a sphere's two, a triangle's one) and passed. */
+typedef struct rt_ctx {
+    struct RTCIntersectContext ec;   /* first: Embree hands &ec back to the callbacks */
+    float *filter;
+} rt_ctx;
+
+/* Opacity of primitive prim at a hit (u, v: a mesh's barycentric coordinates). */
+float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v);
+/* The occlusion filter of transparent built-in geometries (spheres, meshes). */
+void rt_transparent_filter(const struct RTCFilterFunctionNArguments *args);
+
 /* ---------------------------------------------------------------- user geometries (user.c) */
 
 /* Cylinders, cones and discs are Embree user geometries: a bounds function and an exact
  * hit test per primitive. Ray i of an N-ray call, read out: */
 typedef struct rt_uray {
     float o[3], d[3], tnear, tfar;
+    unsigned id;
 } rt_uray;
-/* The test: the nearest hit of primitive prim in (tnear, tfar) in *t, returning 1; else 0. */
-typedef int (*rt_user_test)(const rt_geom *g, unsigned prim, const rt_uray *r, float *t);
+/* The test: the hits of primitive prim in (tnear, tfar), nearest first, in t; returns how
+ * many (0, 1 or 2). */
+typedef int (*rt_user_test)(const rt_geom *g, unsigned prim, const rt_uray *r, float t[2]);
 
 /* A user geometry of g with its bounds function and hit callbacks; NULL with err set. */
 RTCGeometry rt_user_geometry(rt_world *w, const rt_geom *g, RTCBoundsFunction bounds,
                              RTCIntersectFunctionN isect, RTCOccludedFunctionN occluded,
                              ms_error *err);
 void rt_user_ray(const float *ray, unsigned N, unsigned i, rt_uray *r);
-unsigned rt_user_mask(const float *ray, unsigned N, unsigned i);
 void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t);
-void rt_user_occlude(const struct RTCOccludedFunctionNArguments *args, unsigned i);
+/* An occlusion call's hits: an opaque one blocks the ray, transparent ones filter it. */
+void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i, int nhits,
+                   const rt_uray *r);
 /* Roots t0 <= t1 of a t^2 + 2 b t + c = 0 (a != 0), computed stably; 0 when none. */
 int rt_quadratic(float a, float b, float c, float *t0, float *t1);
 /* Empty bounds (Embree leaves such a primitive out). */
@@ -144,14 +155,12 @@ static inline void rt_user_intersect(const struct RTCIntersectFunctionNArguments
                                      rt_user_test test)
 {
     const rt_geom *g = args->geometryUserPtr;
-    const float *ray = (const float *)args->rayhit;
-    unsigned gm = g->transparent ? RT_MASK_TRANS : RT_MASK_OPAQUE;
     for (unsigned i = 0; i < args->N; i++) {
         rt_uray r;
-        float t;
-        if (!args->valid[i] || !(rt_user_mask(ray, args->N, i) & gm)) continue;
-        rt_user_ray(ray, args->N, i, &r);
-        if (test(g, args->primID, &r, &t)) rt_user_hit(args, i, t);
+        float t[2];
+        if (!args->valid[i]) continue;
+        rt_user_ray((const float *)args->rayhit, args->N, i, &r);
+        if (test(g, args->primID, &r, t)) rt_user_hit(args, i, t[0]);
     }
 }
 
@@ -159,14 +168,13 @@ static inline void rt_user_occluded(const struct RTCOccludedFunctionNArguments *
                                     rt_user_test test)
 {
     const rt_geom *g = args->geometryUserPtr;
-    const float *ray = (const float *)args->ray;
-    unsigned gm = g->transparent ? RT_MASK_TRANS : RT_MASK_OPAQUE;
     for (unsigned i = 0; i < args->N; i++) {
         rt_uray r;
-        float t;
-        if (!args->valid[i] || !(rt_user_mask(ray, args->N, i) & gm)) continue;
-        rt_user_ray(ray, args->N, i, &r);
-        if (test(g, args->primID, &r, &t)) rt_user_occlude(args, i);
+        float t[2];
+        if (!args->valid[i]) continue;
+        rt_user_ray((const float *)args->ray, args->N, i, &r);
+        int n = test(g, args->primID, &r, t);
+        if (n) rt_user_block(args, i, n, &r);
     }
 }
 
@@ -208,7 +216,7 @@ typedef struct rt_shader {
 
 /* Per rendering thread. */
 typedef struct rt_thread {
-    struct RTCIntersectContext ctx;
+    rt_ctx ctx;
     uint32_t rng;               /* the pixel's random state while it is traced */
     uint64_t rays[MS_RT_NRAYKINDS];
 } rt_thread;

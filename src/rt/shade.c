@@ -95,21 +95,6 @@ static const rt_geom *hit_geom(const rt_world *w, const struct RTCHit *h, const 
     return &(*item)->geoms[h->geomID];
 }
 
-/* Opacity of the primitive hit (material opacity times its alpha). */
-static float hit_opacity(const rt_world *w, const struct RTCHit *h)
-{
-    const rt_item *it;
-    const rt_geom *g = hit_geom(w, h, &it);
-    float a;
-    if (g->kind == RT_MESH) {
-        const uint32_t *t = g->tri + 3 * (size_t)h->primID;
-        a = (1.0f - h->u - h->v) * g->color[t[0]].a + h->u * g->color[t[1]].a + h->v * g->color[t[2]].a;
-    } else {
-        a = g->color[h->primID].a;
-    }
-    return g->mat->opacity * a * (1.0f / 255.0f);
-}
-
 /* Position, normal facing the ray's origin, colour and material at a hit. */
 static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s)
 {
@@ -124,68 +109,44 @@ static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s
     rt_prims[g->kind]->surface(g, &rh->hit, po, n, ng, &c);
     rt_m3_vec(it->nm, n, s->n);
     rt_m3_vec(it->nm, ng, ng);
-    if (rt_normalize(ng) == 0.0f)
-        for (int k = 0; k < 3; k++) ng[k] = -d[k];
-    if (rt_dot(ng, d) > 0.0f)
-        for (int k = 0; k < 3; k++) ng[k] = -ng[k];
-    if (rt_normalize(s->n) == 0.0f) memcpy(s->n, ng, sizeof ng);
-    if (rt_dot(s->n, ng) < 0.0f)
-        for (int k = 0; k < 3; k++) s->n[k] = -s->n[k];
+    /* Tachyon's rule: the geometric normal decides the side seen (for a mesh, its winding),
+     * and the shading normal turns with it */
+    float side = rt_dot(ng, d) > 0.0f ? -1.0f : 1.0f;
+    if (rt_normalize(s->n) == 0.0f) {
+        memcpy(s->n, d, sizeof d);
+        side = -1.0f;
+    }
+    for (int k = 0; k < 3; k++) s->n[k] *= side;
     ms_rgba8_to_float(c, s->col);
     s->mat = g->mat;
-    s->opacity = g->mat->opacity * c.a * (1.0f / 255.0f);
+    s->opacity = g->mat->opacity * (float)c.a * (1.0f / 255.0f);
 }
 
-static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], float tnear, unsigned mask)
+static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], float tnear)
 {
     r->org_x = org[0], r->org_y = org[1], r->org_z = org[2];
     r->dir_x = dir[0], r->dir_y = dir[1], r->dir_z = dir[2];
     r->tnear = tnear;
     r->tfar = INFINITY;
     r->time = 0.0f;
-    r->mask = mask;
+    r->mask = 0xffffffffu;
     r->id = 0;
     r->flags = 0;
 }
 
 /* ---------------------------------------------------------------- shadow and occlusion */
 
-/* The light passed along a ray by transparent surfaces (0 at an opaque one), walking the
- * hits of the geometry the mask selects. */
-static float transmitted(const rt_shader *sh, rt_thread *th, const float org[3],
-                         const float dir[3], unsigned mask, int kind)
-{
-    const rt_world *w = sh->w;
-    float f = 1.0f, tnear = w->eps;
-    for (int n = 0; n < 1000; n++) {
-        struct RTCRayHit rh;
-        ray_init(&rh.ray, org, dir, tnear, mask);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(w->top, &th->ctx, &rh);
-        th->rays[kind]++;
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return f;
-        float op = hit_opacity(w, &rh.hit);
-        if (op >= 1.0f) return 0.0f;
-        f *= 1.0f - op;
-        if (f <= 0.0f) return 0.0f;
-        tnear = rh.ray.tfar + w->eps;
-    }
-    return f;
-}
-
-/* Visibility of the sky along dir from p: 0 blocked, 1 open, between through glass. */
+/* Visibility of the sky along d from p: 0 blocked, 1 open, between through glass. */
 static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], const float d[3],
                         int kind)
 {
-    const rt_world *w = sh->w;
-    if (w->has_trans && !w->masks) return transmitted(sh, th, p, d, RT_MASK_ALL, kind);
     struct RTCRay r;
-    ray_init(&r, p, d, w->eps, w->has_trans ? RT_MASK_OPAQUE : RT_MASK_ALL);
-    rtcOccluded1(w->top, &th->ctx, &r);
+    float f = 1.0f;
+    ray_init(&r, p, d, sh->w->eps);
+    th->ctx.filter = &f;
+    rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
     th->rays[kind]++;
-    if (r.tfar < 0.0f) return 0.0f;
-    return w->has_trans ? transmitted(sh, th, p, d, RT_MASK_TRANS, kind) : 1.0f;
+    return r.tfar < 0.0f ? 0.0f : f;
 }
 
 /* Tachyon's ambient occlusion: (2 / n) sum of N.d over open directions d of the hemisphere
@@ -296,10 +257,10 @@ void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const floa
               int depth, int primary, float out[3])
 {
     struct RTCRayHit rh;
-    ray_init(&rh.ray, org, dir, primary ? 0.0f : sh->w->eps, RT_MASK_ALL);
+    ray_init(&rh.ray, org, dir, primary ? 0.0f : sh->w->eps);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(sh->w->top, &th->ctx, &rh);
+    rtcIntersect1(sh->w->top, &th->ctx.ec, &rh);
     th->rays[primary ? MS_RT_PRIMARY : MS_RT_SECONDARY]++;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         background(sh, org, dir, out);

@@ -18,11 +18,7 @@ void rt_user_ray(const float *ray, unsigned N, unsigned i, rt_uray *r)
     }
     r->tnear = ray[R_TNEAR * N + i];
     r->tfar = ray[R_TFAR * N + i];
-}
-
-unsigned rt_user_mask(const float *ray, unsigned N, unsigned i)
-{
-    return ((const unsigned *)ray)[R_MASK * N + i];
+    r->id = ((const unsigned *)ray)[R_ID * N + i];
 }
 
 void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t)
@@ -41,9 +37,47 @@ void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, 
     u[H_INST * N + i] = args->context->instID[0];
 }
 
-void rt_user_occlude(const struct RTCOccludedFunctionNArguments *args, unsigned i)
+void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i, int nhits,
+                   const rt_uray *r)
 {
+    const rt_geom *g = args->geometryUserPtr;
+    if (g->transparent) {
+        float op = rt_geom_opacity(g, args->primID, 0.0f, 0.0f);
+        if (op < 1.0f) {
+            float *f = &((rt_ctx *)args->context)->filter[r->id];
+            *f *= nhits == 2 ? (1.0f - op) * (1.0f - op) : 1.0f - op;
+            return;
+        }
+    }
     ((float *)args->ray)[R_TFAR * args->N + i] = -INFINITY;
+}
+
+float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v)
+{
+    float a;
+    if (g->kind == RT_MESH) {
+        const uint32_t *t = g->tri + 3 * (size_t)prim;
+        a = (1.0f - u - v) * g->color[t[0]].a + u * g->color[t[1]].a + v * g->color[t[2]].a;
+    } else {
+        a = g->color[prim].a;
+    }
+    return g->mat->opacity * a * (1.0f / 255.0f);
+}
+
+void rt_transparent_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const rt_geom *g = args->geometryUserPtr;
+    const float *hit = (const float *)args->hit, *ray = (const float *)args->ray;
+    unsigned N = args->N;
+    for (unsigned i = 0; i < N; i++) {
+        if (!args->valid[i]) continue;
+        unsigned prim = ((const unsigned *)hit)[(H_PRIM - H_NGX) * N + i];
+        float op = rt_geom_opacity(g, prim, hit[(H_U - H_NGX) * N + i], hit[(H_V - H_NGX) * N + i]);
+        if (op >= 1.0f) continue;                     /* an opaque primitive: it blocks */
+        unsigned id = ((const unsigned *)ray)[R_ID * N + i];
+        ((rt_ctx *)args->context)->filter[id] *= 1.0f - op;
+        args->valid[i] = 0;                           /* passed: the traversal goes on */
+    }
 }
 
 /* Solve a t^2 + 2 b t + c = 0 (a > 0) as the stable formula does; 0 when there is no root. */

@@ -209,7 +209,6 @@ static int add_item(rt_world *w, const ms_displaylist *dl, const float xf[16], c
     RTCScene sub = rtcNewScene(w->dev);
     if (!sub) return no_scene(w, err);
     rtcSetSceneBuildQuality(sub, quality);
-    unsigned mask = 0;
     for (int k = 0; k < RT_NKINDS; k++) {
         rt_geom *g = &ri->geoms[ri->ngeoms];
         if (fill_geom(w, dl, (rt_kind)k, g, err)) goto fail;
@@ -219,12 +218,12 @@ static int add_item(rt_world *w, const ms_displaylist *dl, const float xf[16], c
                          any_translucent(g->color, k == RT_MESH ? dl->mesh.nverts : g->n);
         RTCGeometry geom = rt_prims[k]->geometry(w, g, err);
         if (!geom) goto fail;
-        unsigned gm = g->transparent ? RT_MASK_TRANS : RT_MASK_OPAQUE;
-        rtcSetGeometryMask(geom, gm);
+        rtcSetGeometryUserData(geom, g);
+        if (g->transparent && k != RT_CYLINDER && k != RT_CONE && k != RT_RING)
+            rtcSetGeometryOccludedFilterFunction(geom, rt_transparent_filter);
         rtcCommitGeometry(geom);
         rtcAttachGeometryByID(sub, geom, (unsigned)ri->ngeoms++);
         rtcReleaseGeometry(geom);
-        mask |= gm;
         w->has_trans |= g->transparent;
         w->nprims += g->n;
     }
@@ -234,7 +233,6 @@ static int add_item(rt_world *w, const ms_displaylist *dl, const float xf[16], c
         RTCGeometry inst = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(inst, sub);
         rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, ri->xf);
-        rtcSetGeometryMask(inst, mask);
         rtcCommitGeometry(inst);
         rtcAttachGeometryByID(w->top, inst, (unsigned)w->nitems++);
         rtcReleaseGeometry(inst);
@@ -344,7 +342,6 @@ int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
     memset(w, 0, sizeof *w);
     w->dev = rt_device(err);
     if (!w->dev) return -1;
-    w->masks = rt_device_has_masks();
     w->eps = world_eps(s);
     /* every placed list gives at most two items (its primitives, its lines and text); the
      * geometries keep pointers into the items, so the array never moves */
