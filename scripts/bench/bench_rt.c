@@ -180,7 +180,10 @@ int main(int argc, char **argv)
     scene_settings(&sc, size);
     ms_scene_add(&sc, &vdw, xform, mats, &err);
     ms_scene_add(&sc, &lic, xform, mats, &err);
-    ms_scene_add(&sc, &shell, xform, mats, &err);
+    if (!getenv("BENCH_RT_NOSHELL")) ms_scene_add(&sc, &shell, xform, mats, &err);
+    if (getenv("BENCH_RT_NOAO")) sc.ao = 0;
+    if (getenv("BENCH_RT_OPAQUESHELL")) sc.items[sc.nitems - 1].mat.opacity = 1;
+    if (getenv("BENCH_RT_NOVDW")) sc.items[0].dl = &shell;
     printf("scene: %zu atoms (1tii x %d): %zu VDW spheres, %zu Licorice spheres + %zu cylinders, "
            "%zu transparent triangles; %dx%d, %d threads\n", s.n, copies, vdw.spheres.n,
            lic.spheres.n, lic.cylinders.n, shell.mesh.ntris, size, size, ms_threads_count());

@@ -51,7 +51,7 @@ typedef enum rt_kind { RT_SPHERE, RT_CYLINDER, RT_CONE, RT_RING, RT_MESH, RT_NKI
 typedef struct rt_geom {
     rt_kind kind;
     size_t n;
-    const rt_material *mat;
+    rt_material mat;
     int transparent;            /* some primitive has opacity < 1 */
     const float *a, *b;         /* centres; base and apex; ring centre and normal */
     const float *ra, *rb;       /* radius (base radius); cone apex radius; ring inner radius */
@@ -62,13 +62,13 @@ typedef struct rt_geom {
     size_t nverts, vcap;        /* mesh vertices, and room in xyz (Embree reads past the end) */
 } rt_geom;
 
-/* One placed list: an Embree instance of a scene of its geometries. */
+/* The lists placed by one transform (a molecule's representations share its transform): an
+ * Embree instance of a scene of all their geometries. */
 typedef struct rt_item {
     float xf[12];               /* list to world, 3x4 row-major */
     float inv[12];              /* world to list */
     float nm[9];                /* normals to world: inverse transpose of xf's 3x3 */
-    rt_material mat;
-    rt_geom geoms[RT_NKINDS];   /* by Embree geometry id in the item's scene */
+    rt_geom *geoms;             /* by Embree geometry id in the item's scene */
     int ngeoms;
 } rt_item;
 
@@ -76,7 +76,9 @@ typedef struct rt_world {
     RTCDevice dev;
     RTCScene top;
     rt_item *items;             /* by instance id */
-    size_t nitems, capitems;
+    size_t nitems;
+    rt_geom *geoms;             /* every geometry (made in one block: Embree keeps pointers) */
+    size_t ngeoms;
     int has_trans;              /* some geometry is transparent */
     float eps;                  /* secondary ray offset, from the scene's size */
     void **owned;               /* arrays made for the build (caps, converted lines) */

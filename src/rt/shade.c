@@ -118,8 +118,8 @@ static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s
     }
     for (int k = 0; k < 3; k++) s->n[k] *= side;
     ms_rgba8_to_float(c, s->col);
-    s->mat = g->mat;
-    s->opacity = g->mat->opacity * (float)c.a * (1.0f / 255.0f);
+    s->mat = &g->mat;
+    s->opacity = g->mat.opacity * (float)c.a * (1.0f / 255.0f);
 }
 
 static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], float tnear)

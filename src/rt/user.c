@@ -61,7 +61,7 @@ float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v)
     } else {
         a = g->color[prim].a;
     }
-    return g->mat->opacity * a * (1.0f / 255.0f);
+    return g->mat.opacity * a * (1.0f / 255.0f);
 }
 
 void rt_transparent_filter(const struct RTCFilterFunctionNArguments *args)

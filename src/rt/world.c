@@ -198,52 +198,6 @@ static int no_scene(rt_world *w, ms_error *err)
     return -1;
 }
 
-/* An Embree scene of the list's geometries, placed by xf as instance w->nitems. */
-static int add_item(rt_world *w, const ms_displaylist *dl, const float xf[16], const rt_material *mat,
-                    enum RTCBuildQuality quality, ms_error *err)
-{
-    rt_item *ri = &w->items[w->nitems];     /* room for every item was made up front */
-    memset(ri, 0, sizeof *ri);
-    if (item_matrices(ri, xf)) return 0;
-    ri->mat = *mat;
-    RTCScene sub = rtcNewScene(w->dev);
-    if (!sub) return no_scene(w, err);
-    rtcSetSceneBuildQuality(sub, quality);
-    for (int k = 0; k < RT_NKINDS; k++) {
-        rt_geom *g = &ri->geoms[ri->ngeoms];
-        if (fill_geom(w, dl, (rt_kind)k, g, err)) goto fail;
-        if (!g->n) continue;
-        g->mat = &ri->mat;
-        g->transparent = mat->opacity < 1.0f ||
-                         any_translucent(g->color, k == RT_MESH ? dl->mesh.nverts : g->n);
-        RTCGeometry geom = rt_prims[k]->geometry(w, g, err);
-        if (!geom) goto fail;
-        rtcSetGeometryUserData(geom, g);
-        if (g->transparent && k != RT_CYLINDER && k != RT_CONE && k != RT_RING)
-            rtcSetGeometryOccludedFilterFunction(geom, rt_transparent_filter);
-        rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(sub, geom, (unsigned)ri->ngeoms++);
-        rtcReleaseGeometry(geom);
-        w->has_trans |= g->transparent;
-        w->nprims += g->n;
-    }
-    rtcCommitScene(sub);
-    if (rt_device_check(w->dev, "Embree build", err)) goto fail;
-    if (ri->ngeoms) {
-        RTCGeometry inst = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_INSTANCE);
-        rtcSetGeometryInstancedScene(inst, sub);
-        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, ri->xf);
-        rtcCommitGeometry(inst);
-        rtcAttachGeometryByID(w->top, inst, (unsigned)w->nitems++);
-        rtcReleaseGeometry(inst);
-    }
-    rtcReleaseScene(sub);
-    return rt_device_check(w->dev, "Embree instance", err);
-fail:
-    rtcReleaseScene(sub);
-    return -1;
-}
-
 /* ---------------------------------------------------------------- lines, points, text */
 
 typedef struct strokes {
@@ -318,23 +272,114 @@ static float world_eps(const ms_scene *s)
     return fmaxf(1e-5f, big * 2e-6f);
 }
 
-static int add_scene_item(rt_world *w, const ms_scene_item *it, enum RTCBuildQuality q, ms_error *err)
+/* A display list to trace: its transform and texture terms. */
+typedef struct source {
+    const ms_displaylist *dl;
+    const float *xform;
+    rt_material mat;
+    size_t group;
+} source;
+
+/* The scene's lists, and the world-space lists of their lines, points and text. */
+static source *sources_of(rt_world *w, const ms_scene *s, size_t *n, ms_error *err)
 {
-    rt_material mat, flat;
-    material_terms(&it->mat, it->dl->lit, &mat);
-    if (add_item(w, it->dl, it->xform, &mat, q, err)) return -1;
-    const ms_displaylist *dl = it->dl;
-    if (!dl->lines.n && !dl->points.n && !dl->texts.n) return 0;
-    ms_displaylist *extra = new_list(w, err);
-    if (!extra) return -1;
-    if (strokes_of(it, extra)) {
-        ms_error_set(err, "out of memory");
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    source *src = rt_world_alloc(w, 2 * s->nitems, sizeof *src, err);
+    if (!src) return NULL;
+    *n = 0;
+    for (size_t i = 0; i < s->nitems; i++) {
+        const ms_scene_item *it = &s->items[i];
+        source *o = &src[(*n)++];
+        o->dl = it->dl, o->xform = it->xform;
+        material_terms(&it->mat, it->dl->lit, &o->mat);
+        if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
+        ms_displaylist *extra = new_list(w, err);
+        if (!extra) return NULL;
+        if (strokes_of(it, extra)) {
+            ms_error_set(err, "out of memory");
+            return NULL;
+        }
+        o = &src[(*n)++];
+        o->dl = extra, o->xform = identity;
+        material_terms(&it->mat, 0, &o->mat);
+    }
+    return src;
+}
+
+/* Group the sources by transform; returns the number of groups. */
+static size_t group_sources(source *src, size_t n)
+{
+    size_t ngroups = 0;
+    for (size_t i = 0; i < n; i++) {
+        src[i].group = ngroups;
+        for (size_t j = 0; j < i; j++)
+            if (!memcmp(src[j].xform, src[i].xform, 16 * sizeof(float))) {
+                src[i].group = src[j].group;
+                break;
+            }
+        if (src[i].group == ngroups) ngroups++;
+    }
+    return ngroups;
+}
+
+/* One geometry of a source's kind into scene sub (g->n == 0: nothing to add). */
+static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, rt_item *ri,
+                    ms_error *err)
+{
+    rt_geom *g = &w->geoms[w->ngeoms];
+    if (fill_geom(w, src->dl, kind, g, err)) return -1;
+    if (!g->n) return 0;
+    if (g->n > 0xffffffffu) {
+        ms_error_set(err, "%s: more than 2^32 in one list", rt_prims[kind]->name);
         return -1;
     }
-    float id[16];
-    ms_mat4_identity(id);
-    material_terms(&it->mat, 0, &flat);
-    return add_item(w, extra, id, &flat, q, err);
+    g->mat = src->mat;
+    g->transparent = g->mat.opacity < 1.0f ||
+                     any_translucent(g->color, kind == RT_MESH ? g->nverts : g->n);
+    RTCGeometry geom = rt_prims[kind]->geometry(w, g, err);
+    if (!geom) return -1;
+    rtcSetGeometryUserData(geom, g);
+    if (g->transparent && (kind == RT_SPHERE || kind == RT_MESH))
+        rtcSetGeometryOccludedFilterFunction(geom, rt_transparent_filter);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(sub, geom, (unsigned)ri->ngeoms++);
+    rtcReleaseGeometry(geom);
+    w->ngeoms++;
+    w->has_trans |= g->transparent;
+    w->nprims += g->n;
+    return 0;
+}
+
+/* The Embree scene of one group's geometries, placed by its transform as the next instance. */
+static int add_group(rt_world *w, const source *src, size_t n, size_t group, ms_error *err)
+{
+    rt_item *ri = &w->items[w->nitems];
+    size_t first = 0;
+    while (src[first].group != group) first++;
+    memset(ri, 0, sizeof *ri);
+    if (item_matrices(ri, src[first].xform)) return 0;      /* singular: nothing to see */
+    ri->geoms = w->geoms + w->ngeoms;
+    RTCScene sub = rtcNewScene(w->dev);
+    if (!sub) return no_scene(w, err);
+    rtcSetSceneBuildQuality(sub, RTC_BUILD_QUALITY_MEDIUM);
+    for (size_t i = first; i < n; i++)
+        for (int k = 0; k < RT_NKINDS && src[i].group == group; k++)
+            if (add_geom(w, sub, &src[i], (rt_kind)k, ri, err)) goto fail;
+    rtcCommitScene(sub);
+    if (rt_device_check(w->dev, "Embree build", err)) goto fail;
+    if (ri->ngeoms) {
+        RTCGeometry inst = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, sub);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, ri->xf);
+        rtcCommitGeometry(inst);
+        rtcAttachGeometryByID(w->top, inst, (unsigned)w->nitems++);
+        rtcReleaseGeometry(inst);
+    }
+    rtcReleaseScene(sub);
+    return rt_device_check(w->dev, "Embree instance", err);
+fail:
+    rtcReleaseScene(sub);
+    return -1;
 }
 
 int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
@@ -343,19 +388,20 @@ int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
     w->dev = rt_device(err);
     if (!w->dev) return -1;
     w->eps = world_eps(s);
-    /* every placed list gives at most two items (its primitives, its lines and text); the
-     * geometries keep pointers into the items, so the array never moves */
-    w->capitems = 2 * s->nitems + 1;
-    w->items = ms_calloc_array(w->capitems, sizeof *w->items);
+    size_t nsrc, ngroups;
+    source *src = sources_of(w, s, &nsrc, err);
+    if (!src) goto fail;
+    ngroups = group_sources(src, nsrc);
+    w->items = rt_world_alloc(w, ngroups, sizeof *w->items, err);
+    w->geoms = rt_world_alloc(w, nsrc * RT_NKINDS, sizeof *w->geoms, err);
     w->top = rtcNewScene(w->dev);
-    if (!w->items || !w->top) {
+    if (!w->items || !w->geoms || !w->top) {
         if (!w->top) no_scene(w, err);
-        else ms_error_set(err, "out of memory");
         goto fail;
     }
     rtcSetSceneBuildQuality(w->top, RTC_BUILD_QUALITY_MEDIUM);
-    for (size_t i = 0; i < s->nitems; i++)
-        if (add_scene_item(w, &s->items[i], RTC_BUILD_QUALITY_MEDIUM, err)) goto fail;
+    for (size_t g = 0; g < ngroups; g++)
+        if (add_group(w, src, nsrc, g, err)) goto fail;
     rtcCommitScene(w->top);
     if (rt_device_check(w->dev, "Embree build", err)) goto fail;
     return 0;
@@ -374,6 +420,5 @@ void rt_world_free(rt_world *w)
     }
     free(w->owned);
     free(w->lists);
-    free(w->items);
     memset(w, 0, sizeof *w);
 }
