@@ -53,6 +53,7 @@ typedef struct rt_geom {
     size_t n;
     rt_material mat;
     int transparent;            /* some primitive has opacity < 1 */
+    int alpha;                  /* some primitive's colour has alpha < 255 */
     const float *a, *b;         /* centres; base and apex; ring centre and normal */
     const float *ra, *rb;       /* radius (base radius); cone apex radius; ring inner radius */
     const ms_rgba8 *color;      /* per primitive, or per vertex for meshes */

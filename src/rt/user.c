@@ -55,6 +55,7 @@ void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i,
 float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v)
 {
     float a;
+    if (!g->alpha) return g->mat.opacity;
     if (g->kind == RT_MESH) {
         const uint32_t *t = g->tri + 3 * (size_t)prim;
         a = (1.0f - u - v) * g->color[t[0]].a + u * g->color[t[1]].a + v * g->color[t[2]].a;

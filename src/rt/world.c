@@ -334,8 +334,8 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
         return -1;
     }
     g->mat = src->mat;
-    g->transparent = g->mat.opacity < 1.0f ||
-                     any_translucent(g->color, kind == RT_MESH ? g->nverts : g->n);
+    g->alpha = any_translucent(g->color, kind == RT_MESH ? g->nverts : g->n);
+    g->transparent = g->mat.opacity < 1.0f || g->alpha;
     RTCGeometry geom = rt_prims[kind]->geometry(w, g, err);
     if (!geom) return -1;
     rtcSetGeometryUserData(geom, g);
