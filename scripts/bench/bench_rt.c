@@ -7,7 +7,10 @@
  * bench_rt.sh on the same file), then rendered by TachyonInternal at each sample count given,
  * printing build and trace times and rays per second.
  *
- * usage: bench_rt data-folder copies size out-folder spp...   (bench_rt.sh runs it) */
+ * usage: bench_rt data-folder copies size out-folder spp...   (bench_rt.sh runs it)
+ * Switches for experiments (environment): BENCH_RT_NOEXPORT (no .dat), BENCH_RT_NOSHELL,
+ * BENCH_RT_OPAQUESHELL, BENCH_RT_STACKS=n (a shell of 4 n^2 triangles; default 500),
+ * BENCH_RT_NOAO. */
 #include "config.h"
 #include "base/threads.h"
 #include "render/render.h"
@@ -169,9 +172,11 @@ int main(int argc, char **argv)
     float xform[16], centre[3], extent;
     default_view(&s, xform, centre, &extent);
     ms_materials *mats = ms_materials_new(&err);
+    int stacks = getenv("BENCH_RT_STACKS") ? atoi(getenv("BENCH_RT_STACKS")) : 500;
+    if (stacks < 2) stacks = 2;
     shell.material = 1;                                   /* VMD's Transparent */
     if (!mats || fill_molecule(&s, &vdw, &lic, &err) ||
-        fill_shell(&shell, centre, 0.3f * extent, 500, 1000, &err)) {
+        fill_shell(&shell, centre, 0.3f * extent, stacks, 2 * stacks, &err)) {
         fprintf(stderr, "bench_rt: %s\n", err.msg);
         return 1;
     }
@@ -183,7 +188,6 @@ int main(int argc, char **argv)
     if (!getenv("BENCH_RT_NOSHELL")) ms_scene_add(&sc, &shell, xform, mats, &err);
     if (getenv("BENCH_RT_NOAO")) sc.ao = 0;
     if (getenv("BENCH_RT_OPAQUESHELL")) sc.items[sc.nitems - 1].mat.opacity = 1;
-    if (getenv("BENCH_RT_NOVDW")) sc.items[0].dl = &shell;
     printf("scene: %zu atoms (1tii x %d): %zu VDW spheres, %zu Licorice spheres + %zu cylinders, "
            "%zu transparent triangles; %dx%d, %d threads\n", s.n, copies, vdw.spheres.n,
            lic.spheres.n, lic.cylinders.n, shell.mesh.ntris, size, size, ms_threads_count());
