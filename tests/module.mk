@@ -14,6 +14,9 @@ tests_unit_test_molecule_LDADD = $(TEST_CORE_LIBS)
 check_PROGRAMS += tests/unit/test_scene
 tests_unit_test_scene_SOURCES = tests/unit/test_scene.c tests/unit/ms_test.h
 tests_unit_test_scene_LDADD = $(TEST_CORE_LIBS)
+check_PROGRAMS += tests/unit/test_rt
+tests_unit_test_rt_SOURCES = tests/unit/test_rt.c tests/unit/ms_test.h
+tests_unit_test_rt_LDADD = $(TEST_CORE_LIBS) -lm
 
 # Every plugin linked into one program (tests/tools/plugin_*.c rename their entry points).
 BUILTIN_PLUGINS = tests/tools/builtin.h tests/tools/plugin_pdb.c tests/tools/plugin_psf.c \

@@ -80,16 +80,32 @@ int rt_device_check(RTCDevice dev, const char *what, ms_error *err)
     return -1;
 }
 
+/* A number from the first line of a file; 0 when absent or not a number ("max"). */
+static size_t file_number(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    unsigned long long v = 0;
+    if (!f) return 0;
+    if (fscanf(f, "%llu", &v) != 1) v = 0;
+    fclose(f);
+    return (size_t)v;
+}
+
 size_t rt_mem_available(void)
 {
     FILE *f = fopen("/proc/meminfo", "r");
-    if (!f) return 0;
-    char line[256];
-    size_t kb = 0;
-    while (fgets(line, sizeof line, f))
-        if (sscanf(line, "MemAvailable: %zu kB", &kb) == 1) break;
-    fclose(f);
-    return kb * 1024;
+    size_t kb = 0, avail;
+    if (f) {
+        char line[256];
+        while (fgets(line, sizeof line, f))
+            if (sscanf(line, "MemAvailable: %zu kB", &kb) == 1) break;
+        fclose(f);
+    }
+    avail = kb * 1024;
+    /* a batch job's memory limit (cgroup v2) may be lower than the machine's */
+    size_t max = file_number("/sys/fs/cgroup/memory.max"), cur = file_number("/sys/fs/cgroup/memory.current");
+    if (max && max > cur && (!avail || max - cur < avail)) avail = max - cur;
+    return avail;
 }
 
 unsigned rt_fpu_fast(void)

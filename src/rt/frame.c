@@ -99,15 +99,16 @@ static int check_options(const ms_scene *s, const ms_rt_options *o, ms_error *er
     return 0;
 }
 
-/* Room for the frame's buffers, then for Embree: an error when the buffers alone do not fit. */
-static int plan_memory(const ms_scene *s, ms_error *err)
+/* Room for the frame's buffers, then for Embree (90% of what is available): an error when
+ * the buffers alone do not fit. */
+static int plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
 {
     size_t npix = (size_t)s->width * (size_t)s->height;
     size_t need = npix * (3 * sizeof(float) + sizeof(uint32_t) + 3);
-    size_t avail = rt_mem_available();
+    size_t avail = o->memory ? o->memory : rt_mem_available();
     if (avail && need > avail / 10 * 9) {
-        ms_error_set(err, "a %dx%d image needs %.1f GB for its buffers; %.1f GB of memory is available",
-                     s->width, s->height, need / 1e9, avail / 1e9);
+        ms_error_set(err, "a %dx%d image needs %.2f GB for its buffers, more than the %.2f GB of "
+                     "memory available", s->width, s->height, (double)need / 1e9, (double)avail / 1e9);
         return -1;
     }
     rt_device_set_budget(avail ? avail / 10 * 9 - need : 0);
@@ -151,12 +152,14 @@ static void run_passes(frame *f, const ms_rt_options *o, ms_rt_stats *st)
     st->trace_cpu_s = cpu_now() - c0;
 }
 
+/* The average of the passes, clamped to [0, 1] and scaled to 8 bits by truncation, as
+ * Tachyon does (so equal colours give equal bytes). */
 static void to_image(const frame *f, int passes, ms_image *img)
 {
     size_t n = 3 * (size_t)f->width * (size_t)f->height;
     float scale = 255.0f / (float)passes;
     for (size_t i = 0; i < n; i++) {
-        float v = f->accum[i] * scale + 0.5f;
+        float v = f->accum[i] * scale;
         img->rgb[i] = (uint8_t)(v < 0.0f ? 0.0f : v > 255.0f ? 255.0f : v);
     }
 }
@@ -195,7 +198,7 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     if (!st) st = &local;
     memset(st, 0, sizeof *st);
     memset(img, 0, sizeof *img);
-    if (check_options(s, o, err) || plan_memory(s, err)) return -1;
+    if (check_options(s, o, err) || plan_memory(s, o, err)) return -1;
     rt_world w;
     double t0 = ms_now(), c0 = cpu_now();
     int rc = rt_world_build(&w, s, err);

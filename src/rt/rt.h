@@ -33,6 +33,7 @@ typedef struct ms_rt_options {
     int max_passes;       /* 0: no limit beyond aasamples + 1 */
     double time_budget;   /* seconds (0: none); checked after each pass, one pass always runs */
     int progress;         /* a line per pass on stderr */
+    size_t memory;        /* bytes the render may use; 0: what the system has available */
 } ms_rt_options;
 
 enum { MS_RT_PRIMARY, MS_RT_SHADOW, MS_RT_AO, MS_RT_SECONDARY, MS_RT_NRAYKINDS };
