@@ -35,6 +35,10 @@ void rt_fpu_restore(unsigned state);
 
 /* ---------------------------------------------------------------- world (world.c) */
 
+/* Instance masks: the opaque and the transparent geometry of each transform. */
+#define RT_MASK_OPAQUE 1u
+#define RT_MASK_TRANS 2u
+
 /* The Tachyon texture terms of a display list, as render/tachyon.c writes them. */
 typedef struct rt_material {
     float ambient, diffuse, mirror;   /* mirror: Tachyon's "Specular" (reflection) */
@@ -64,7 +68,8 @@ typedef struct rt_geom {
 } rt_geom;
 
 /* The lists placed by one transform (a molecule's representations share its transform): an
- * Embree instance of a scene of all their geometries. */
+ * Embree instance of a scene of all their opaque geometries, and another of their
+ * transparent ones. */
 typedef struct rt_item {
     float xf[12];               /* list to world, 3x4 row-major */
     float inv[12];              /* world to list */
@@ -81,6 +86,7 @@ typedef struct rt_world {
     rt_geom *geoms;             /* every geometry (made in one block: Embree keeps pointers) */
     size_t ngeoms;
     int has_trans;              /* some geometry is transparent */
+    int split;                  /* shadow rays test opaque, then transparent instances */
     float eps;                  /* secondary ray offset, from the scene's size */
     void **owned;               /* arrays made for the build (caps, converted lines) */
     size_t nowned, capowned;

@@ -136,7 +136,8 @@ static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], f
 
 /* ---------------------------------------------------------------- shadow and occlusion */
 
-/* Visibility of the sky along d from p: 0 blocked, 1 open, between through glass. */
+/* Visibility of the sky along d from p: 0 blocked, 1 open, between through glass (one
+ * visibility ray, in two traversals when the scene has transparent geometry). */
 static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], const float d[3],
                         int kind)
 {
@@ -144,8 +145,15 @@ static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], co
     float f = 1.0f;
     ray_init(&r, p, d, sh->w->eps);
     th->ctx.filter = &f;
-    rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
     th->rays[kind]++;
+    if (sh->w->split) {         /* opaque first: a blocked ray never walks the glass */
+        r.mask = RT_MASK_OPAQUE;
+        rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
+        if (r.tfar < 0.0f) return 0.0f;
+        r.tfar = INFINITY;
+        r.mask = RT_MASK_TRANS;
+    }
+    rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
     return r.tfar < 0.0f ? 0.0f : f;
 }
 

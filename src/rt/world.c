@@ -322,10 +322,26 @@ static size_t group_sources(source *src, size_t n)
     return ngroups;
 }
 
-/* One geometry of a source's kind into scene sub (g->n == 0: nothing to add). */
-static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, rt_item *ri,
-                    ms_error *err)
+/* Whether a kind of a list may let light through: its material or a colour's alpha. */
+static int kind_translucent(const ms_displaylist *dl, const rt_material *mat, rt_kind kind)
 {
+    if (mat->opacity < 1.0f) return 1;
+    switch (kind) {
+    case RT_SPHERE: return any_translucent(dl->spheres.color, dl->spheres.n);
+    case RT_CYLINDER: return any_translucent(dl->cylinders.color, dl->cylinders.n);
+    case RT_CONE: return any_translucent(dl->cones.color, dl->cones.n);
+    case RT_RING:
+        return any_translucent(dl->cylinders.color, dl->cylinders.n) ||
+               any_translucent(dl->cones.color, dl->cones.n);
+    default: return any_translucent(dl->mesh.color, dl->mesh.nverts);
+    }
+}
+
+/* The geometry of a source's kind into scene sub, when its transparency is trans. */
+static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, int trans,
+                    rt_item *ri, ms_error *err)
+{
+    if (kind_translucent(src->dl, &src->mat, kind) != trans) return 0;
     rt_geom *g = &w->geoms[w->ngeoms];
     if (fill_geom(w, src->dl, kind, g, err)) return -1;
     if (!g->n) return 0;
@@ -335,27 +351,28 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
     }
     g->mat = src->mat;
     g->alpha = any_translucent(g->color, kind == RT_MESH ? g->nverts : g->n);
-    g->transparent = g->mat.opacity < 1.0f || g->alpha;
+    g->transparent = trans;
     RTCGeometry geom = rt_prims[kind]->geometry(w, g, err);
     if (!geom) return -1;
     rtcSetGeometryUserData(geom, g);
-    if (g->transparent && (kind == RT_SPHERE || kind == RT_MESH))
+    if (trans && (kind == RT_SPHERE || kind == RT_MESH))
         rtcSetGeometryOccludedFilterFunction(geom, rt_transparent_filter);
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(sub, geom, (unsigned)ri->ngeoms++);
     rtcReleaseGeometry(geom);
     w->ngeoms++;
-    w->has_trans |= g->transparent;
+    w->has_trans |= trans;
     w->nprims += g->n;
     return 0;
 }
 
-/* The Embree scene of one group's geometries, placed by its transform as the next instance. */
-static int add_group(rt_world *w, const source *src, size_t n, size_t group, ms_error *err)
+/* The Embree scene of a group's opaque or transparent geometries, placed by the group's
+ * transform as the next instance (masked, so that shadow rays can skip the transparent ones
+ * until the opaque ones have let them through). */
+static int add_instance(rt_world *w, const source *src, size_t n, size_t first, int trans,
+                        ms_error *err)
 {
     rt_item *ri = &w->items[w->nitems];
-    size_t first = 0;
-    while (src[first].group != group) first++;
     memset(ri, 0, sizeof *ri);
     if (item_matrices(ri, src[first].xform)) return 0;      /* singular: nothing to see */
     ri->geoms = w->geoms + w->ngeoms;
@@ -363,14 +380,15 @@ static int add_group(rt_world *w, const source *src, size_t n, size_t group, ms_
     if (!sub) return no_scene(w, err);
     rtcSetSceneBuildQuality(sub, RTC_BUILD_QUALITY_MEDIUM);
     for (size_t i = first; i < n; i++)
-        for (int k = 0; k < RT_NKINDS && src[i].group == group; k++)
-            if (add_geom(w, sub, &src[i], (rt_kind)k, ri, err)) goto fail;
+        for (int k = 0; k < RT_NKINDS && src[i].group == src[first].group; k++)
+            if (add_geom(w, sub, &src[i], (rt_kind)k, trans, ri, err)) goto fail;
     rtcCommitScene(sub);
     if (rt_device_check(w->dev, "Embree build", err)) goto fail;
     if (ri->ngeoms) {
         RTCGeometry inst = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(inst, sub);
         rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, ri->xf);
+        rtcSetGeometryMask(inst, trans ? RT_MASK_TRANS : RT_MASK_OPAQUE);
         rtcCommitGeometry(inst);
         rtcAttachGeometryByID(w->top, inst, (unsigned)w->nitems++);
         rtcReleaseGeometry(inst);
@@ -380,6 +398,14 @@ static int add_group(rt_world *w, const source *src, size_t n, size_t group, ms_
 fail:
     rtcReleaseScene(sub);
     return -1;
+}
+
+/* A group's geometries: opaque ones, then transparent ones. */
+static int add_group(rt_world *w, const source *src, size_t n, size_t group, ms_error *err)
+{
+    size_t first = 0;
+    while (src[first].group != group) first++;
+    return add_instance(w, src, n, first, 0, err) || add_instance(w, src, n, first, 1, err) ? -1 : 0;
 }
 
 int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
@@ -392,7 +418,7 @@ int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
     source *src = sources_of(w, s, &nsrc, err);
     if (!src) goto fail;
     ngroups = group_sources(src, nsrc);
-    w->items = rt_world_alloc(w, ngroups, sizeof *w->items, err);
+    w->items = rt_world_alloc(w, 2 * ngroups, sizeof *w->items, err);
     w->geoms = rt_world_alloc(w, nsrc * RT_NKINDS, sizeof *w->geoms, err);
     w->top = rtcNewScene(w->dev);
     if (!w->items || !w->geoms || !w->top) {
@@ -404,6 +430,7 @@ int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
         if (add_group(w, src, nsrc, g, err)) goto fail;
     rtcCommitScene(w->top);
     if (rt_device_check(w->dev, "Embree build", err)) goto fail;
+    w->split = w->has_trans && rtcGetDeviceProperty(w->dev, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED);
     return 0;
 fail:
     rt_world_free(w);
