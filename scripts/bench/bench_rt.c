@@ -184,8 +184,8 @@ int main(int argc, char **argv)
     ms_scene_init(&sc);
     scene_settings(&sc, size);
     ms_scene_add(&sc, &vdw, xform, mats, &err);
-    ms_scene_add(&sc, &lic, xform, mats, &err);
-    if (!getenv("BENCH_RT_NOSHELL")) ms_scene_add(&sc, &shell, xform, mats, &err);
+    if (!getenv("BENCH_RT_VDWONLY")) ms_scene_add(&sc, &lic, xform, mats, &err);
+    if (!getenv("BENCH_RT_NOSHELL") && !getenv("BENCH_RT_VDWONLY")) ms_scene_add(&sc, &shell, xform, mats, &err);
     if (getenv("BENCH_RT_NOAO")) sc.ao = 0;
     if (getenv("BENCH_RT_OPAQUESHELL")) sc.items[sc.nitems - 1].mat.opacity = 1;
     printf("scene: %zu atoms (1tii x %d): %zu VDW spheres, %zu Licorice spheres + %zu cylinders, "

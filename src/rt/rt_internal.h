@@ -58,6 +58,7 @@ typedef struct rt_geom {
     rt_material mat;
     int transparent;            /* some primitive has opacity < 1 */
     int alpha;                  /* some primitive's colour has alpha < 255 */
+    int user;                   /* spheres as a user geometry (sharing the tree of cylinders) */
     const float *a, *b;         /* centres; base and apex; ring centre and normal */
     const float *ra, *rb;       /* radius (base radius); cone apex radius; ring inner radius */
     const ms_rgba8 *color;      /* per primitive, or per vertex for meshes */

@@ -337,13 +337,29 @@ static int kind_translucent(const ms_displaylist *dl, const rt_material *mat, rt
     }
 }
 
-/* The geometry of a source's kind into scene sub, when its transparency is trans. */
+/* Whether an instance (a group's opaque or transparent part) holds user geometries:
+ * cylinders, cones or their cap discs. */
+static int has_user_kinds(const source *src, size_t n, size_t first, int trans)
+{
+    for (size_t i = first; i < n; i++) {
+        const ms_displaylist *dl = src[i].dl;
+        if (src[i].group != src[first].group) continue;
+        if ((dl->cylinders.n && kind_translucent(dl, &src[i].mat, RT_CYLINDER) == trans) ||
+            (dl->cones.n && kind_translucent(dl, &src[i].mat, RT_CONE) == trans))
+            return 1;
+    }
+    return 0;
+}
+
+/* The geometry of a source's kind into scene sub, when its transparency is trans; user:
+ * spheres join the user geometries' tree. */
 static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, int trans,
-                    rt_item *ri, ms_error *err)
+                    int user, rt_item *ri, ms_error *err)
 {
     if (kind_translucent(src->dl, &src->mat, kind) != trans) return 0;
     rt_geom *g = &w->geoms[w->ngeoms];
     if (fill_geom(w, src->dl, kind, g, err)) return -1;
+    g->user = user;
     if (!g->n) return 0;
     if (g->n > 0xffffffffu) {
         ms_error_set(err, "%s: more than 2^32 in one list", rt_prims[kind]->name);
@@ -355,7 +371,7 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
     RTCGeometry geom = rt_prims[kind]->geometry(w, g, err);
     if (!geom) return -1;
     rtcSetGeometryUserData(geom, g);
-    if (trans && (kind == RT_SPHERE || kind == RT_MESH))
+    if (trans && ((kind == RT_SPHERE && !user) || kind == RT_MESH))
         rtcSetGeometryOccludedFilterFunction(geom, rt_transparent_filter);
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(sub, geom, (unsigned)ri->ngeoms++);
@@ -379,9 +395,10 @@ static int add_instance(rt_world *w, const source *src, size_t n, size_t first, 
     RTCScene sub = rtcNewScene(w->dev);
     if (!sub) return no_scene(w, err);
     rtcSetSceneBuildQuality(sub, RTC_BUILD_QUALITY_MEDIUM);
+    int user = has_user_kinds(src, n, first, trans);
     for (size_t i = first; i < n; i++)
         for (int k = 0; k < RT_NKINDS && src[i].group == src[first].group; k++)
-            if (add_geom(w, sub, &src[i], (rt_kind)k, trans, ri, err)) goto fail;
+            if (add_geom(w, sub, &src[i], (rt_kind)k, trans, user, ri, err)) goto fail;
     rtcCommitScene(sub);
     if (rt_device_check(w->dev, "Embree build", err)) goto fail;
     if (ri->ngeoms) {

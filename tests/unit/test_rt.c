@@ -3,7 +3,7 @@
  * one sphere under one light (the centre pixel's value, the silhouette's radius), a sphere
  * seen through a 50% transparent one (plain and angle-modulated), ambient occlusion in a 90
  * degree crevice (half the sky) and on an open plane (all of it), a shadow where the light
- * direction puts it, fog at the cue distances, mirror reflection, cylinder caps, cone
+ * direction puts it and a shadow of glass, fog at the cue distances, mirror reflection, cylinder caps, cone
  * silhouettes, interpolated mesh colours, and the errors (absurd samples and sizes, a scene
  * too large for the memory allowed, an unwritable file). Skipped without Embree. */
 #include "config.h"
@@ -284,6 +284,48 @@ static void test_shadow(void)
     ms_dl_free(&ball);
 }
 
+/* Light through glass: a sphere of opacity 0.5 at height 0.6 over a plane, light along
+ * (1, 0, 1), as in test_shadow. The shadow ray crosses the sphere twice (Tachyon counts both
+ * crossings), so its shadow centre at x = -0.6 gets (1 - 0.5)^2 of the light. Alone the
+ * sphere is Embree's sphere geometry; beside a cylinder it shares the cylinders' user-geometry
+ * tree: both must filter alike. */
+static void test_shadow_glass(void)
+{
+    t_suite = "shadows through glass";
+    for (int user = 0; user < 2; user++) {
+        ms_displaylist plane, ball;
+        ms_dl_init(&plane);
+        ms_dl_init(&ball);
+        ms_rgba8 white = {255, 255, 255, 255};
+        float L = 5, pl[12] = {-L, -L, 0, L, -L, 0, L, L, 0, -L, L, 0}, c[3] = {0, 0, 0.6f};
+        quad(&plane, pl, white);
+        ms_dl_sphere(&ball, c, 0.2f, white, 12);
+        if (user) {
+            float a[3] = {4, 4, 0}, b[3] = {4, 4, 0.5f};
+            ms_dl_cylinder(&ball, a, b, 0.1f, white, 0, 12);
+        }
+        ms_scene s;
+        ms_image img;
+        scene_new(&s, 61, 61, 1);
+        s.shadows = 1;
+        light(&s, 0, 1, 0, 1);
+        place(&s, &plane, 0.1f, 0.8f, 0, 40, 1);
+        place(&s, &ball, 0.0f, 0.0f, 0, 40, 0.5f);
+        if (render(&s, 0, 0, &img)) return t_ok(0, "render"), (void)0;
+        float n0 = ms_normal_dequantize(ms_normal_quantize(0)), n1 = ms_normal_dequantize(ms_normal_quantize(1));
+        float ndl = (n0 + n1) / sqrtf(2.0f) / sqrtf(2 * n0 * n0 + n1 * n1);
+        int lit = v8(0.8f * ndl + 0.1f), shade = v8(0.25f * 0.8f * ndl + 0.1f);
+        int xs = (int)(30.5f - 0.6f / 1.5f * 30.5f), xl = (int)(30.5f + 0.6f / 1.5f * 30.5f);
+        const uint8_t *ps = px(&img, xs, 30), *pl2 = px(&img, xl, 30);
+        t_ok(ps[0] == shade && pl2[0] == lit, "%s: its shadow lets 0.25 of the light through (%d, expected %d; lit %d, expected %d)",
+             user ? "a sphere in a user-geometry tree" : "Embree's sphere", ps[0], shade, pl2[0], lit);
+        ms_image_free(&img);
+        ms_scene_free(&s);
+        ms_dl_free(&plane);
+        ms_dl_free(&ball);
+    }
+}
+
 /* ---------------------------------------------------------------- fog */
 
 /* White ambient-only squares at depths 1, 2 and 3 from the eye (orthographic), fog to a black
@@ -543,6 +585,7 @@ int main(void)
     test_transparency();
     test_ao();
     test_shadow();
+    test_shadow_glass();
     test_fog();
     test_mirror();
     test_cylinder_caps();
