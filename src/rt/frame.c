@@ -1,9 +1,9 @@
 /* frame.c: rendering a frame progressively. Memory is planned first (the float accumulation
  * buffer and the pixels' random states; what is left bounds Embree's build), the world is
- * built, then each pass adds one sample to every pixel: 16 x 16 tiles spread over all
- * threads by ms_parallel_for, pass 0 through the pixel centres, later passes at points of
- * the R2 low-discrepancy sequence (rotated per pixel) with a random lens point. A pass limit
- * or a time budget may end the frame early; the average of the passes becomes the image. */
+ * built, then each pass adds one sample to every pixel (sample.c says where): 16 x 16 tiles
+ * spread over all threads by ms_parallel_for, with flush-to-zero and denormals-are-zero on
+ * while they trace. A pass limit or a time budget may end the frame early; the average of the
+ * passes becomes the image, which is written through image/image.h. */
 #include "config.h"
 #include "rt/rt_internal.h"
 #include "base/threads.h"
@@ -25,27 +25,6 @@ typedef struct frame {
     uint64_t (*rays)[MS_RT_NRAYKINDS];  /* per thread */
 } frame;
 
-/* The sample position of pass k in pixel idx: the centre, then R2 points in 32-bit fixed
- * point (exact for any pass count) offset by a per-pixel rotation. */
-static void sample_pos(uint32_t idx, int k, float *x, float *y)
-{
-    if (k == 0) {
-        *x = *y = 0.5f;
-        return;
-    }
-    uint32_t h1 = rt_hash2(idx, 0x51f15e), h2 = rt_hash2(idx, 0x2545f491);
-    uint32_t u = h1 + (uint32_t)k * 3242174889u, v = h2 + (uint32_t)k * 2447445414u;
-    *x = (float)(u >> 8) * (1.0f / 16777216.0f);
-    *y = (float)(v >> 8) * (1.0f / 16777216.0f);
-}
-
-static void lens_point(uint32_t *rng, float lens[2])
-{
-    float r = sqrtf(rt_randf(rng)), a = 6.2831853f * rt_randf(rng);
-    lens[0] = r * cosf(a);
-    lens[1] = r * sinf(a);
-}
-
 static void trace_tile(const frame *f, rt_thread *th, size_t tile)
 {
     int x0 = (int)(tile % (size_t)f->tiles_x) * TILE, y0 = (int)(tile / (size_t)f->tiles_x) * TILE;
@@ -55,8 +34,8 @@ static void trace_tile(const frame *f, rt_thread *th, size_t tile)
             size_t idx = (size_t)y * (size_t)f->width + (size_t)x;
             float sx, sy, lens[2], org[3], dir[3], col[3];
             th->rng = f->rng[idx];
-            sample_pos((uint32_t)idx, f->pass, &sx, &sy);
-            if (f->pass > 0) lens_point(&th->rng, lens);
+            rt_sample_pixel((uint32_t)idx, f->pass, &sx, &sy);
+            if (f->pass > 0) rt_sample_disc(&th->rng, lens);
             rt_camera_ray(&f->sh->cam, (float)x + sx, (float)y + sy, f->pass > 0 ? lens : NULL, org, dir);
             rt_trace(f->sh, th, org, dir, f->depth, 1, col);
             float *a = f->accum + 3 * idx;

@@ -1,7 +1,8 @@
 /* rt_internal.h: what the files of the ray tracer share, and only they include: the traced
- * world (one Embree instance per placed display list, one Embree geometry per primitive kind
- * of the list), the primitive method tables (one file per primitive, as Tachyon has them),
- * the camera, the shading settings and the per-thread state of the integrator. */
+ * world (per transform, an Embree instance of its opaque and one of its transparent
+ * geometries; per placed display list, one Embree geometry per primitive kind), the
+ * primitive method tables (one file per primitive, as Tachyon has them), the camera, the
+ * shading settings and the per-thread state of the integrator. */
 #ifndef MS_RT_INTERNAL_H
 #define MS_RT_INTERNAL_H
 
@@ -26,7 +27,8 @@ RTCDevice rt_device(ms_error *err);
 void rt_device_set_budget(size_t bytes);
 /* After an Embree call: 0 when no error is pending, else -1 with err saying what failed. */
 int rt_device_check(RTCDevice dev, const char *what, ms_error *err);
-/* Memory available to this process now (MemAvailable), in bytes; 0 when unknown. */
+/* Memory available to this process now, in bytes: MemAvailable, or what is left of the
+ * cgroup's limit when that is less; 0 when unknown. */
 size_t rt_mem_available(void);
 /* Flush-to-zero and denormals-are-zero on for the calling thread; returns the old state for
  * rt_fpu_restore. */
@@ -56,7 +58,8 @@ typedef struct rt_geom {
     rt_kind kind;
     size_t n;
     rt_material mat;
-    int transparent;            /* some primitive has opacity < 1 */
+    int transparent;            /* its material or a colour lets light through: it is in the
+                                 * transparent instance */
     int alpha;                  /* some primitive's colour has alpha < 255 */
     int user;                   /* spheres as a user geometry (sharing the tree of cylinders) */
     const float *a, *b;         /* centres; base and apex; ring centre and normal */
@@ -93,12 +96,14 @@ typedef struct rt_world {
     size_t nowned, capowned;
     ms_displaylist **lists;     /* lists made for the build */
     size_t nlists, caplists;
-    size_t nprims;
 } rt_world;
 
 /* Build the world of a scene (Embree scenes committed). 0, or -1 with err set and w freed. */
 int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err);
 void rt_world_free(rt_world *w);
+/* The lines, points and text of a placed list as world-space cylinders and spheres appended
+ * to out (strokes.c). 0, or -1 when memory runs out. */
+int rt_strokes(const ms_scene_item *it, ms_displaylist *out);
 /* Memory the world owns: the helper of the primitive files. NULL with err set. */
 void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err);
 
@@ -121,9 +126,10 @@ extern const rt_prim *const rt_prims[RT_NKINDS];
 /* ---------------------------------------------------------------- occlusion and transparency */
 
 /* The context of every ray query: Embree's, and for occlusion queries the light each ray
- * (by its id) still carries through the transparent surfaces it crossed. Shadow and
- * occlusion rays are answered in one traversal: opaque hits end it, transparent ones are
- * filtered (Tachyon counts each crossing: a sphere's two, a triangle's one) and passed. */
+ * (by its id) still carries through the transparent surfaces it crossed. A shadow or
+ * occlusion ray walks the opaque instances (a hit ends it), then the transparent ones, where
+ * each crossing filters it (Tachyon counts each: a sphere's two, a triangle's one) and lets
+ * it pass, unless the primitive is opaque after all. */
 typedef struct rt_ctx {
     struct RTCIntersectContext ec;   /* first: Embree hands &ec back to the callbacks */
     float *filter;
@@ -237,7 +243,7 @@ void rt_shader_init(rt_shader *sh, const ms_scene *s, const rt_world *w, int aos
 void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
               int depth, int primary, float out[3]);
 
-/* ---------------------------------------------------------------- sampling */
+/* ---------------------------------------------------------------- sampling (sample.c) */
 
 /* PCG's 32-bit output permutation on an LCG state: a uniform word per call. */
 static inline uint32_t rt_rand(uint32_t *s)
@@ -261,6 +267,19 @@ static inline uint32_t rt_hash2(uint32_t a, uint32_t b)
     h *= 0xc2b2ae35u;
     return h ^ (h >> 16);
 }
+
+/* The position of pass k's sample in pixel idx, in [0, 1)^2 (pass 0: the centre). */
+void rt_sample_pixel(uint32_t idx, int k, float *x, float *y);
+/* A uniform point of the unit disc. */
+void rt_sample_disc(uint32_t *rng, float p[2]);
+/* A stratified set of count directions of the hemisphere around unit normal n. */
+typedef struct rt_hemisphere {
+    float n[3], t[3], b[3], r1, r2;
+    int count;
+} rt_hemisphere;
+void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t *rng);
+/* Direction i (0 <= i < count) in d; returns its cosine with the normal. */
+float rt_hemisphere_dir(const rt_hemisphere *h, int i, float d[3]);
 
 /* ---------------------------------------------------------------- small vectors */
 

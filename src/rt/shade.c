@@ -157,27 +157,18 @@ static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], co
     return r.tfar < 0.0f ? 0.0f : f;
 }
 
-/* Tachyon's ambient occlusion: (2 / n) sum of N.d over open directions d of the hemisphere
- * (uniformly distributed; here stratified in cos theta and spread in azimuth by the golden
- * ratio, with a random rotation per shaded point), times the AO ambient colour. */
+/* Tachyon's ambient occlusion: (2 / n) sum of N.d over the open directions d of n rays
+ * (sample.c's stratified hemisphere), times the AO ambient colour. */
 static void occlusion(const rt_shader *sh, rt_thread *th, const surface *s, float out[3])
 {
-    int n = sh->ao_samples;
-    float t[3], b[3], a[3] = {1.0f, 0.0f, 0.0f};
-    if (fabsf(s->n[0]) > 0.5f) a[0] = 0.0f, a[1] = 1.0f;
-    rt_cross(s->n, a, t);
-    rt_normalize(t);
-    rt_cross(s->n, t, b);
-    float r1 = rt_randf(&th->rng), r2 = rt_randf(&th->rng), sum = 0.0f;
-    for (int i = 0; i < n; i++) {
-        float u = ((float)i + r1) / (float)n, v = (float)i * 0.618034f + r2;
-        v -= floorf(v);
-        float sn = sqrtf(fmaxf(0.0f, 1.0f - u * u)), cs = cosf(6.2831853f * v),
-              sw = sinf(6.2831853f * v), d[3];
-        for (int k = 0; k < 3; k++) d[k] = sn * (cs * t[k] + sw * b[k]) + u * s->n[k];
-        sum += u * visibility(sh, th, s->p, d, MS_RT_AO);
+    rt_hemisphere h;
+    rt_hemisphere_init(&h, s->n, sh->ao_samples, &th->rng);
+    float sum = 0.0f, d[3];
+    for (int i = 0; i < sh->ao_samples; i++) {
+        float cosine = rt_hemisphere_dir(&h, i, d);
+        sum += cosine * visibility(sh, th, s->p, d, MS_RT_AO);
     }
-    for (int k = 0; k < 3; k++) out[k] = 2.0f / (float)n * sum * sh->ao_col[k];
+    for (int k = 0; k < 3; k++) out[k] = 2.0f / (float)sh->ao_samples * sum * sh->ao_col[k];
 }
 
 /* Blinn's half-vector highlight (Tachyon's shade_blinn). */

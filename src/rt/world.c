@@ -1,13 +1,12 @@
-/* world.c: the traced world built from a scene. Each placed display list becomes an Embree
- * scene of one geometry per primitive kind (spheres, cylinders, cones, cap discs, the mesh)
- * in the list's own coordinates, instanced with the list's model-to-world transform. Lines,
- * points and text become thin cylinders and spheres in world space, drawn as the Tachyon
- * exporter draws them, and materials become Tachyon's texture terms, so the two devices
- * agree. */
+/* world.c: the traced world built from a scene. The placed display lists are grouped by
+ * transform (a molecule's lists share one); each group becomes two Embree scenes, its opaque
+ * and its transparent geometries, instanced with the transform and masked so shadow rays can
+ * take them in turn. Each list gives one geometry per primitive kind (spheres, cylinders,
+ * cones, cap discs, the mesh) in its own coordinates; its lines, points and text become
+ * world-space cylinders and spheres (strokes.c); materials become Tachyon's texture terms as
+ * the Tachyon exporter writes them, so the two devices agree. */
 #include "config.h"
 #include "rt/rt_internal.h"
-#include "base/threads.h"
-#include "render/export.h"
 #include "scene/mat4.h"
 
 #include <math.h>
@@ -198,63 +197,6 @@ static int no_scene(rt_world *w, ms_error *err)
     return -1;
 }
 
-/* ---------------------------------------------------------------- lines, points, text */
-
-typedef struct strokes {
-    ms_displaylist *dl;
-    ms_rgba8 col;
-    float radius, last[3];
-    int have_last, oom;
-} strokes;
-
-static void stroke(void *ud, const float a[3], const float b[3])
-{
-    strokes *s = ud;
-    if (!s->have_last || memcmp(s->last, a, sizeof s->last))
-        s->oom |= ms_dl_sphere(s->dl, a, s->radius, s->col, 12);
-    s->oom |= ms_dl_cylinder(s->dl, a, b, s->radius, s->col, 0, 12);
-    s->oom |= ms_dl_sphere(s->dl, b, s->radius, s->col, 12);
-    memcpy(s->last, b, sizeof s->last);
-    s->have_last = 1;
-}
-
-static void dash(void *ud, const float a[3], const float b[3])
-{
-    strokes *s = ud;
-    s->oom |= ms_dl_cylinder(s->dl, a, b, s->radius, s->col, 0, 12);
-}
-
-/* Lines, points and text of a placed list as world-space cylinders and spheres (sizes in
- * world units, as the exporter writes them). */
-static int strokes_of(const ms_scene_item *it, ms_displaylist *out)
-{
-    const ms_displaylist *dl = it->dl;
-    strokes s = {out, {0, 0, 0, 0}, 0, {0, 0, 0}, 0, 0};
-    for (size_t i = 0; i < dl->lines.n; i++) {
-        float a[3], b[3];
-        ms_mat4_point(it->xform, dl->lines.a + 3 * i, a);
-        ms_mat4_point(it->xform, dl->lines.b + 3 * i, b);
-        s.radius = dl->lines.width[i] * MS_EXPORT_LINE_RADIUS;
-        s.col = dl->lines.color[i];
-        if (dl->lines.style[i] == MS_LINE_DASHED) ms_export_dashes(a, b, dash, &s);
-        else s.oom |= ms_dl_cylinder(out, a, b, s.radius, s.col, 0, 12);
-    }
-    for (size_t i = 0; i < dl->points.n; i++) {
-        float c[3];
-        ms_mat4_point(it->xform, dl->points.xyz + 3 * i, c);
-        s.oom |= ms_dl_sphere(out, c, dl->points.size[i] * MS_EXPORT_LINE_RADIUS, dl->points.color[i], 12);
-    }
-    for (size_t i = 0; i < dl->texts.n; i++) {
-        float c[3];
-        ms_mat4_point(it->xform, dl->texts.xyz + 3 * i, c);
-        s.radius = dl->texts.thickness[i] * MS_EXPORT_LINE_RADIUS;
-        s.col = dl->texts.color[i];
-        s.have_last = 0;
-        ms_export_text(dl->texts.chars + dl->texts.start[i], c, dl->texts.size[i], stroke, &s);
-    }
-    return s.oom ? -1 : 0;
-}
-
 /* ---------------------------------------------------------------- the world */
 
 /* The secondary-ray offset: a millionth of the scene's size, at least 1e-5. */
@@ -295,7 +237,7 @@ static source *sources_of(rt_world *w, const ms_scene *s, size_t *n, ms_error *e
         if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
         ms_displaylist *extra = new_list(w, err);
         if (!extra) return NULL;
-        if (strokes_of(it, extra)) {
+        if (rt_strokes(it, extra)) {
             ms_error_set(err, "out of memory");
             return NULL;
         }
@@ -378,7 +320,6 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
     rtcReleaseGeometry(geom);
     w->ngeoms++;
     w->has_trans |= trans;
-    w->nprims += g->n;
     return 0;
 }
 
