@@ -475,6 +475,65 @@ static void test_mesh_colors(void)
     ms_dl_free(&dl);
 }
 
+/* ---------------------------------------------------------------- background, depth of field */
+
+/* An empty perspective scene with the gradient on: Tachyon's sky sphere between -m and m with
+ * m = min(1, (height / 2) / screen distance) = 0.75; a pixel's value is (d.y + m) / (2 m) of
+ * the way from the bottom colour to the top one, d its unit ray direction. */
+static void test_gradient(void)
+{
+    t_suite = "background";
+    ms_scene s;
+    ms_image img;
+    scene_new(&s, 40, 30, 0);
+    s.bg_gradient = 1;
+    s.bg_top[0] = 1.0f, s.bg_bottom[2] = 1.0f;
+    if (render(&s, 0, 0, &img)) return t_ok(0, "render"), (void)0;
+    int ok = 1;
+    for (int j = 0; j < 30; j += 7) {
+        float sy = (1.0f - 2.0f * ((float)j + 0.5f) / 30.0f) * 0.75f, sx = (2.0f * 20.5f / 40.0f - 1.0f) * 0.75f * 40 / 30;
+        float dy = sy / sqrtf(1 + sx * sx + sy * sy), v = (dy + 0.75f) / 1.5f;
+        const uint8_t *p = px(&img, 20, j);
+        ok &= near8(p, v8(v), 0, v8(1 - v), 1);
+    }
+    t_ok(ok, "the sky sphere gradient from BackgroundBot to BackgroundTop");
+    ms_image_free(&img);
+    ms_scene_free(&s);
+    scene_new(&s, 8, 8, 0);
+    s.background[1] = 0.5f;
+    if (render(&s, 3, 0, &img)) return t_ok(0, "render"), (void)0;
+    t_ok(near8(px(&img, 3, 3), 0, v8(0.5f), 0, 0), "an empty scene is all background");
+    ms_image_free(&img);
+    ms_scene_free(&s);
+}
+
+/* Depth of field focused 2 from the eye (on z = 0), f-number 1: a sphere there keeps a sharp
+ * edge, one 3 behind it is blurred over many pixels. */
+static void test_dof(void)
+{
+    t_suite = "depth of field";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float a[3] = {-0.7f, 0, 0}, b[3] = {1.2f, 0, -3};
+    ms_dl_sphere(&dl, a, 0.4f, (ms_rgba8){255, 255, 255, 255}, 12);
+    ms_dl_sphere(&dl, b, 0.8f, (ms_rgba8){255, 255, 255, 255}, 12);
+    ms_scene s;
+    ms_image img;
+    scene_new(&s, 120, 60, 0);
+    s.cam.dof = 1, s.cam.dof_fnumber = 1, s.cam.dof_focaldist = 2;
+    place(&s, &dl, 1, 0, 0, 40, 1);
+    if (render(&s, 63, 0, &img)) return t_ok(0, "render"), (void)0;
+    int soft[2] = {0, 0};
+    for (int i = 0; i < 120; i++) {
+        int v = px(&img, i, 30)[0];
+        if (v > 10 && v < 245) soft[i >= 60]++;
+    }
+    t_ok(soft[0] <= 4 && soft[1] >= 3 * soft[0] + 6, "in focus: %d soft edge pixels; 3 behind: %d", soft[0], soft[1]);
+    ms_image_free(&img);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+
 /* ---------------------------------------------------------------- progressive passes */
 
 static void test_passes(void)
@@ -504,6 +563,30 @@ static void test_passes(void)
     rc = ms_rt_render(&s, &o, &img, &st, &err);
     t_ok(rc == 0 && st.passes == 3, "a pass limit stops early (%d)", st.passes);
     if (!rc) ms_image_free(&img);
+    /* progress: a line per pass on stderr (the device asks for it when stderr is a terminal) */
+    char log[512];
+    snprintf(log, sizeof log, "%s/rt_progress.txt", getenv("MS_TEST_OUT") ? getenv("MS_TEST_OUT") : "/tmp");
+    fflush(stderr);
+    int saved = dup(2);
+    FILE *lf = fopen(log, "w");
+    int lines = 0;
+    if (lf && saved >= 0) {
+        dup2(fileno(lf), 2);
+        o.progress = 1;
+        rc = ms_rt_render(&s, &o, &img, &st, &err);
+        fflush(stderr);
+        dup2(saved, 2);
+        o.progress = 0;
+        if (!rc) ms_image_free(&img);
+        fclose(lf);
+        lf = fopen(log, "r");
+        char line[256];
+        while (lf && fgets(line, sizeof line, lf)) lines += !strncmp(line, "TachyonInternal: pass ", 22);
+        if (lf) fclose(lf);
+    }
+    if (saved >= 0) close(saved);
+    remove(log);
+    t_ok(lines == 3, "progress: a line per pass (%d lines for 3 passes)", lines);
     o.max_passes = 0;
     o.aasamples = 60000;
     o.time_budget = 1e-6;
@@ -591,6 +674,8 @@ int main(void)
     test_cylinder_caps();
     test_cone();
     test_mesh_colors();
+    test_gradient();
+    test_dof();
     test_passes();
     test_errors();
     ms_materials_free(mats);
