@@ -154,6 +154,34 @@ static void test_sphere_shading(void)
     ms_dl_free(&dl);
 }
 
+/* Outline 1, width 0.9, light along the view: the diffuse term is scaled by
+ * e = 1 - (1 - (N.D)^2)^((1 - 0.9) 32); where N.D = -0.5, N.L = 0.5 and e = 1 - 0.75^3.2. */
+static void test_outline(void)
+{
+    t_suite = "outline";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float c[3] = {0, 0, 0};
+    ms_dl_sphere(&dl, c, 0.5f, (ms_rgba8){255, 255, 255, 255}, 12);
+    ms_scene s;
+    ms_image img;
+    scene_new(&s, 101, 101, 1);
+    light(&s, 0, 0, 0, 1);
+    place(&s, &dl, 0, 1, 0, 40, 1);
+    s.items[0].mat.outline = 1, s.items[0].mat.outlinewidth = 0.9f;
+    if (render(&s, 0, 0, &img)) return t_ok(0, "render"), (void)0;
+    /* the pixel whose centre is nearest x = 0.5 sqrt(0.75) (n_z = 0.5) on the centre row */
+    int i = (int)(50.5f + 0.5f * sqrtf(0.75f) / 1.5f * 50.5f);
+    float x = ((float)i + 0.5f - 50.5f) / 50.5f * 1.5f, nz = sqrtf(0.25f - x * x) / 0.5f;
+    float e = 1 - powf(1 - nz * nz, 0.1f * 32.0f);
+    int v = px(&img, i, 50)[0], centre = px(&img, 50, 50)[0];
+    t_ok(abs(v - v8(nz * e)) <= 1 && centre == 255, "edge darkened to %d (expected %d), centre %d",
+         v, v8(nz * e), centre);
+    ms_image_free(&img);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+
 /* ---------------------------------------------------------------- transparency */
 
 /* Ambient-only colours: the centre ray meets the front and back of the transparent sphere
@@ -665,6 +693,7 @@ int main(void)
     ms_error err;
     mats = ms_materials_new(&err);
     test_sphere_shading();
+    test_outline();
     test_transparency();
     test_ao();
     test_shadow();
