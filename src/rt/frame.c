@@ -39,9 +39,7 @@ static void trace_tile(const frame *f, rt_thread *th, size_t tile)
             rt_camera_ray(&f->sh->cam, (float)x + sx, (float)y + sy, f->pass > 0 ? lens : NULL, org, dir);
             rt_trace(f->sh, th, org, dir, f->depth, 1, col);
             float *a = f->accum + 3 * idx;
-            a[0] += col[0];
-            a[1] += col[1];
-            a[2] += col[2];
+            for (int k = 0; k < 3; k++) a[k] += isfinite(col[k]) ? col[k] : 0.0f;   /* a degenerate camera */
             f->rng[idx] = th->rng;
         }
 }
@@ -139,7 +137,7 @@ static void to_image(const frame *f, int passes, ms_image *img)
     float scale = 255.0f / (float)passes;
     for (size_t i = 0; i < n; i++) {
         float v = f->accum[i] * scale;
-        img->rgb[i] = (uint8_t)(v < 0.0f ? 0.0f : v > 255.0f ? 255.0f : v);
+        img->rgb[i] = (uint8_t)(!(v > 0.0f) ? 0.0f : v > 255.0f ? 255.0f : v);
     }
 }
 

@@ -112,7 +112,7 @@ static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s
     /* Tachyon's rule: the geometric normal decides the side seen (for a mesh, its winding),
      * and the shading normal turns with it */
     float side = rt_dot(ng, d) > 0.0f ? -1.0f : 1.0f;
-    if (rt_normalize(s->n) == 0.0f) {
+    if (!(rt_normalize(s->n) > 0.0f) || !isfinite(s->n[0] + s->n[1] + s->n[2])) {
         memcpy(s->n, d, sizeof d);
         side = -1.0f;
     }
@@ -120,6 +120,15 @@ static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s
     ms_rgba8_to_float(c, s->col);
     s->mat = &g->mat;
     s->opacity = g->mat.opacity * (float)c.a * (1.0f / 255.0f);
+}
+
+/* Embree refuses rays beyond its float range (1.8e18) and non-numbers, and its checks abort:
+ * a degenerate camera or primitive must not get that far. */
+static int ray_ok(const float o[3], const float d[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (!(fabsf(o[k]) <= 1e18f && fabsf(d[k]) <= 1e18f)) return 0;
+    return d[0] != 0 || d[1] != 0 || d[2] != 0;
 }
 
 static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], float tnear)
@@ -143,6 +152,7 @@ static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], co
 {
     struct RTCRay r;
     float f = 1.0f;
+    if (!ray_ok(p, d)) return 0.0f;
     ray_init(&r, p, d, sh->w->eps);
     th->ctx.filter = &f;
     th->rays[kind]++;
@@ -256,6 +266,10 @@ void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const floa
               int depth, int primary, float out[3])
 {
     struct RTCRayHit rh;
+    if (!ray_ok(org, dir)) {
+        memcpy(out, sh->bg, 3 * sizeof(float));
+        return;
+    }
     ray_init(&rh.ray, org, dir, primary ? 0.0f : sh->w->eps);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;

@@ -627,6 +627,52 @@ static void test_passes(void)
 
 /* ---------------------------------------------------------------- errors */
 
+/* Degenerate primitives are left out, a degenerate camera gives background, and a mesh whose
+ * triangle names a missing vertex is an error: nothing crashes or reads out of bounds. */
+static void test_degenerate(void)
+{
+    t_suite = "degenerate input";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    ms_rgba8 w = {255, 255, 255, 255};
+    float nan3[3] = {NAN, 0, 0}, o[3] = {0, 0, 0}, inf3[3] = {INFINITY, 1, 1}, z[3] = {0, 0, 1};
+    ms_dl_sphere(&dl, nan3, 1, w, 12);
+    ms_dl_sphere(&dl, o, 0, w, 12);
+    ms_dl_sphere(&dl, o, -1, w, 12);
+    ms_dl_sphere(&dl, o, NAN, w, 12);
+    ms_dl_cylinder(&dl, o, o, 1, w, MS_CAP_BASE | MS_CAP_APEX, 12);
+    ms_dl_cylinder(&dl, o, inf3, 1, w, 0, 12);
+    ms_dl_cylinder(&dl, o, z, 0, w, MS_CAP_BASE, 12);
+    ms_dl_cone(&dl, o, z, 0, 0, w, 12);
+    ms_dl_cone(&dl, o, o, 1, 0, w, 12);
+    float p[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, n[9] = {0};
+    ms_rgba8 c[3] = {w, w, w};
+    ms_dl_triangle(&dl, p, n, c);
+    ms_scene s;
+    ms_image img;
+    scene_new(&s, 16, 16, 0);
+    s.background[0] = 1.0f;
+    s.shadows = s.ao = 1;
+    light(&s, 0, 0, 0, 1);
+    place(&s, &dl, 0.2f, 0.6f, 0.5f, 40, 0.5f);
+    int rc = render(&s, 2, 4, &img);
+    t_ok(rc == 0 && near8(px(&img, 8, 8), 255, 0, 0, 0), "NaN, zero and infinite sizes are left out: background");
+    if (!rc) ms_image_free(&img);
+    s.cam.distance = s.cam.eye[2];
+    rc = render(&s, 0, 0, &img);
+    t_ok(rc == 0, "a camera whose screen is at the eye renders");
+    if (!rc) ms_image_free(&img);
+    s.cam.distance = -2;
+    dl.mesh.tri[2] = 7;
+    ms_rt_options opt;
+    ms_rt_options_default(&opt);
+    ms_error err = {{0}};
+    t_ok(ms_rt_render(&s, &opt, &img, NULL, &err) < 0 && strstr(err.msg, "triangle 0"),
+         "a triangle naming a missing vertex is an error (%s)", err.msg);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+
 static void test_errors(void)
 {
     t_suite = "errors";
@@ -706,6 +752,7 @@ int main(void)
     test_gradient();
     test_dof();
     test_passes();
+    test_degenerate();
     test_errors();
     ms_materials_free(mats);
     return t_done();
