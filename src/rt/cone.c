@@ -68,7 +68,7 @@ static void cone_occluded(const struct RTCOccludedFunctionNArguments *args)
     rt_user_occluded(args, cone_test);
 }
 
-static RTCGeometry cone_geometry(rt_world *w, const rt_geom *g, ms_error *err)
+static RTCGeometry cone_geometry(rt_world *w, rt_geom *g, ms_error *err)
 {
     return rt_user_geometry(w, g, cone_bounds, cone_intersect, cone_occluded, err);
 }

@@ -1,9 +1,10 @@
 /* cylinder.c: open cylinders (Tachyon's FCylinder), an Embree user geometry: the tube between
  * the base and apex centres, both of its surfaces (a ray can see the inside of an open end).
- * Closed ends are discs (ring.c). The test first moves the ray origin next to the cylinder,
- * so that a camera far away in the list's coordinates loses no precision. */
+ * Closed ends are discs (ring.c). Each cylinder's unit axis and length are worked out once,
+ * at the build, for the tests. */
 #include "config.h"
 #include "rt/rt_internal.h"
+#include "base/threads.h"
 
 #include <math.h>
 
@@ -26,32 +27,48 @@ static void cylinder_bounds(const struct RTCBoundsFunctionArguments *args)
     o->lower_z = fminf(a[2], b[2]) - e[2], o->upper_z = fmaxf(a[2], b[2]) + e[2];
 }
 
+/* The ray against the infinite cylinder, in the plane across the axis (with the ray's part
+ * across the axis dp and the origin's ocp): the point nearest the axis at tc, distance^2 l2,
+ * the crossings tc -+ sqrt((r^2 - l2) / |dp|^2); then each within the two ends. Working from
+ * the nearest point (as Embree's spheres do) keeps precision with a far camera. */
 static int cylinder_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[2])
 {
-    const float *A = g->a + 3 * (size_t)prim, *B = g->b + 3 * (size_t)prim;
-    float rad = g->ra[prim], ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
-    float len = rt_normalize(ax);
-    /* the origin moved to the point of the ray nearest the cylinder's middle */
-    float mid[3] = {0.5f * (A[0] + B[0]) - r->o[0], 0.5f * (A[1] + B[1]) - r->o[1],
-                    0.5f * (A[2] + B[2]) - r->o[2]};
-    float t0 = rt_dot(mid, r->d) / rt_dot(r->d, r->d);
-    float oc[3], dp[3], ocp[3];
-    for (int k = 0; k < 3; k++) oc[k] = r->o[k] + t0 * r->d[k] - A[k];
-    float ds = rt_dot(r->d, ax), ocs = rt_dot(oc, ax);
+    const float *A = g->a + 3 * (size_t)prim, *ax = g->aux + 4 * (size_t)prim;
+    float rad = g->ra[prim], oc[3] = {r->o[0] - A[0], r->o[1] - A[1], r->o[2] - A[2]};
+    float ds = rt_dot(r->d, ax), ocs = rt_dot(oc, ax), dp[3], ocp[3];
     for (int k = 0; k < 3; k++) {
         dp[k] = r->d[k] - ds * ax[k];
         ocp[k] = oc[k] - ocs * ax[k];
     }
-    float qa = rt_dot(dp, dp), roots[2];
-    if (!(qa > 0.0f) ||
-        !rt_quadratic(qa, rt_dot(dp, ocp), rt_dot(ocp, ocp) - rad * rad, &roots[0], &roots[1]))
-        return 0;
+    float qa = rt_dot(dp, dp);
+    if (!(qa > 0.0f)) return 0;          /* along the axis: an open tube is not hit */
+    float inv = 1.0f / qa, tc = -rt_dot(ocp, dp) * inv, q[3];
+    for (int k = 0; k < 3; k++) q[k] = ocp[k] + tc * dp[k];
+    float l2 = rt_dot(q, q);
+    if (l2 > rad * rad) return 0;
+    float td = sqrtf((rad * rad - l2) * inv), roots[2] = {tc - td, tc + td};
     int n = 0;
     for (int k = 0; k < 2; k++) {
-        float tt = t0 + roots[k], s = ocs + roots[k] * ds;
-        if (tt > r->tnear && tt < r->tfar && s >= 0.0f && s <= len) t[n++] = tt;
+        float s = ocs + roots[k] * ds;
+        if (roots[k] > r->tnear && roots[k] < r->tfar && s >= 0.0f && s <= ax[3]) t[n++] = roots[k];
     }
     return n;
+}
+
+/* Unit axes and lengths, 4 floats per cylinder, made once for the tests. */
+typedef struct axes {
+    const rt_geom *g;
+    float *aux;
+} axes;
+
+static void axes_range(void *ctx, size_t b, size_t e, int thread)
+{
+    axes *x = ctx;
+    for (size_t i = b; i < e; i++) {
+        float *o = x->aux + 4 * i;
+        for (int k = 0; k < 3; k++) o[k] = x->g->b[3 * i + k] - x->g->a[3 * i + k];
+        o[3] = rt_normalize(o);
+    }
 }
 
 static void cylinder_intersect(const struct RTCIntersectFunctionNArguments *args)
@@ -64,8 +81,12 @@ static void cylinder_occluded(const struct RTCOccludedFunctionNArguments *args)
     rt_user_occluded(args, cylinder_test);
 }
 
-static RTCGeometry cylinder_geometry(rt_world *w, const rt_geom *g, ms_error *err)
+static RTCGeometry cylinder_geometry(rt_world *w, rt_geom *g, ms_error *err)
 {
+    axes x = {g, rt_world_alloc(w, 4 * g->n, sizeof(float), err)};
+    if (!x.aux) return NULL;
+    ms_parallel_for(g->n, 65536, axes_range, &x);
+    g->aux = x.aux;
     return rt_user_geometry(w, g, cylinder_bounds, cylinder_intersect, cylinder_occluded, err);
 }
 

@@ -26,7 +26,7 @@ static void check_range(void *ctx, size_t b, size_t e, int thread)
         }
 }
 
-static RTCGeometry mesh_geometry(rt_world *w, const rt_geom *g, ms_error *err)
+static RTCGeometry mesh_geometry(rt_world *w, rt_geom *g, ms_error *err)
 {
     check c = {g, 0};
     ms_parallel_for(g->n, 65536, check_range, &c);

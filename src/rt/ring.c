@@ -52,7 +52,7 @@ static void ring_occluded(const struct RTCOccludedFunctionNArguments *args)
     rt_user_occluded(args, ring_test);
 }
 
-static RTCGeometry ring_geometry(rt_world *w, const rt_geom *g, ms_error *err)
+static RTCGeometry ring_geometry(rt_world *w, rt_geom *g, ms_error *err)
 {
     return rt_user_geometry(w, g, ring_bounds, ring_intersect, ring_occluded, err);
 }

@@ -69,6 +69,7 @@ typedef struct rt_geom {
     const int8_t *normal;
     const uint32_t *tri;
     size_t nverts, vcap;        /* mesh vertices, and room in xyz (Embree reads past the end) */
+    const float *aux;           /* per-primitive data a primitive file made (cylinder axes) */
 } rt_geom;
 
 /* The lists placed by one transform (a molecule's representations share its transform): an
@@ -112,8 +113,8 @@ void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err);
 /* What each primitive file provides (sphere.c, cylinder.c, cone.c, ring.c, mesh.c). */
 typedef struct rt_prim {
     const char *name;
-    /* The committed Embree geometry of g; NULL with err set. */
-    RTCGeometry (*geometry)(rt_world *w, const rt_geom *g, ms_error *err);
+    /* The Embree geometry of g (not committed; it may add data to g); NULL with err set. */
+    RTCGeometry (*geometry)(rt_world *w, rt_geom *g, ms_error *err);
     /* At a hit (p: the hit point in the list's coordinates): the shading normal n and the
      * geometric normal ng (both in the list's coordinates, any length) and the colour. */
     void (*surface)(const rt_geom *g, const struct RTCHit *h, const float p[3], float n[3],
@@ -156,7 +157,16 @@ typedef int (*rt_user_test)(const rt_geom *g, unsigned prim, const rt_uray *r, f
 RTCGeometry rt_user_geometry(rt_world *w, const rt_geom *g, RTCBoundsFunction bounds,
                              RTCIntersectFunctionN isect, RTCOccludedFunctionN occluded,
                              ms_error *err);
-void rt_user_ray(const float *ray, unsigned N, unsigned i, rt_uray *r);
+/* Ray i of an N-ray call; Embree's RTCRayN layout: twelve fields of N lanes each (origin,
+ * tnear, direction, time, tfar, mask, id, flags), then the hit. */
+static inline void rt_user_ray(const float *ray, unsigned N, unsigned i, rt_uray *r)
+{
+    r->o[0] = ray[i], r->o[1] = ray[N + i], r->o[2] = ray[2 * N + i];
+    r->tnear = ray[3 * N + i];
+    r->d[0] = ray[4 * N + i], r->d[1] = ray[5 * N + i], r->d[2] = ray[6 * N + i];
+    r->tfar = ray[8 * N + i];
+    r->id = ((const unsigned *)ray)[10 * N + i];
+}
 void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t);
 /* An occlusion call's hits: an opaque one blocks the ray, transparent ones filter it. */
 void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i, int nhits,

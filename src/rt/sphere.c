@@ -49,11 +49,11 @@ static int sphere_test(const rt_geom *g, unsigned prim, const rt_uray *r, float 
 {
     const float *c = g->a + 3 * (size_t)prim;
     float rad = g->ra[prim], oc[3] = {c[0] - r->o[0], c[1] - r->o[1], c[2] - r->o[2]};
-    float dd = rt_dot(r->d, r->d), tc = rt_dot(oc, r->d) / dd, q[3];
+    float inv = 1.0f / rt_dot(r->d, r->d), tc = rt_dot(oc, r->d) * inv, q[3];
     for (int k = 0; k < 3; k++) q[k] = oc[k] - tc * r->d[k];
     float l2 = rt_dot(q, q);
     if (l2 > rad * rad) return 0;
-    float td = sqrtf((rad * rad - l2) / dd);
+    float td = sqrtf((rad * rad - l2) * inv);
     int n = 0;
     if (tc - td > r->tnear && tc - td < r->tfar) t[n++] = tc - td;
     if (tc + td > r->tnear && tc + td < r->tfar) t[n++] = tc + td;
@@ -70,7 +70,7 @@ static void sphere_occluded(const struct RTCOccludedFunctionNArguments *args)
     rt_user_occluded(args, sphere_test);
 }
 
-static RTCGeometry sphere_geometry(rt_world *w, const rt_geom *g, ms_error *err)
+static RTCGeometry sphere_geometry(rt_world *w, rt_geom *g, ms_error *err)
 {
     if (g->user) return rt_user_geometry(w, g, sphere_bounds, sphere_intersect, sphere_occluded, err);
     RTCGeometry geom = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_SPHERE_POINT);

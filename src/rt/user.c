@@ -10,17 +10,6 @@
 enum { R_OX, R_OY, R_OZ, R_TNEAR, R_DX, R_DY, R_DZ, R_TIME, R_TFAR, R_MASK, R_ID, R_FLAGS,
        H_NGX, H_NGY, H_NGZ, H_U, H_V, H_PRIM, H_GEOM, H_INST };
 
-void rt_user_ray(const float *ray, unsigned N, unsigned i, rt_uray *r)
-{
-    for (int k = 0; k < 3; k++) {
-        r->o[k] = ray[(R_OX + k) * N + i];
-        r->d[k] = ray[(R_DX + k) * N + i];
-    }
-    r->tnear = ray[R_TNEAR * N + i];
-    r->tfar = ray[R_TFAR * N + i];
-    r->id = ((const unsigned *)ray)[R_ID * N + i];
-}
-
 void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t)
 {
     unsigned N = args->N;
