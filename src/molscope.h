@@ -20,6 +20,7 @@
  *               ffmpeg encoder fed in frame order, progress (the command: ../tcl/movie.tcl)
  *   surf/       QuickSurf: Gaussian density maps, marching cubes, the surface engine
  *   gl/         offscreen OpenGL (OSMesa, EGL): the display device and `render snapshot`
+ *   rt/         TachyonInternal: the photorealistic CPU ray tracer on Embree
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
  *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
@@ -58,6 +59,7 @@
 #include "movie/movie.h"
 #include "surf/qsurf.h"
 #include "gl/gl.h"
+#include "rt/rt.h"
 #include "app/app.h"
 #include "commands/commands.h"
 #include "select/atomsel.h"

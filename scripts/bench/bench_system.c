@@ -64,6 +64,7 @@ int bench_system_make(const char *data, int copies, bench_sys *s)
         return -1;
     }
     size_t n0 = m->atoms.n, nb0 = m->bonds.start[n0];
+    s->n0 = n0;
     s->n = n0 * (size_t)copies;
     s->pos = malloc(3 * s->n * sizeof(float));
     s->radius = malloc(s->n * sizeof(float));

@@ -12,6 +12,7 @@ typedef struct bench_sys {
     ms_rgba8 *color;
     uint32_t *bstart, *bto;   /* CSR bonds of the replicated system */
     float lo[3], hi[3];       /* bounding box of the positions */
+    size_t n0;                /* atoms of one copy */
 } bench_sys;
 
 /* 1tii from the data folder, `copies` times; 0, or -1 after printing why. */

@@ -3,9 +3,10 @@
 # C drivers below.
 BENCH_LIBS = plugins/libbuiltin.la src/libmscore.la $(TCL_LIBS) $(PNG_LIBS) $(PTHREAD_LIBS) \
 	$(MPI_LIBS) -lm
-EXTRA_PROGRAMS += scripts/bench/bench_scene scripts/bench/bench_snapshot scripts/bench/bench_ss
+EXTRA_PROGRAMS += scripts/bench/bench_scene scripts/bench/bench_snapshot scripts/bench/bench_ss \
+	scripts/bench/bench_rt
 BENCH_DRIVERS = scripts/bench/bench_scene$(EXEEXT) scripts/bench/bench_snapshot$(EXEEXT) \
-	scripts/bench/bench_ss$(EXEEXT)
+	scripts/bench/bench_ss$(EXEEXT) scripts/bench/bench_rt$(EXEEXT)
 CLEANFILES += $(BENCH_DRIVERS)
 
 scripts_bench_bench_scene_SOURCES = scripts/bench/bench_scene.c \
@@ -20,3 +21,6 @@ scripts_bench_bench_ss_LDADD = $(BENCH_LIBS)
 bench-programs: $(BENCH_DRIVERS)
 bench: bench-programs
 .PHONY: bench-programs
+scripts_bench_bench_rt_SOURCES = scripts/bench/bench_rt.c \
+	scripts/bench/bench_system.h scripts/bench/bench_system.c
+scripts_bench_bench_rt_LDADD = $(BENCH_LIBS)

@@ -37,7 +37,8 @@ size_t ms_render_count(void);
 const ms_render_device *ms_render_device_at(size_t i);
 /* A device by name, case-insensitively; NULL when unknown. */
 const ms_render_device *ms_render_find(const char *name);
-/* Register the file exporters built into molscope (Tachyon, POV3, Wavefront). */
+/* Register the devices built into molscope: the file exporters (Tachyon, POV3, Wavefront)
+ * and the TachyonInternal ray tracer (rt/rt.h). */
 void ms_render_register_builtin(void);
 
 /* Per-application settings of every device. */

@@ -176,7 +176,8 @@ static int mesh_grow(ms_dl_mesh *m, size_t nverts, size_t ntris)
     if (m->nverts > SIZE_MAX - nverts || m->ntris > SIZE_MAX - ntris) return -1;
     /* Indices are 32-bit. */
     if (m->nverts + nverts > UINT32_MAX) return -1;
-    return grow_columns(&m->vcap, m->nverts + nverts, v, 3) ||
+    /* one vertex to spare: a ray tracer shares xyz with Embree, which reads 16 bytes a vertex */
+    return grow_columns(&m->vcap, m->nverts + nverts + 1, v, 3) ||
            grow_columns(&m->tcap, m->ntris + ntris, t, 1) ? -1 : 0;
 }
 

@@ -77,7 +77,9 @@ typedef struct ms_dl_texts {
     size_t nchars, ccap;
 } ms_dl_texts;
 
-/* One triangle mesh per list; several meshes append into it with offset indices. */
+/* One triangle mesh per list; several meshes append into it with offset indices. The vertex
+ * arrays always hold at least one vertex more than nverts (vcap > nverts), so that xyz can be
+ * handed to Embree as it is (it reads 16 bytes per vertex). */
 typedef struct ms_dl_mesh {
     size_t nverts, vcap;
     float *xyz;          /* 3 nverts */

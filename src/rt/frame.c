@@ -1,0 +1,211 @@
+/* frame.c: rendering a frame progressively. Memory is planned first (the float accumulation
+ * buffer and the pixels' random states; what is left bounds Embree's build), the world is
+ * built, then each pass adds one sample to every pixel (sample.c says where): 16 x 16 tiles
+ * spread over all threads by ms_parallel_for, with flush-to-zero and denormals-are-zero on
+ * while they trace. A pass limit or a time budget may end the frame early; the average of the
+ * passes becomes the image, which is written through image/image.h. */
+#include "config.h"
+#include "rt/rt_internal.h"
+#include "base/threads.h"
+#include "render/render.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+
+#define TILE 16
+
+typedef struct frame {
+    const rt_shader *sh;
+    int width, height, tiles_x, pass, depth;
+    float *accum;               /* 3 floats per pixel: sums of the samples */
+    uint32_t *rng;              /* per-pixel random state, kept from pass to pass */
+    uint64_t (*rays)[MS_RT_NRAYKINDS];  /* per thread */
+} frame;
+
+static void trace_tile(const frame *f, rt_thread *th, size_t tile)
+{
+    int x0 = (int)(tile % (size_t)f->tiles_x) * TILE, y0 = (int)(tile / (size_t)f->tiles_x) * TILE;
+    int x1 = MS_MIN(x0 + TILE, f->width), y1 = MS_MIN(y0 + TILE, f->height);
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++) {
+            size_t idx = (size_t)y * (size_t)f->width + (size_t)x;
+            float sx, sy, lens[2], org[3], dir[3], col[3];
+            th->rng = f->rng[idx];
+            rt_sample_pixel((uint32_t)idx, f->pass, &sx, &sy);
+            if (f->pass > 0) rt_sample_disc(&th->rng, lens);
+            rt_camera_ray(&f->sh->cam, (float)x + sx, (float)y + sy, f->pass > 0 ? lens : NULL, org, dir);
+            rt_trace(f->sh, th, org, dir, f->depth, 1, col);
+            float *a = f->accum + 3 * idx;
+            for (int k = 0; k < 3; k++) a[k] += isfinite(col[k]) ? col[k] : 0.0f;   /* a degenerate camera */
+            f->rng[idx] = th->rng;
+        }
+}
+
+static void trace_tiles(void *ctx, size_t b, size_t e, int thread)
+{
+    frame *f = ctx;
+    unsigned fpu = rt_fpu_fast();
+    rt_thread th;
+    memset(&th, 0, sizeof th);
+    rtcInitIntersectContext(&th.ctx.ec);
+    for (size_t t = b; t < e; t++) trace_tile(f, &th, t);
+    for (int k = 0; k < MS_RT_NRAYKINDS; k++) f->rays[thread][k] += th.rays[k];
+    rt_fpu_restore(fpu);
+}
+
+/* ---------------------------------------------------------------- checks and memory */
+
+static int check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+{
+    if (o->aasamples < 0 || o->aasamples > MS_RT_MAX_AASAMPLES) {
+        ms_error_set(err, "aasamples %d: expected 0 to %d", o->aasamples, MS_RT_MAX_AASAMPLES);
+        return -1;
+    }
+    if (o->aosamples < 0 || o->aosamples > MS_RT_MAX_AOSAMPLES) {
+        ms_error_set(err, "aosamples %d: expected 0 to %d", o->aosamples, MS_RT_MAX_AOSAMPLES);
+        return -1;
+    }
+    if (s->width < 1 || s->height < 1 || s->width > MS_IMAGE_MAX_SIDE || s->height > MS_IMAGE_MAX_SIDE) {
+        ms_error_set(err, "image size %dx%d: expected 1 to %d pixels a side", s->width, s->height,
+                     MS_IMAGE_MAX_SIDE);
+        return -1;
+    }
+    return 0;
+}
+
+/* Room for the frame's buffers, then for Embree (90% of what is available): an error when
+ * the buffers alone do not fit. */
+static int plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+{
+    size_t npix = (size_t)s->width * (size_t)s->height;
+    size_t need = npix * (3 * sizeof(float) + sizeof(uint32_t) + 3);
+    size_t avail = o->memory ? o->memory : rt_mem_available();
+    if (avail && need > avail / 10 * 9) {
+        ms_error_set(err, "a %dx%d image needs %.2f GB for its buffers, more than the %.2f GB of "
+                     "memory available", s->width, s->height, (double)need / 1e9, (double)avail / 1e9);
+        return -1;
+    }
+    rt_device_set_budget(avail ? avail / 10 * 9 - need : 0);
+    return 0;
+}
+
+/* ---------------------------------------------------------------- passes */
+
+/* CPU seconds of the process so far, all threads. */
+static double cpu_now(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+           1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
+static void progress(const ms_rt_stats *st, int total, double t0)
+{
+    double el = ms_now() - t0;
+    fprintf(stderr, "TachyonInternal: pass %d/%d, %.1f s, %.1f Mrays/s\n", st->passes, total, el,
+            el > 0 ? (double)ms_rt_stats_rays(st) / el / 1e6 : 0.0);
+}
+
+static void run_passes(frame *f, const ms_rt_options *o, ms_rt_stats *st)
+{
+    int total = o->aasamples + 1, nthreads = ms_threads_count();
+    if (o->max_passes > 0 && o->max_passes < total) total = o->max_passes;
+    size_t ntiles = (size_t)f->tiles_x * (size_t)((f->height + TILE - 1) / TILE);
+    double t0 = ms_now(), c0 = cpu_now();
+    for (f->pass = 0; f->pass < total; f->pass++) {
+        ms_parallel_for(ntiles, 1, trace_tiles, f);
+        st->passes = f->pass + 1;
+        memset(st->rays, 0, sizeof st->rays);
+        for (int t = 0; t < nthreads; t++)
+            for (int k = 0; k < MS_RT_NRAYKINDS; k++) st->rays[k] += f->rays[t][k];
+        if (o->progress) progress(st, total, t0);
+        if (o->time_budget > 0 && ms_now() - t0 >= o->time_budget) break;
+    }
+    st->trace_s = ms_now() - t0;
+    st->trace_cpu_s = cpu_now() - c0;
+}
+
+/* The average of the passes, clamped to [0, 1] and scaled to 8 bits by truncation, as
+ * Tachyon does (so equal colours give equal bytes). */
+static void to_image(const frame *f, int passes, ms_image *img)
+{
+    size_t n = 3 * (size_t)f->width * (size_t)f->height;
+    float scale = 255.0f / (float)passes;
+    for (size_t i = 0; i < n; i++) {
+        float v = f->accum[i] * scale;
+        img->rgb[i] = (uint8_t)(!(v > 0.0f) ? 0.0f : v > 255.0f ? 255.0f : v);
+    }
+}
+
+static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options *o, ms_image *img,
+                       ms_rt_stats *st, ms_error *err)
+{
+    size_t npix = (size_t)s->width * (size_t)s->height;
+    frame f = {NULL, s->width, s->height, (s->width + TILE - 1) / TILE, 0, MS_RT_MAX_DEPTH, NULL, NULL, NULL};
+    rt_shader sh;
+    rt_shader_init(&sh, s, w, o->aosamples);
+    f.sh = &sh;
+    f.accum = ms_calloc_array(3 * npix, sizeof(float));
+    f.rng = ms_alloc_array(npix, sizeof(uint32_t));
+    f.rays = ms_calloc_array((size_t)ms_threads_count(), sizeof *f.rays);
+    int rc = -1;
+    if (!f.accum || !f.rng || !f.rays || ms_image_alloc(img, s->width, s->height, err)) {
+        if (!f.accum || !f.rng || !f.rays) ms_error_set(err, "out of memory for a %dx%d image", s->width, s->height);
+        goto done;
+    }
+    for (size_t i = 0; i < npix; i++) f.rng[i] = rt_hash2((uint32_t)i, 0x6d2b79f5u);
+    run_passes(&f, o, st);
+    to_image(&f, st->passes, img);
+    rc = 0;
+done:
+    free(f.accum);
+    free(f.rng);
+    free(f.rays);
+    return rc;
+}
+
+int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt_stats *st,
+                 ms_error *err)
+{
+    ms_rt_stats local;
+    if (!st) st = &local;
+    memset(st, 0, sizeof *st);
+    memset(img, 0, sizeof *img);
+    if (check_options(s, o, err) || plan_memory(s, o, err)) return -1;
+    rt_world w;
+    double t0 = ms_now(), c0 = cpu_now();
+    int rc = rt_world_build(&w, s, err);
+    st->build_s = ms_now() - t0;
+    st->build_cpu_s = cpu_now() - c0;
+    if (rc == 0) {
+        rc = trace_frame(s, &w, o, img, st, err);
+        rt_world_free(&w);
+    }
+    rt_device_set_budget(0);
+    if (rc) ms_image_free(img);
+    return rc;
+}
+
+int ms_rt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
+                ms_error *err)
+{
+    ms_image_format fmt = ms_image_format_of(path);
+    if (fmt == MS_IMG_UNKNOWN) fmt = MS_IMG_TGA;      /* VMD writes TGA for other names */
+    char *tmp;
+    FILE *f = ms_render_open_tmp(path, &tmp, err);    /* an unwritable path fails before tracing */
+    if (!f) return -1;
+    ms_image img;
+    int ok = ms_rt_render(s, o, &img, st, err) == 0;
+    if (ok) {
+        if (ms_image_write_stream(&img, fmt, f, err)) {
+            ms_error_prefix(err, "%s", path);
+            ok = 0;
+        }
+        ms_image_free(&img);
+    }
+    return ms_render_commit(f, tmp, path, ok, err);
+}

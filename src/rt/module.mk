@@ -1,0 +1,12 @@
+# src/rt: TachyonInternal, the photorealistic CPU ray tracer on Embree (doc/rt.md). Without
+# Embree only the device and a stub are built, and rendering says why it cannot.
+src_libmscore_la_SOURCES += src/rt/rt.h src/rt/options.c src/rt/tachyon_internal.c
+if HAVE_EMBREE
+src_libmscore_la_SOURCES += \
+	src/rt/rt_internal.h src/rt/device.c src/rt/world.c src/rt/user.c \
+	src/rt/sphere.c src/rt/cylinder.c src/rt/cone.c src/rt/ring.c src/rt/mesh.c \
+	src/rt/strokes.c src/rt/camera.c src/rt/sample.c src/rt/shade.c src/rt/frame.c
+src_libmscore_la_LIBADD += $(EMBREE_LIBS)
+else
+src_libmscore_la_SOURCES += src/rt/stub.c
+endif

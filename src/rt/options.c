@@ -1,0 +1,66 @@
+/* options.c: the ray tracer's options (defaults, and the pass limit and time budget read from
+ * the environment) and its statistics; built with or without Embree. */
+#include "config.h"
+#include "rt/rt.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+void ms_rt_options_default(ms_rt_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->aasamples = 12;
+    o->aosamples = 12;
+}
+
+/* A positive number from the environment (unset or empty: 0). */
+static int env_number(const char *name, double max, double *out, ms_error *err)
+{
+    const char *v = getenv(name);
+    *out = 0;
+    if (!v || !*v) return 0;
+    char *end;
+    errno = 0;
+    double d = strtod(v, &end);
+    while (*end == ' ') end++;
+    if (errno || *end || !(d > 0) || d > max) {
+        ms_error_set(err, "%s='%s': expected a positive number up to %g", name, v, max);
+        return -1;
+    }
+    *out = d;
+    return 0;
+}
+
+int ms_rt_options_from_env(ms_rt_options *o, ms_error *err)
+{
+    double passes, seconds;
+    if (env_number("MOLSCOPE_RT_PASSES", MS_RT_MAX_AASAMPLES + 1, &passes, err) ||
+        env_number("MOLSCOPE_RT_TIME", 1e7, &seconds, err))
+        return -1;
+    if (passes > 0 && passes != (double)(int)passes) {
+        ms_error_set(err, "MOLSCOPE_RT_PASSES='%s': expected a whole number", getenv("MOLSCOPE_RT_PASSES"));
+        return -1;
+    }
+    o->max_passes = (int)passes;
+    o->time_budget = seconds;
+    o->progress = isatty(2);
+    return 0;
+}
+
+uint64_t ms_rt_stats_rays(const ms_rt_stats *st)
+{
+    uint64_t n = 0;
+    for (int k = 0; k < MS_RT_NRAYKINDS; k++) n += st->rays[k];
+    return n;
+}
+
+int ms_rt_available(void)
+{
+#ifdef MS_HAVE_EMBREE
+    return 1;
+#else
+    return 0;
+#endif
+}

@@ -1,0 +1,70 @@
+/* rt.h: TachyonInternal, molscope's photorealistic CPU ray tracer. The scene (scene/scene.h) is
+ * traced with Embree's BVH and ray kernels and shaded the way Tachyon shades the scenes VMD
+ * gives it (vmd-compat.md section 6, render/tachyon.c for the settings): directional lights,
+ * ambient, diffuse and Blinn-Phong specular terms, outlines, mirror reflection, shadows,
+ * ambient occlusion, angle-modulated transparency with shadows filtered by transparent
+ * surfaces, planar depth cueing, background gradients, perspective and orthographic cameras,
+ * depth of field and antialiasing. Spheres, cylinders, cones and cap discs are exact
+ * primitives; triangle meshes are traced from the display list's own arrays.
+ *
+ * Rendering is progressive. Pass k adds one camera sample to every pixel of a float
+ * accumulation buffer: pass 0 at the pixel centre (a pinhole ray, as Tachyon's first
+ * sample), later passes jittered in the pixel and on the lens. `render aasamples N` asks for
+ * N + 1 passes, as Tachyon's antialiasing count does; a pass limit and a time budget can end
+ * the render earlier (doc/rt.md). Without Embree the module still builds and every render
+ * reports that molscope was built without it. */
+#ifndef MS_RT_H
+#define MS_RT_H
+
+#include <stdint.h>
+
+#include "base/base.h"
+#include "image/image.h"
+#include "scene/scene.h"
+
+/* Limits: a request beyond them is an error, not an attempt. */
+#define MS_RT_MAX_AASAMPLES 65535
+#define MS_RT_MAX_AOSAMPLES 1024
+#define MS_RT_MAX_DEPTH 20        /* reflection and transmission levels of one camera ray */
+
+typedef struct ms_rt_options {
+    int aasamples;        /* samples after the first: aasamples + 1 passes */
+    int aosamples;        /* occlusion rays per shaded point when the scene has AO on */
+    int max_passes;       /* 0: no limit beyond aasamples + 1 */
+    double time_budget;   /* seconds (0: none); checked after each pass, one pass always runs */
+    int progress;         /* a line per pass on stderr */
+    size_t memory;        /* bytes the render may use; 0: what the system has available */
+} ms_rt_options;
+
+enum { MS_RT_PRIMARY, MS_RT_SHADOW, MS_RT_AO, MS_RT_SECONDARY, MS_RT_NRAYKINDS };
+
+typedef struct ms_rt_stats {
+    int passes;           /* passes rendered */
+    double build_s;       /* Embree scene build, wall clock */
+    double trace_s;       /* all passes, wall clock */
+    double build_cpu_s;   /* the same in CPU time of the process (all threads) */
+    double trace_cpu_s;
+    uint64_t rays[MS_RT_NRAYKINDS];   /* camera, shadow, occlusion, reflection/transmission */
+} ms_rt_stats;
+
+/* 12 antialiasing and 12 occlusion samples (VMD's defaults), no limits, no progress. */
+void ms_rt_options_default(ms_rt_options *o);
+/* The pass limit and time budget from MOLSCOPE_RT_PASSES and MOLSCOPE_RT_TIME (unset or
+ * empty: none), and progress lines when stderr is a terminal. 0, or -1 with err set when a
+ * value is not a positive number. */
+int ms_rt_options_from_env(ms_rt_options *o, ms_error *err);
+/* Whether this build can trace (Embree was found at configure time). */
+int ms_rt_available(void);
+/* The rays of all kinds in st. */
+uint64_t ms_rt_stats_rays(const ms_rt_stats *st);
+
+/* Render s into img (allocated here, s->width x s->height). st may be NULL. 0, or -1 with err
+ * set and img empty: no Embree, bad options, a scene or image too large for memory. */
+int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt_stats *st,
+                 ms_error *err);
+/* Render and write path: .png .tga .ppm .bmp by extension, any other name a TGA file (as
+ * VMD's TachyonInternal does). The file appears complete or not at all. */
+int ms_rt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
+                ms_error *err);
+
+#endif

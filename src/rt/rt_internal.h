@@ -1,0 +1,314 @@
+/* rt_internal.h: what the files of the ray tracer share, and only they include: the traced
+ * world (per transform, an Embree instance of its opaque and one of its transparent
+ * geometries; per placed display list, one Embree geometry per primitive kind), the
+ * primitive method tables (one file per primitive, as Tachyon has them), the camera, the
+ * shading settings and the per-thread state of the integrator. */
+#ifndef MS_RT_INTERNAL_H
+#define MS_RT_INTERNAL_H
+
+#include <embree3/rtcore.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rt/rt.h"
+#include "scene/displaylist.h"
+#include "scene/scene.h"
+
+/* Tachyon's smallest contribution worth computing (1/512). */
+#define RT_MINCONTRIB 0.001953125f
+
+/* ---------------------------------------------------------------- device (device.c) */
+
+/* The process's Embree device, made on first use with ms_threads_count() threads. NULL with
+ * err set when Embree cannot start. */
+RTCDevice rt_device(ms_error *err);
+/* Bytes Embree may hold from now on (allocations past it fail, and the build reports that
+ * the scene does not fit in memory); 0 lifts the limit. */
+void rt_device_set_budget(size_t bytes);
+/* After an Embree call: 0 when no error is pending, else -1 with err saying what failed. */
+int rt_device_check(RTCDevice dev, const char *what, ms_error *err);
+/* Memory available to this process now, in bytes: MemAvailable, or what is left of the
+ * cgroup's limit when that is less; 0 when unknown. */
+size_t rt_mem_available(void);
+/* Flush-to-zero and denormals-are-zero on for the calling thread; returns the old state for
+ * rt_fpu_restore. */
+unsigned rt_fpu_fast(void);
+void rt_fpu_restore(unsigned state);
+
+/* ---------------------------------------------------------------- world (world.c) */
+
+/* Instance masks: the opaque and the transparent geometry of each transform. */
+#define RT_MASK_OPAQUE 1u
+#define RT_MASK_TRANS 2u
+
+/* The Tachyon texture terms of a display list, as render/tachyon.c writes them. */
+typedef struct rt_material {
+    float ambient, diffuse, mirror;   /* mirror: Tachyon's "Specular" (reflection) */
+    float phong, phongexp;            /* Blinn-Phong highlight: VMD's specular, shininess */
+    float opacity;                    /* multiplied by each primitive's alpha */
+    float outline, outlinewidth;
+    int r3d;                          /* angle-modulated (Raster3D) transparency */
+} rt_material;
+
+typedef enum rt_kind { RT_SPHERE, RT_CYLINDER, RT_CONE, RT_RING, RT_MESH, RT_NKINDS } rt_kind;
+
+/* The primitives of one kind of one placed list, in the list's own coordinates. The arrays
+ * are the display list's where its layout serves, else arrays the world made. */
+typedef struct rt_geom {
+    rt_kind kind;
+    size_t n;
+    rt_material mat;
+    int transparent;            /* its material or a colour lets light through: it is in the
+                                 * transparent instance */
+    int alpha;                  /* some primitive's colour has alpha < 255 */
+    int user;                   /* spheres as a user geometry (sharing the tree of cylinders) */
+    const float *a, *b;         /* centres; base and apex; ring centre and normal */
+    const float *ra, *rb;       /* radius (base radius); cone apex radius; ring inner radius */
+    const ms_rgba8 *color;      /* per primitive, or per vertex for meshes */
+    const float *xyz;           /* mesh vertices, normals (quantized), triangles */
+    const int8_t *normal;
+    const uint32_t *tri;
+    size_t nverts, vcap;        /* mesh vertices, and room in xyz (Embree reads past the end) */
+    const float *aux;           /* per-primitive data a primitive file made (cylinder axes) */
+} rt_geom;
+
+/* The lists placed by one transform (a molecule's representations share its transform): an
+ * Embree instance of a scene of all their opaque geometries, and another of their
+ * transparent ones. */
+typedef struct rt_item {
+    float xf[12];               /* list to world, 3x4 row-major */
+    float inv[12];              /* world to list */
+    float nm[9];                /* normals to world: inverse transpose of xf's 3x3 */
+    rt_geom *geoms;             /* by Embree geometry id in the item's scene */
+    int ngeoms;
+} rt_item;
+
+typedef struct rt_world {
+    RTCDevice dev;
+    RTCScene top;
+    rt_item *items;             /* by instance id */
+    size_t nitems;
+    rt_geom *geoms;             /* every geometry (made in one block: Embree keeps pointers) */
+    size_t ngeoms;
+    int has_trans;              /* some geometry is transparent */
+    int split;                  /* shadow rays test opaque, then transparent instances */
+    float eps;                  /* secondary ray offset, from the scene's size */
+    void **owned;               /* arrays made for the build (caps, converted lines) */
+    size_t nowned, capowned;
+    ms_displaylist **lists;     /* lists made for the build */
+    size_t nlists, caplists;
+} rt_world;
+
+/* Build the world of a scene (Embree scenes committed). 0, or -1 with err set and w freed. */
+int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err);
+void rt_world_free(rt_world *w);
+/* The lines, points and text of a placed list as world-space cylinders and spheres appended
+ * to out (strokes.c). 0, or -1 when memory runs out. */
+int rt_strokes(const ms_scene_item *it, ms_displaylist *out);
+/* Memory the world owns: the helper of the primitive files. NULL with err set. */
+void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err);
+
+/* ---------------------------------------------------------------- primitives */
+
+/* What each primitive file provides (sphere.c, cylinder.c, cone.c, ring.c, mesh.c). */
+typedef struct rt_prim {
+    const char *name;
+    /* The Embree geometry of g (not committed; it may add data to g); NULL with err set. */
+    RTCGeometry (*geometry)(rt_world *w, rt_geom *g, ms_error *err);
+    /* At a hit (p: the hit point in the list's coordinates): the shading normal n and the
+     * geometric normal ng (both in the list's coordinates, any length) and the colour. */
+    void (*surface)(const rt_geom *g, const struct RTCHit *h, const float p[3], float n[3],
+                    float ng[3], ms_rgba8 *c);
+} rt_prim;
+
+extern const rt_prim rt_sphere_prim, rt_cylinder_prim, rt_cone_prim, rt_ring_prim, rt_mesh_prim;
+extern const rt_prim *const rt_prims[RT_NKINDS];
+
+/* ---------------------------------------------------------------- occlusion and transparency */
+
+/* The context of every ray query: Embree's, and for occlusion queries the light each ray
+ * (by its id) still carries through the transparent surfaces it crossed. A shadow or
+ * occlusion ray walks the opaque instances (a hit ends it), then the transparent ones, where
+ * each crossing filters it (Tachyon counts each: a sphere's two, a triangle's one) and lets
+ * it pass, unless the primitive is opaque after all. */
+typedef struct rt_ctx {
+    struct RTCIntersectContext ec;   /* first: Embree hands &ec back to the callbacks */
+    float *filter;
+} rt_ctx;
+
+/* Opacity of primitive prim at a hit (u, v: a mesh's barycentric coordinates). */
+float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v);
+/* The occlusion filter of transparent built-in geometries (spheres, meshes). */
+void rt_transparent_filter(const struct RTCFilterFunctionNArguments *args);
+
+/* ---------------------------------------------------------------- user geometries (user.c) */
+
+/* Cylinders, cones and discs are Embree user geometries: a bounds function and an exact
+ * hit test per primitive. Ray i of an N-ray call, read out: */
+typedef struct rt_uray {
+    float o[3], d[3], tnear, tfar;
+    unsigned id;
+} rt_uray;
+/* The test: the hits of primitive prim in (tnear, tfar), nearest first, in t; returns how
+ * many (0, 1 or 2). */
+typedef int (*rt_user_test)(const rt_geom *g, unsigned prim, const rt_uray *r, float t[2]);
+
+/* A user geometry of g with its bounds function and hit callbacks; NULL with err set. */
+RTCGeometry rt_user_geometry(rt_world *w, const rt_geom *g, RTCBoundsFunction bounds,
+                             RTCIntersectFunctionN isect, RTCOccludedFunctionN occluded,
+                             ms_error *err);
+/* Ray i of an N-ray call; Embree's RTCRayN layout: twelve fields of N lanes each (origin,
+ * tnear, direction, time, tfar, mask, id, flags), then the hit. */
+static inline void rt_user_ray(const float *ray, unsigned N, unsigned i, rt_uray *r)
+{
+    r->o[0] = ray[i], r->o[1] = ray[N + i], r->o[2] = ray[2 * N + i];
+    r->tnear = ray[3 * N + i];
+    r->d[0] = ray[4 * N + i], r->d[1] = ray[5 * N + i], r->d[2] = ray[6 * N + i];
+    r->tfar = ray[8 * N + i];
+    r->id = ((const unsigned *)ray)[10 * N + i];
+}
+void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t);
+/* An occlusion call's hits: an opaque one blocks the ray, transparent ones filter it. */
+void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i, int nhits,
+                   const rt_uray *r);
+/* Roots t0 <= t1 of a t^2 + 2 b t + c = 0 (a != 0), computed stably; 0 when none. */
+int rt_quadratic(float a, float b, float c, float *t0, float *t1);
+/* Empty bounds (Embree leaves such a primitive out). */
+void rt_bounds_empty(struct RTCBounds *b);
+
+/* The callbacks' bodies, inlined into each primitive's callbacks with its test. */
+static inline void rt_user_intersect(const struct RTCIntersectFunctionNArguments *args,
+                                     rt_user_test test)
+{
+    const rt_geom *g = args->geometryUserPtr;
+    for (unsigned i = 0; i < args->N; i++) {
+        rt_uray r;
+        float t[2];
+        if (!args->valid[i]) continue;
+        rt_user_ray((const float *)args->rayhit, args->N, i, &r);
+        if (test(g, args->primID, &r, t)) rt_user_hit(args, i, t[0]);
+    }
+}
+
+static inline void rt_user_occluded(const struct RTCOccludedFunctionNArguments *args,
+                                    rt_user_test test)
+{
+    const rt_geom *g = args->geometryUserPtr;
+    for (unsigned i = 0; i < args->N; i++) {
+        rt_uray r;
+        float t[2];
+        if (!args->valid[i]) continue;
+        rt_user_ray((const float *)args->ray, args->N, i, &r);
+        int n = test(g, args->primID, &r, t);
+        if (n) rt_user_block(args, i, n, &r);
+    }
+}
+
+/* ---------------------------------------------------------------- camera (camera.c) */
+
+typedef struct rt_camera {
+    int ortho, width, height;
+    float eye[3], dir[3], up[3], right[3];
+    float half_w, half_h;       /* perspective: at unit distance; orthographic: world units */
+    int dof;
+    float focal, lens_radius;
+} rt_camera;
+
+void rt_camera_init(rt_camera *c, const ms_scene *s);
+/* The ray through image point (px, py) (pixels from the top left corner); lens: a point of
+ * the unit disc for depth of field, or NULL for the pinhole ray. dir is unit length. */
+void rt_camera_ray(const rt_camera *c, float px, float py, const float lens[2], float org[3],
+                   float dir[3]);
+
+/* ---------------------------------------------------------------- shading (shade.c) */
+
+typedef enum rt_bg_mode { RT_BG_SOLID, RT_BG_SKY_SPHERE, RT_BG_SKY_PLANE } rt_bg_mode;
+
+typedef struct rt_shader {
+    const rt_world *w;
+    rt_camera cam;
+    int nlights;
+    float ldir[MS_SCENE_LIGHTS][3], lcol[MS_SCENE_LIGHTS][3];
+    float light_scale;          /* AO's aodirect, else 1 */
+    int full;                   /* Tachyon's Full shader: shadows (and AO) */
+    int ao_samples;
+    float ao_col[3];
+    rt_bg_mode bg_mode;
+    float bg[3], bg_top[3], bg_bot[3], grad_top, grad_bot;
+    int fog;
+    ms_cuemode cuemode;
+    float fog_start, fog_end, fog_density;
+} rt_shader;
+
+/* Per rendering thread. */
+typedef struct rt_thread {
+    rt_ctx ctx;
+    uint32_t rng;               /* the pixel's random state while it is traced */
+    uint64_t rays[MS_RT_NRAYKINDS];
+} rt_thread;
+
+void rt_shader_init(rt_shader *sh, const ms_scene *s, const rt_world *w, int aosamples);
+/* The colour seen along a ray (dir unit length), with depth levels of reflection and
+ * transmission left; primary: a camera ray (its fog coordinate is the planar depth). */
+void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
+              int depth, int primary, float out[3]);
+
+/* ---------------------------------------------------------------- sampling (sample.c) */
+
+/* PCG's 32-bit output permutation on an LCG state: a uniform word per call. */
+static inline uint32_t rt_rand(uint32_t *s)
+{
+    uint32_t x = *s = *s * 747796405u + 2891336453u;
+    x = ((x >> ((x >> 28) + 4u)) ^ x) * 277803737u;
+    return (x >> 22) ^ x;
+}
+/* Uniform in [0, 1). */
+static inline float rt_randf(uint32_t *s)
+{
+    return (float)(rt_rand(s) >> 8) * (1.0f / 16777216.0f);
+}
+/* A well-mixed word from two (pixel and pass seeds). */
+static inline uint32_t rt_hash2(uint32_t a, uint32_t b)
+{
+    uint32_t h = a * 0x9e3779b9u ^ (b + 0x7f4a7c15u + (a << 6) + (a >> 2));
+    h ^= h >> 16;
+    h *= 0x85ebca6bu;
+    h ^= h >> 13;
+    h *= 0xc2b2ae35u;
+    return h ^ (h >> 16);
+}
+
+/* The position of pass k's sample in pixel idx, in [0, 1)^2 (pass 0: the centre). */
+void rt_sample_pixel(uint32_t idx, int k, float *x, float *y);
+/* A uniform point of the unit disc. */
+void rt_sample_disc(uint32_t *rng, float p[2]);
+/* A stratified set of count directions of the hemisphere around unit normal n. */
+typedef struct rt_hemisphere {
+    float n[3], t[3], b[3], r1, r2;
+    int count;
+} rt_hemisphere;
+void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t *rng);
+/* Direction i (0 <= i < count) in d; returns its cosine with the normal. */
+float rt_hemisphere_dir(const rt_hemisphere *h, int i, float d[3]);
+
+/* ---------------------------------------------------------------- small vectors */
+
+static inline float rt_dot(const float a[3], const float b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+static inline void rt_cross(const float a[3], const float b[3], float out[3])
+{
+    float x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2],
+          z = a[0] * b[1] - a[1] * b[0];
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+}
+/* Normalise in place; a zero vector stays zero. Returns the old length. */
+float rt_normalize(float v[3]);
+/* out = m (3x4 row-major) applied to point p, or (3x3) to vector v. */
+void rt_xf_point(const float m[12], const float p[3], float out[3]);
+void rt_m3_vec(const float m[9], const float v[3], float out[3]);
+
+#endif

@@ -1,0 +1,285 @@
+/* shade.c: the integrator, Tachyon's shaders as VMD drives them (vmd-compat.md section 6).
+ * At the nearest hit: the lights' diffuse terms (N.L, scaled by aodirect when ambient
+ * occlusion is on) and Blinn highlights, each light tested by a shadow ray in the Full
+ * shader (shadows or AO on); ambient occlusion added to the diffuse light; outline
+ * darkening; colour times (diffuse + ambient) plus highlights; a mirror ray; for opacity
+ * below 1 a transmission ray, the surface weighted by its (angle-modulated) opacity as
+ * Trans_VMD does; then planar fog (Fog_VMD: the depth along the view for camera rays, the
+ * ray length for others). Shadow and occlusion rays pass transparent surfaces, each one
+ * letting (1 - opacity) of the light through. Rays that leave the scene see the background
+ * or its gradient. */
+#include "config.h"
+#include "rt/rt_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* The Tachyon gradient the exporter writes: top and bottom values of the sky sphere (ray
+ * direction) or the orthographic sky plane (ray origin) along +y. */
+static void background_init(rt_shader *sh, const ms_scene *s)
+{
+    memcpy(sh->bg, s->background, sizeof sh->bg);
+    memcpy(sh->bg_top, s->bg_top, sizeof sh->bg_top);
+    memcpy(sh->bg_bot, s->bg_bottom, sizeof sh->bg_bot);
+    sh->bg_mode = RT_BG_SOLID;
+    if (!s->bg_gradient) return;
+    int ortho = s->cam.projection == MS_PROJ_ORTHOGRAPHIC;
+    float mag = ortho ? s->cam.height / 4.0f
+                      : fminf(1.0f, (s->cam.height / 2.0f) / (s->cam.eye[2] - s->cam.distance));
+    sh->bg_mode = ortho ? RT_BG_SKY_PLANE : RT_BG_SKY_SPHERE;
+    sh->grad_top = mag;
+    sh->grad_bot = -mag;
+}
+
+void rt_shader_init(rt_shader *sh, const ms_scene *s, const rt_world *w, int aosamples)
+{
+    memset(sh, 0, sizeof *sh);
+    sh->w = w;
+    rt_camera_init(&sh->cam, s);
+    for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
+        const ms_light *l = &s->lights[i];
+        float d[3] = {l->pos[0], l->pos[1], l->pos[2]};
+        if (!l->on || rt_normalize(d) == 0.0f) continue;
+        memcpy(sh->ldir[sh->nlights], d, sizeof d);
+        memcpy(sh->lcol[sh->nlights], l->color, sizeof d);
+        sh->nlights++;
+    }
+    sh->full = s->shadows || s->ao;
+    sh->light_scale = s->ao ? s->ao_direct : 1.0f;
+    sh->ao_samples = s->ao ? aosamples : 0;
+    for (int k = 0; k < 3; k++) sh->ao_col[k] = s->ao_ambient;
+    background_init(sh, s);
+    sh->fog = s->depthcue;
+    sh->cuemode = s->cuemode;
+    sh->fog_start = s->cuemode == MS_CUE_LINEAR ? s->cue_start : 0.0f;
+    sh->fog_end = s->cue_end;
+    sh->fog_density = s->cue_density;
+}
+
+static void background(const rt_shader *sh, const float org[3], const float dir[3], float out[3])
+{
+    if (sh->bg_mode == RT_BG_SOLID) {
+        memcpy(out, sh->bg, 3 * sizeof(float));
+        return;
+    }
+    float v = sh->bg_mode == RT_BG_SKY_SPHERE ? dir[1] : org[1];
+    v = (v - sh->grad_bot) / (sh->grad_top - sh->grad_bot);
+    v = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
+    for (int k = 0; k < 3; k++) out[k] = v * sh->bg_top[k] + (1.0f - v) * sh->bg_bot[k];
+}
+
+static void fog(const rt_shader *sh, float z, float col[3])
+{
+    float f;
+    if (sh->cuemode == MS_CUE_LINEAR) {
+        f = (sh->fog_end - z) / (sh->fog_end - sh->fog_start);
+    } else {
+        float v = sh->fog_density * (z - sh->fog_start);
+        f = expf(sh->cuemode == MS_CUE_EXP ? -v : -v * v);
+    }
+    f = f > 1.0f ? 1.0f : f < 0.0f ? 0.0f : f;
+    for (int k = 0; k < 3; k++) col[k] = f * col[k] + (1.0f - f) * sh->bg[k];
+}
+
+/* ---------------------------------------------------------------- hits */
+
+typedef struct surface {
+    float p[3], n[3], t;
+    float col[3], opacity;
+    const rt_material *mat;
+} surface;
+
+static const rt_geom *hit_geom(const rt_world *w, const struct RTCHit *h, const rt_item **item)
+{
+    *item = &w->items[h->instID[0]];
+    return &(*item)->geoms[h->geomID];
+}
+
+/* Position, normal facing the ray's origin, colour and material at a hit. */
+static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s)
+{
+    const rt_item *it;
+    const rt_geom *g = hit_geom(w, &rh->hit, &it);
+    float o[3] = {rh->ray.org_x, rh->ray.org_y, rh->ray.org_z};
+    float d[3] = {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z}, po[3], n[3], ng[3];
+    ms_rgba8 c;
+    s->t = rh->ray.tfar;
+    for (int k = 0; k < 3; k++) s->p[k] = o[k] + s->t * d[k];
+    rt_xf_point(it->inv, s->p, po);
+    rt_prims[g->kind]->surface(g, &rh->hit, po, n, ng, &c);
+    rt_m3_vec(it->nm, n, s->n);
+    rt_m3_vec(it->nm, ng, ng);
+    /* Tachyon's rule: the geometric normal decides the side seen (for a mesh, its winding),
+     * and the shading normal turns with it */
+    float side = rt_dot(ng, d) > 0.0f ? -1.0f : 1.0f;
+    if (!(rt_normalize(s->n) > 0.0f) || !isfinite(s->n[0] + s->n[1] + s->n[2])) {
+        memcpy(s->n, d, sizeof d);
+        side = -1.0f;
+    }
+    for (int k = 0; k < 3; k++) s->n[k] *= side;
+    ms_rgba8_to_float(c, s->col);
+    s->mat = &g->mat;
+    s->opacity = g->mat.opacity * (float)c.a * (1.0f / 255.0f);
+}
+
+/* Embree refuses rays beyond its float range (1.8e18) and non-numbers, and its checks abort:
+ * a degenerate camera or primitive must not get that far. */
+static int ray_ok(const float o[3], const float d[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (!(fabsf(o[k]) <= 1e18f && fabsf(d[k]) <= 1e18f)) return 0;
+    return d[0] != 0 || d[1] != 0 || d[2] != 0;
+}
+
+static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], float tnear)
+{
+    r->org_x = org[0], r->org_y = org[1], r->org_z = org[2];
+    r->dir_x = dir[0], r->dir_y = dir[1], r->dir_z = dir[2];
+    r->tnear = tnear;
+    r->tfar = INFINITY;
+    r->time = 0.0f;
+    r->mask = 0xffffffffu;
+    r->id = 0;
+    r->flags = 0;
+}
+
+/* ---------------------------------------------------------------- shadow and occlusion */
+
+/* Visibility of the sky along d from p: 0 blocked, 1 open, between through glass (one
+ * visibility ray, in two traversals when the scene has transparent geometry). */
+static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], const float d[3],
+                        int kind)
+{
+    struct RTCRay r;
+    float f = 1.0f;
+    if (!ray_ok(p, d)) return 0.0f;
+    ray_init(&r, p, d, sh->w->eps);
+    th->ctx.filter = &f;
+    th->rays[kind]++;
+    if (sh->w->split) {         /* opaque first: a blocked ray never walks the glass */
+        r.mask = RT_MASK_OPAQUE;
+        rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
+        if (r.tfar < 0.0f) return 0.0f;
+        r.tfar = INFINITY;
+        r.mask = RT_MASK_TRANS;
+    }
+    rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
+    return r.tfar < 0.0f ? 0.0f : f;
+}
+
+/* Tachyon's ambient occlusion: (2 / n) sum of N.d over the open directions d of n rays
+ * (sample.c's stratified hemisphere), times the AO ambient colour. */
+static void occlusion(const rt_shader *sh, rt_thread *th, const surface *s, float out[3])
+{
+    rt_hemisphere h;
+    rt_hemisphere_init(&h, s->n, sh->ao_samples, &th->rng);
+    float sum = 0.0f, d[3];
+    for (int i = 0; i < sh->ao_samples; i++) {
+        float cosine = rt_hemisphere_dir(&h, i, d);
+        sum += cosine * visibility(sh, th, s->p, d, MS_RT_AO);
+    }
+    for (int k = 0; k < 3; k++) out[k] = 2.0f / (float)sh->ao_samples * sum * sh->ao_col[k];
+}
+
+/* Blinn's half-vector highlight (Tachyon's shade_blinn). */
+static float blinn(const float n[3], const float l[3], const float d[3], float exponent)
+{
+    float h[3] = {l[0] - d[0], l[1] - d[1], l[2] - d[2]};
+    float i = rt_dot(n, h);
+    if (!(i > RT_MINCONTRIB)) return 0.0f;
+    return powf(i / sqrtf(rt_dot(h, h)), exponent);
+}
+
+/* Diffuse light (with occlusion) and highlights at s. */
+static void direct(const rt_shader *sh, rt_thread *th, const surface *s, const float dir[3],
+                   float diffuse[3], float phong[3])
+{
+    const rt_material *m = s->mat;
+    memset(diffuse, 0, 3 * sizeof(float));
+    memset(phong, 0, 3 * sizeof(float));
+    if (!(m->diffuse > RT_MINCONTRIB || m->phong > RT_MINCONTRIB)) return;
+    for (int i = 0; i < sh->nlights; i++) {
+        const float *l = sh->ldir[i];
+        float inten = sh->light_scale * rt_dot(s->n, l);
+        if (!(inten > RT_MINCONTRIB)) continue;
+        if (sh->full) {
+            float v = visibility(sh, th, s->p, l, MS_RT_SHADOW);
+            if (v <= 0.0f) continue;
+            inten *= v;
+        }
+        float pv = m->phong > RT_MINCONTRIB ? sh->light_scale * blinn(s->n, l, dir, m->phongexp) * m->phong : 0.0f;
+        for (int k = 0; k < 3; k++) {
+            diffuse[k] += inten * sh->lcol[i][k];
+            phong[k] += pv * sh->lcol[i][k];
+        }
+    }
+    if (sh->full && sh->ao_samples > 0) {
+        float ao[3];
+        occlusion(sh, th, s, ao);
+        for (int k = 0; k < 3; k++) diffuse[k] += ao[k];
+    }
+}
+
+/* ---------------------------------------------------------------- tracing */
+
+/* The colour of a secondary ray from p along d (the background once depth runs out). */
+static void secondary(const rt_shader *sh, rt_thread *th, const float p[3], const float d[3],
+                      const float in_org[3], const float in_dir[3], int depth, float out[3])
+{
+    if (depth <= 1) {
+        background(sh, in_org, in_dir, out);
+        return;
+    }
+    rt_trace(sh, th, p, d, depth - 1, 0, out);
+}
+
+static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const float org[3],
+                  const float dir[3], int depth, int primary, float out[3])
+{
+    const rt_material *m = s->mat;
+    float diffuse[3], phong[3], nd = rt_dot(s->n, dir), f = m->diffuse;
+    direct(sh, th, s, dir, diffuse, phong);
+    if (m->outline > 0.0f) {
+        float e = 1.0f - powf(1.0f - nd * nd, (1.0f - m->outlinewidth) * 32.0f);
+        f *= (1.0f - m->outline) + e * m->outline;
+    }
+    for (int k = 0; k < 3; k++) out[k] = s->col[k] * (diffuse[k] * f + m->ambient) + phong[k];
+    if (m->mirror > RT_MINCONTRIB) {
+        float r[3], c[3];
+        for (int k = 0; k < 3; k++) r[k] = dir[k] - 2.0f * nd * s->n[k];
+        secondary(sh, th, s->p, r, org, dir, depth, c);
+        for (int k = 0; k < 3; k++) out[k] += m->mirror * c[k];
+    }
+    if (s->opacity < 1.0f - RT_MINCONTRIB) {
+        float a = s->opacity, c[3];
+        if (m->r3d) {
+            a = 1.0f + cosf(3.1415926f * (1.0f - a) * nd);
+            a = a * a * 0.25f;
+        }
+        secondary(sh, th, s->p, dir, org, dir, depth, c);
+        for (int k = 0; k < 3; k++) out[k] = a * out[k] + (1.0f - a) * c[k];
+    }
+    if (sh->fog) fog(sh, primary ? s->t * rt_dot(dir, sh->cam.dir) : s->t, out);
+}
+
+void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
+              int depth, int primary, float out[3])
+{
+    struct RTCRayHit rh;
+    if (!ray_ok(org, dir)) {
+        memcpy(out, sh->bg, 3 * sizeof(float));
+        return;
+    }
+    ray_init(&rh.ray, org, dir, primary ? 0.0f : sh->w->eps);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(sh->w->top, &th->ctx.ec, &rh);
+    th->rays[primary ? MS_RT_PRIMARY : MS_RT_SECONDARY]++;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        background(sh, org, dir, out);
+        return;
+    }
+    surface s;
+    surface_at(sh->w, &rh, &s);
+    shade(sh, th, &s, org, dir, depth, primary, out);
+}

@@ -1,0 +1,27 @@
+/* stub.c: the ray tracer in a build without Embree: every render says so. */
+#include "config.h"
+#include "rt/rt.h"
+
+#include <string.h>
+
+static int unavailable(ms_error *err)
+{
+    ms_error_set(err, "molscope was built without Embree (Debian: libembree-dev), so it cannot "
+                      "ray trace; render Tachyon writes a scene for the tachyon program instead");
+    return -1;
+}
+
+int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt_stats *st,
+                 ms_error *err)
+{
+    memset(img, 0, sizeof *img);
+    if (st) memset(st, 0, sizeof *st);
+    return unavailable(err);
+}
+
+int ms_rt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
+                ms_error *err)
+{
+    if (st) memset(st, 0, sizeof *st);
+    return unavailable(err);
+}

@@ -1,0 +1,108 @@
+/* user.c: what the user geometries (cylinder.c, cone.c, ring.c) share: reading ray i of the
+ * N-ray packets Embree hands their callbacks (N is 1 for the single rays molscope traces,
+ * but any N works), and reporting a hit or an occlusion back. The layout is Embree's
+ * RTCRayHitN: twelve ray fields of N lanes each, then the hit fields. */
+#include "config.h"
+#include "rt/rt_internal.h"
+
+#include <math.h>
+
+enum { R_OX, R_OY, R_OZ, R_TNEAR, R_DX, R_DY, R_DZ, R_TIME, R_TFAR, R_MASK, R_ID, R_FLAGS,
+       H_NGX, H_NGY, H_NGZ, H_U, H_V, H_PRIM, H_GEOM, H_INST };
+
+void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t)
+{
+    unsigned N = args->N;
+    float *f = (float *)args->rayhit;
+    unsigned *u = (unsigned *)args->rayhit;
+    f[R_TFAR * N + i] = t;
+    f[H_NGX * N + i] = 0.0f;      /* the shading code finds the normal from the hit point */
+    f[H_NGY * N + i] = 0.0f;
+    f[H_NGZ * N + i] = 1.0f;
+    f[H_U * N + i] = 0.0f;
+    f[H_V * N + i] = 0.0f;
+    u[H_PRIM * N + i] = args->primID;
+    u[H_GEOM * N + i] = args->geomID;
+    u[H_INST * N + i] = args->context->instID[0];
+}
+
+void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i, int nhits,
+                   const rt_uray *r)
+{
+    const rt_geom *g = args->geometryUserPtr;
+    if (g->transparent) {
+        float op = rt_geom_opacity(g, args->primID, 0.0f, 0.0f);
+        if (op < 1.0f) {
+            float *f = &((rt_ctx *)args->context)->filter[r->id];
+            *f *= nhits == 2 ? (1.0f - op) * (1.0f - op) : 1.0f - op;
+            return;
+        }
+    }
+    ((float *)args->ray)[R_TFAR * args->N + i] = -INFINITY;
+}
+
+float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v)
+{
+    float a;
+    if (!g->alpha) return g->mat.opacity;
+    if (g->kind == RT_MESH) {
+        const uint32_t *t = g->tri + 3 * (size_t)prim;
+        a = (1.0f - u - v) * g->color[t[0]].a + u * g->color[t[1]].a + v * g->color[t[2]].a;
+    } else {
+        a = g->color[prim].a;
+    }
+    return g->mat.opacity * a * (1.0f / 255.0f);
+}
+
+void rt_transparent_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const rt_geom *g = args->geometryUserPtr;
+    const float *hit = (const float *)args->hit, *ray = (const float *)args->ray;
+    unsigned N = args->N;
+    for (unsigned i = 0; i < N; i++) {
+        if (!args->valid[i]) continue;
+        unsigned prim = ((const unsigned *)hit)[(H_PRIM - H_NGX) * N + i];
+        float op = rt_geom_opacity(g, prim, hit[(H_U - H_NGX) * N + i], hit[(H_V - H_NGX) * N + i]);
+        if (op >= 1.0f) continue;                     /* an opaque primitive: it blocks */
+        unsigned id = ((const unsigned *)ray)[R_ID * N + i];
+        ((rt_ctx *)args->context)->filter[id] *= 1.0f - op;
+        args->valid[i] = 0;                           /* passed: the traversal goes on */
+    }
+}
+
+/* Solve a t^2 + 2 b t + c = 0 (a > 0) as the stable formula does; 0 when there is no root. */
+int rt_quadratic(float a, float b, float c, float *t0, float *t1)
+{
+    float disc = b * b - a * c;
+    if (!(disc >= 0.0f)) return 0;
+    float q = -(b + copysignf(sqrtf(disc), b));
+    float r0 = c / q, r1 = q / a;
+    if (q == 0.0f) r0 = r1;
+    *t0 = fminf(r0, r1);
+    *t1 = fmaxf(r0, r1);
+    return 1;
+}
+
+void rt_bounds_empty(struct RTCBounds *b)
+{
+    b->lower_x = b->lower_y = b->lower_z = INFINITY;
+    b->upper_x = b->upper_y = b->upper_z = -INFINITY;
+}
+
+RTCGeometry rt_user_geometry(rt_world *w, const rt_geom *g, RTCBoundsFunction bounds,
+                             RTCIntersectFunctionN isect, RTCOccludedFunctionN occluded,
+                             ms_error *err)
+{
+    RTCGeometry geom = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_USER);
+    if (!geom) {
+        if (!rt_device_check(w->dev, rt_prims[g->kind]->name, err))
+            ms_error_set(err, "%s: out of memory", rt_prims[g->kind]->name);
+        return NULL;
+    }
+    rtcSetGeometryUserPrimitiveCount(geom, (unsigned)g->n);
+    rtcSetGeometryUserData(geom, (void *)g);
+    rtcSetGeometryBoundsFunction(geom, bounds, (void *)g);
+    rtcSetGeometryIntersectFunction(geom, isect);
+    rtcSetGeometryOccludedFunction(geom, occluded);
+    return geom;
+}
