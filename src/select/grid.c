@@ -74,7 +74,7 @@ static void candidate_box(const ms_selctx *c, const ms_bitset *cand, double d, f
 static int gather(const ms_selctx *c, const ms_bitset *cand, const ms_bitset *src, double d,
                   int periodic, points *pts)
 {
-    double v[3][3];
+    double v[3][3] = {{0}};   /* zero unless periodic: 0 * garbage could be NaN */
     float lo[3], hi[3];
     int images = periodic && c->cell && cell_vectors(c->cell, v);
     if (images) candidate_box(c, cand, d, lo, hi);
