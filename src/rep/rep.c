@@ -221,8 +221,10 @@ int ms_rep_apply_current(ms_app *app, const ms_molecule *m, ms_rep *r, ms_error 
     ms_rep_coloring k = r->coloring;
     ms_selexpr *e = ms_sel_compile(cur->selection, err);
     char *t = e ? ms_strdup(cur->selection) : NULL;
-    if (!e || !t || ms_rep_style_parse(&s, cur->style.text, err) ||
-        ms_rep_coloring_parse(&k, cur->coloring.text, err) ||
+    s.method = cur->style.method;   /* the current method with all its values, as VMD */
+    memcpy(s.param[s.method], cur->style.param[s.method], sizeof s.param[s.method]);
+    memcpy(s.text, cur->style.text, sizeof s.text);
+    if (!e || !t || ms_rep_coloring_parse(&k, cur->coloring.text, err) ||
         ms_rep_check_volumes(m, &s, &k, err)) {
         if (e && !t) ms_error_set(err, "out of memory");
         ms_sel_free(e);

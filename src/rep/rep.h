@@ -66,7 +66,7 @@ int ms_rep_method_find(const char *name);
 typedef struct ms_rep_style {
     int method;
     float param[MS_REP_MAXMETHODS][MS_REP_MAXPARAMS];
-    char text[MS_REP_TEXTMAX];  /* the string as given ("Off" is stored as "Lines") */
+    char text[MS_REP_TEXTMAX];  /* VMD's: every parameter written out, "VDW 1.000000 12.000000" */
 } ms_rep_style;
 
 /* Lines, every method at its defaults. */
