@@ -226,7 +226,7 @@ enum {
     MS_PBC_OPX = 8, MS_PBC_OPY = 16, MS_PBC_OPZ = 32,    /* flags X Y Z */
     MS_PBC_NOSELF = 64                                   /* flag n */
 };
-#define MS_REP_MAXPERIODIC 32
+#define MS_REP_MAXPERIODIC 10
 
 /* Set the images from VMD's flag string (characters of "xyzXYZn", any order, "" = none);
  * another character is an error naming it, and nothing changes. */
