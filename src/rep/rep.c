@@ -8,7 +8,6 @@
 #include "scene/mat4.h"
 #include "scene/material.h"
 #include "scene/scene.h"
-#include "vecmath/vecmath.h"
 #include "view/view.h"
 
 #include <stdio.h>

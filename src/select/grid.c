@@ -5,7 +5,6 @@
 #include "config.h"
 #include "select/selint.h"
 #include "base/threads.h"
-#include "vecmath/vecmath.h"
 
 #include <math.h>
 #include <stdatomic.h>

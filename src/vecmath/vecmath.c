@@ -1,5 +1,4 @@
-/* vecmath.c: 3-vectors, unit cell vectors and VMD-style 4x4 transformation matrices in
- * double precision. */
+/* vecmath.c: 3-vectors and VMD-style 4x4 transformation matrices in double precision. */
 #include "config.h"
 #include "vecmath/vecmath.h"
 
@@ -7,19 +6,6 @@
 #include <string.h>
 
 #define RAD2DEG (180.0 / M_PI)
-
-int ms_cell_vectors(const float cell[6], double v[3][3])
-{
-    double a = cell[0], b = cell[1], c = cell[2];
-    double al = cell[3] * M_PI / 180, be = cell[4] * M_PI / 180, ga = cell[5] * M_PI / 180;
-    if (!(a > 0 && b > 0 && c > 0) || !(sin(ga) != 0)) return 0;
-    double cx = c * cos(be), cy = c * (cos(al) - cos(be) * cos(ga)) / sin(ga);
-    double cz2 = c * c - cx * cx - cy * cy;
-    if (!(cz2 > 0) || !isfinite(a) || !isfinite(b) || !isfinite(cz2)) return 0;
-    double vv[3][3] = {{a, 0, 0}, {b * cos(ga), b * sin(ga), 0}, {cx, cy, sqrt(cz2)}};
-    memcpy(v, vv, sizeof vv);
-    return 1;
-}
 
 void ms_v3_sub(const double a[3], const double b[3], double out[3])
 {

@@ -18,12 +18,6 @@ double ms_v3_angle(const double a[3], const double b[3]);
 /* The dihedral angle a-b-c-d in degrees, -180..180, with the IUPAC sign convention. */
 double ms_v3_dihedral(const double a[3], const double b[3], const double c[3], const double d[3]);
 
-/* ---- unit cells
- * The cell vectors A, B, C (rows of v) of a cell given as a b c alpha beta gamma (degrees),
- * in VMD's orientation: A along x, B in the xy plane. Returns 1, or 0 (v untouched) when the
- * cell is unknown (zeros) or degenerate (no volume, or not finite). */
-int ms_cell_vectors(const float cell[6], double v[3][3]);
-
 /* ---- 4x4 matrices: m[4 * row + col], acting on column vectors (x' = M x), which is how
  * VMD's Tcl matrices {{r0} {r1} {r2} {r3}} read. */
 void ms_mat4d_identity(double m[16]);
