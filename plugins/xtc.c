@@ -781,30 +781,37 @@ static inline void put_small(bitout *o, int idx, int smallnum, const int32_t *a,
     else put_wide(o, idx, ((unsigned __int128)s[0] * m + s[1]) * m + s[2]);
 }
 
-/* Every component of a - b is below lim in size. */
-static inline int within(const int32_t *a, const int32_t *b, int64_t lim)
+/* The largest coordinate difference of atoms a and b (below 2^32: see XTC_MAXABS). */
+static inline uint32_t maxdiff(const int32_t *a, const int32_t *b)
 {
+    uint32_t m = 0;
     for (int d = 0; d < 3; d++) {
         int64_t x = (int64_t)a[d] - b[d];
-        if (x >= lim || -x >= lim) return 0;
+        uint32_t u = (uint32_t)(x < 0 ? -x : x);
+        m = u > m ? u : m;
     }
-    return 1;
+    return m;
 }
 
-/* The smallest size index whose differences hold a - b. */
-static int needed_idx(const int32_t *a, const int32_t *b)
+/* Each atom's largest coordinate difference from the atom before (d1) and from the one two
+ * before (d2): all that grouping atoms into runs looks at. */
+static void neighbour_diffs(const int32_t *v, long natoms, uint32_t *d1, uint32_t *d2)
 {
-    int k = FIRSTIDX;
-    while (k < LASTIDX - 1 && !within(a, b, magicints[k] / 2)) k++;
-    return k;
+    d1[0] = d2[0] = d2[1] = UINT32_MAX;
+    for (long i = 1; i < natoms; i++) {
+        d1[i] = maxdiff(v + 3 * i, v + 3 * (i - 1));
+        if (i > 1) d2[i] = maxdiff(v + 3 * i, v + 3 * (i - 2));
+    }
 }
 
-/* The initial size index: the median of what the first (up to 31) neighbours need. */
-static int first_smallidx(const int32_t *v, long natoms)
+/* The initial size index: the median of what the first (up to 31) neighbours need (the
+ * smallest size whose half exceeds their difference). */
+static int first_smallidx(const uint32_t *d1, long natoms)
 {
     int need[31], n = 0;
     for (long i = 1; i < natoms && n < 31; i++) {
-        int k = needed_idx(v + 3 * i, v + 3 * (i - 1)), j = n++;
+        int k = FIRSTIDX, j = n++;
+        while (k < LASTIDX - 1 && (uint32_t)(magicints[k] / 2) <= d1[i]) k++;
         for (; j > 0 && need[j - 1] > k; j--) need[j] = need[j - 1];
         need[j] = k;
     }
@@ -832,49 +839,77 @@ static long to_ints(const float *pos, long natoms, int32_t *v, xtc_head *h)
     return -1;
 }
 
-/* The change of the size index a group asks for: +1 when the atom after it was too far for
- * the small differences but within the size three steps up (about twice as far), -1 when
- * every difference of its run also fits the next smaller size, else 0. The group is `full`
- * and the small atoms s[0..ns). */
-static int size_change(const int32_t *v, long natoms, long next, const int32_t *last, int ns,
-                       const int32_t *full, const int32_t *const *s, int idx)
+#define XTC_LOOK 18   /* atoms looked ahead to choose the size */
+
+/* The run of the group that starts at atom i, for differences below smallnum: how many
+ * atoms follow the one in full. The run's first atom is i (its difference from i + 1, the
+ * atom in full), then i + 2 (from i), then each from the atom before. */
+static inline int run_of(const uint32_t *d1, const uint32_t *d2, long natoms, long i,
+                         uint32_t smallnum)
 {
-    if (next < natoms && ns < XTC_MAX_SMALL && idx < LASTIDX - 1 &&
-        within(v + 3 * next, last, magicints[idx + 3 < LASTIDX ? idx + 3 : LASTIDX - 1] / 2))
-        return 1;
-    if (ns == 0 || idx <= FIRSTIDX) return 0;
-    int smaller = magicints[idx - 1] / 2;
-    const int32_t *prev = full;
-    for (int k = 0; k < ns; prev = s[k++])
-        if (!within(s[k], prev, smaller)) return 0;
-    return -1;
+    if (i + 1 >= natoms || d1[i + 1] >= smallnum) return 0;
+    if (i + 2 >= natoms || d2[i + 2] >= smallnum) return 1;
+    int ns = 2;
+    while (ns < XTC_MAX_SMALL && i + ns + 1 < natoms && d1[i + ns + 1] < smallnum) ns++;
+    return ns;
+}
+
+/* Bits the atoms from i on (XTC_LOOK of them) take at size index idx: full triples of
+ * fullbits bits, a run flag and the run's length when it differs from the run before (run
+ * small integers), differences of idx bits. */
+static long lookahead_bits(const uint32_t *d1, const uint32_t *d2, long natoms, long i,
+                           int idx, int fullbits, int run)
+{
+    long end = i + XTC_LOOK < natoms ? i + XTC_LOOK : natoms, bits = 0;
+    uint32_t smallnum = (uint32_t)magicints[idx] / 2;
+    while (i < end) {
+        int ns = run_of(d1, d2, natoms, i, smallnum);
+        bits += fullbits + 1 + (3 * ns != run ? 5 : 0) + (long)ns * idx;
+        run = 3 * ns;
+        i += ns + 1;
+    }
+    return bits;
+}
+
+/* The change of the size index after a group (-1, 0 or +1): the one under which the atoms
+ * that follow take the fewest bits, a change costing its flag. */
+static int size_change(const uint32_t *d1, const uint32_t *d2, long natoms, long next, int idx,
+                       int fullbits, int run)
+{
+    if (next >= natoms) return 0;
+    long best = lookahead_bits(d1, d2, natoms, next, idx, fullbits, run);
+    int change = 0;
+    for (int c = -1; c <= 1; c += 2) {
+        if (idx + c < FIRSTIDX || idx + c >= LASTIDX) continue;
+        long b = lookahead_bits(d1, d2, natoms, next, idx + c, fullbits, run) + 5;
+        if (b < best) best = b, change = c;
+    }
+    return change;
 }
 
 /* Encode natoms (> 9) atoms' integers v into out (room for 13 bytes an atom and 16 more),
- * the size index chosen into h; returns the bytes written. A group is an atom in full
- * followed, when the atom after it is close, by a run of up to XTC_MAX_SMALL atoms as small
- * differences, each from the one before: the group's first atom is the first of the run
- * and its second the one in full (the reader puts them back in order). */
-static size_t encode(xtc_head *h, const int32_t *v, long natoms, unsigned char *out)
+ * the size index chosen into h; d1 and d2 are scratch for natoms each. Returns the bytes
+ * written. A group is an atom in full followed, when the atom after it is close, by a run
+ * of up to XTC_MAX_SMALL atoms as small differences (run_of); the run's first atom comes
+ * before the one in full in the file's order. After each group the size may step up or
+ * down by one, as the atoms ahead would take fewer bits. */
+static size_t encode(xtc_head *h, const int32_t *v, long natoms, uint32_t *d1, uint32_t *d2,
+                     unsigned char *out)
 {
     xtc_sizes z;
     ms_perr unused;
     full_sizes(h, z.size, z.bits, &z.bitsize, &z.large, &unused); /* ranges fit: to_ints */
     memcpy(z.min, h->minint, sizeof z.min);
-    int idx = h->smallidx = first_smallidx(v, natoms), prevrun = -1;
+    neighbour_diffs(v, natoms, d1, d2);
+    int idx = h->smallidx = first_smallidx(d1, natoms), prevrun = -1;
+    int fullbits = z.large ? z.bits[0] + z.bits[1] + z.bits[2] : z.bitsize;
     bitout o = {out, 0, 0};
     for (long i = 0; i < natoms;) {
-        const int32_t *full = v + 3 * i, *last = full, *s[XTC_MAX_SMALL];
-        int smallnum = magicints[idx] / 2, ns = 0;
-        long next = i + 1;
-        if (next < natoms && within(v + 3 * next, full, smallnum)) {
-            s[ns++] = last = full;
-            full = v + 3 * next++;
-            while (ns < XTC_MAX_SMALL && next < natoms && within(v + 3 * next, last, smallnum))
-                s[ns++] = last = v + 3 * next++;
-        }
-        int change = size_change(v, natoms, next, last, ns, full, s, idx);
-        put_full(&o, &z, full);
+        int smallnum = magicints[idx] / 2, ns = run_of(d1, d2, natoms, i, (uint32_t)smallnum);
+        long next = i + ns + 1;
+        int change = size_change(d1, d2, natoms, next, idx, fullbits, 3 * ns);
+        const int32_t *a = v + 3 * i;
+        put_full(&o, &z, ns ? a + 3 : a);
         if (3 * ns != prevrun || change) {
             put_bits(&o, 1, 1);
             put_bits(&o, 5, (uint64_t)(3 * ns + change + 1));
@@ -882,7 +917,9 @@ static size_t encode(xtc_head *h, const int32_t *v, long natoms, unsigned char *
         } else {
             put_bits(&o, 1, 0);
         }
-        for (int k = 0; k < ns; k++) put_small(&o, idx, smallnum, s[k], k ? s[k - 1] : full);
+        if (ns) put_small(&o, idx, smallnum, a, a + 3);
+        if (ns > 1) put_small(&o, idx, smallnum, a + 6, a);
+        for (int k = 3; k <= ns; k++) put_small(&o, idx, smallnum, a + 3 * k, a + 3 * (k - 1));
         idx += change;
         i = next;
     }
@@ -896,6 +933,7 @@ typedef struct xtc_writer {
     ms_out out;
     long natoms;
     int32_t *ints;         /* the frame's integers */
+    uint32_t *diffs;       /* scratch for encode: 2 natoms */
     unsigned char *buf;    /* its stream */
 } xtc_writer;
 
@@ -908,16 +946,18 @@ static void *xtc_open_write(const char *path, long natoms, ms_perr *err)
     xtc_writer *w = calloc(1, sizeof *w);
     if (w && natoms > 9) {
         w->ints = malloc((size_t)natoms * 3 * sizeof *w->ints);
+        w->diffs = malloc((size_t)natoms * 2 * sizeof *w->diffs);
         w->buf = malloc((size_t)natoms * 13 + 16);
     }
-    if (!w || (natoms > 9 && (!w->ints || !w->buf))) {
-        if (w) free(w->ints), free(w->buf);
+    if (!w || (natoms > 9 && (!w->ints || !w->diffs || !w->buf))) {
+        if (w) free(w->ints), free(w->diffs), free(w->buf);
         free(w);
         ms_perr_set(err, "out of memory for %ld atoms", natoms);
         return NULL;
     }
     if (ms_out_open(&w->out, path, err) != MS_PLUGIN_OK) {
         free(w->ints);
+        free(w->diffs);
         free(w->buf);
         free(w);
         return NULL;
@@ -964,7 +1004,7 @@ static int xtc_write_frame(void *hw, const ms_struct_view *view, const ms_frame_
         return ms_perr_set(err, "frame %d: atom %ld: coordinates (%g, %g, %g) out of the XTC "
                            "range (2.1e7 A)", f->index, bad, (double)f->pos[3 * bad],
                            (double)f->pos[3 * bad + 1], (double)f->pos[3 * bad + 2]);
-    size_t bytes = encode(&h, w->ints, w->natoms, w->buf);
+    size_t bytes = encode(&h, w->ints, w->natoms, w->diffs, w->diffs + w->natoms, w->buf);
     memset(w->buf + bytes, 0, 3);
     int large = bytes > INT32_MAX;   /* GROMACS' magic 2023: a 64-bit byte count */
     unsigned char b[56 + 40];
@@ -987,6 +1027,7 @@ static int xtc_close_write(void *hw, ms_perr *err)
     xtc_writer *w = hw;
     int rc = ms_out_close(&w->out, err);
     free(w->ints);
+    free(w->diffs);
     free(w->buf);
     free(w);
     return rc;

@@ -252,8 +252,9 @@ static void test_round_trips(void)
         }
     }
     long chain = round_trip("chains of close atoms broken by far jumps", pos, n);
-    /* The cloud's triples take at least 44 bits (20000^3 > 2^42, and a run flag). */
-    t_ok(cloud >= n * 44 / 8 && chain > 0 && chain * 3 < cloud * 2,
+    /* The cloud's triples take 43 bits (20000^3 > 2^42) and a run flag: few of its atoms lie
+     * close enough to the one before to be coded in fewer. */
+    t_ok(cloud >= n * 40 / 8 && chain > 0 && chain * 3 < cloud * 2,
          "close atoms are coded as small differences: %ld bytes against %ld for a cloud", chain,
          cloud);
     t_ok(chain > 0 && chain < n * 4, "chains take under 4 bytes an atom (%.2f)",
