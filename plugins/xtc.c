@@ -715,30 +715,44 @@ fail:
 #define XTC_MAXABS 2147483645.0   /* integers beyond would overflow the ranges' sizes */
 #define XTC_MAX_SMALL 8           /* atoms in a run of small differences */
 
-/* Bits written most significant first; fewer than 8 wait in acc. */
+/* Bits written most significant first, 32 at a time; fewer than 32 wait in acc. */
 typedef struct bitout {
     unsigned char *p;
     uint64_t acc;
     int n;
 } bitout;
 
-/* Append the n (<= 56) low bits of v (v < 2^n). */
+/* Append the n (<= 32) low bits of v (v < 2^n). */
 static inline void put_bits(bitout *o, int n, uint64_t v)
 {
     o->acc = o->acc << n | v;
     o->n += n;
-    while (o->n >= 8) {
-        o->n -= 8;
-        *o->p++ = (unsigned char)(o->acc >> o->n);
+    if (o->n >= 32) {
+        o->n -= 32;
+        uint32_t w = __builtin_bswap32((uint32_t)(o->acc >> o->n));
+        memcpy(o->p, &w, 4);
+        o->p += 4;
     }
 }
 
-/* The inverse of get_packed and get_ints_wide: nbits bits of v as bytes least significant
- * first, the last byte holding the 1..8 bits left. */
+/* The bits still waiting, the last byte padded with zeros. */
+static void put_flush(bitout *o)
+{
+    for (; o->n >= 8; o->n -= 8) *o->p++ = (unsigned char)(o->acc >> (o->n - 8));
+    if (o->n) *o->p++ = (unsigned char)(o->acc << (8 - o->n));
+    o->n = 0;
+}
+
+/* The inverse of get_packed and get_ints_wide: nbits (<= 64) bits of v as bytes least
+ * significant first, the last byte holding the 1..8 bits left. */
 static inline void put_packed(bitout *o, int nbits, uint64_t v)
 {
     int full = (nbits - 1) / 8, rest = nbits - 8 * full;
-    if (full) put_bits(o, 8 * full, __builtin_bswap64(v) >> (64 - 8 * full));
+    if (full) {
+        uint64_t w = __builtin_bswap64(v) >> (64 - 8 * full);
+        if (full > 4) put_bits(o, 8 * full - 32, w >> 32);
+        put_bits(o, full > 4 ? 32 : 8 * full, w & 0xffffffffu);
+    }
     put_bits(o, rest, v >> (8 * full));
 }
 
@@ -923,7 +937,7 @@ static size_t encode(xtc_head *h, const int32_t *v, long natoms, uint32_t *d1, u
         idx += change;
         i = next;
     }
-    if (o.n) *o.p++ = (unsigned char)(o.acc << (8 - o.n));
+    put_flush(&o);
     return (size_t)(o.p - out);
 }
 
