@@ -323,6 +323,17 @@ static void test_large(void)
         large = (int64_t)(int32_t)be32_at(b + 72 + 4 * d) - (int32_t)be32_at(b + 60 + 4 * d) >
                 0xffffff;
     t_ok(large, "their integer ranges pass 2^24 (the format's large-integer coding)");
+    /* A walk of steps up to 20000 A: small differences of more than 64 bits (the size
+     * index in the header, chosen from the first differences, passes 64). */
+    for (long i = 0; i < 3 * n; i++)
+        pos[i] = (i < 3 ? 0 : pos[i - 3]) + (float)((urand() - 0.5) * 40000);
+    rc = write_frames(path, pos, n, 2, 0.37f, NULL, &err);
+    why[0] = '\0';
+    int wide = rc == 0 && check_frames(path, pos, n, 0.37f, 0, why, sizeof why) == 2 &&
+               head_of(path, b) == 0;
+    t_ok(wide && (int32_t)be32_at(b + 84) > 64,
+         "a walk of 20000 A steps reads back, coded with a size index past 64 (%d; %s%s)",
+         (int)(int32_t)be32_at(b + 84), err.msg, why);
     /* The extremes: +-2e7 A (2e9 integers, 32-bit fields). */
     for (long i = 0; i < 3 * n; i++) pos[i] = (float)((urand() - 0.5) * 4e7);
     pos[0] = 2.0e7f;
