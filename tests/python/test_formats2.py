@@ -57,6 +57,7 @@ def trajectories(mda, np, exe, p, tmp):
                    "largest difference %s" % (np.abs(ours - ref).max() if same else ours.shape))
     large_xtc(mda, np, exe, p, tmp)
     our_xtc(mda, np, exe, p, tmp)
+    our_xtc_edges(mda, np, exe, tmp)
     # Our TRR writer, read back by MDAnalysis.
     out = tmp("ours.trr")
     run(exe, ["-o", out, p("helix.psf"), p("helix.dcd")])
@@ -149,6 +150,42 @@ def our_xtc(mda, np, exe, p, tmp):
         report(same, "MDAnalysis' XTC (%s) written back by msdump reads identically in "
                "MDAnalysis: coordinates and times to the bit, boxes within 1e-6" % name,
                "differs")
+
+
+def our_xtc_edges(mda, np, exe, tmp):
+    """msdump's XTC of coordinates that take the format's rarer paths, read by MDAnalysis
+    (whose decoder is GROMACS' xdrfile): ranges past 2^24 integers (separate bit fields), a
+    walk of 20000 A steps (small differences of more than 64 bits), 5 atoms (plain floats).
+    Coordinates come from XYZ files written here; MDAnalysis must read each as the integer
+    x * 100 rounded half away from zero, made a float as GROMACS' reader does, to the bit
+    (plain floats within 1e-5 A)."""
+    rng = np.random.default_rng(11)
+    n = 3000
+    far = rng.uniform(-1e6, 1e6, (n, 3))
+    far[1:][np.arange(1, n) % 5 != 0] = 0
+    far = np.cumsum(far, axis=0) % 2e6 - 1e6 + rng.uniform(-0.6, 0.6, (n, 3))
+    walk = np.cumsum(rng.uniform(-20000, 20000, (n, 3)), axis=0)
+    for name, xyz in (("ranges past 2^24 integers", far), ("20000 A steps", walk),
+                      ("5 atoms", rng.uniform(-30, 30, (5, 3)))):
+        src, out = tmp("edge.xyz"), tmp("edge.xtc")
+        with open(src, "w") as f:
+            f.write("%d\nedge\n" % len(xyz))
+            for x, y, z in xyz:
+                f.write("C %.4f %.4f %.4f\n" % (x, y, z))
+        run(exe, ["-o", out, src])
+        x = np.loadtxt(src, skiprows=2, usecols=(1, 2, 3)).astype(np.float32).astype(np.float64)
+        got = mda.Universe(src, out).atoms.positions.astype(np.float64)
+        if len(xyz) > 9:
+            # The integer, then as GROMACS' reader makes floats of it: k * (1/1000) * 10.
+            k = (np.sign(x * 100) * np.floor(np.abs(x * 100) + 0.5)).astype(np.float32)
+            want = (k * np.float32(0.001)) * np.float32(10)
+            worst = float(np.abs(want - got).max())
+            ok = worst == 0
+        else:
+            worst = float(np.abs(x - got).max())
+            ok = worst < 1e-5
+        report(ok, "msdump's XTC (%s) read by MDAnalysis at the file's precision" % name,
+               "worst %g" % worst)
 
 
 def same_box(np, a, b):
