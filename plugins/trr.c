@@ -37,12 +37,7 @@ typedef struct trr_head {
 
 static double be_real(const unsigned char *p, int dbl)
 {
-    if (!dbl) {
-        uint32_t v = ms_be32(p);
-        float f;
-        memcpy(&f, &v, 4);
-        return f;
-    }
+    if (!dbl) return ms_be_float(p);
     uint64_t v = (uint64_t)ms_be32(p) << 32 | ms_be32(p + 4);
     double d;
     memcpy(&d, &v, 8);

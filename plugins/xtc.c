@@ -277,7 +277,7 @@ static int bits_of_product(const uint32_t s[3])
 /* ---------------------------------------------------------------- decoding */
 
 /* Sizes of the full triples: packed together (*bitsize) or, for large ranges, in separate
- * fields (bitsizeint[]). */
+ * fields (bitsizeint[]). The encoder sizes its triples with the same rule. */
 static int full_sizes(const xtc_head *h, uint32_t sizeint[3], int bitsizeint[3], int *bitsize,
                       int *large, ms_perr *err)
 {
