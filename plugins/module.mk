@@ -40,12 +40,12 @@ plugins_cube_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_cube_la_LIBADD = -lm
 
 plugins_LTLIBRARIES += plugins/xtc.la
-plugins_xtc_la_SOURCES = plugins/xtc.c $(PLUGIN_UTIL)
+plugins_xtc_la_SOURCES = plugins/xtc.c plugins/gmx_util.h $(PLUGIN_UTIL)
 plugins_xtc_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_xtc_la_LIBADD = -lm $(PTHREAD_LIBS)
 
 plugins_LTLIBRARIES += plugins/trr.la
-plugins_trr_la_SOURCES = plugins/trr.c $(PLUGIN_UTIL)
+plugins_trr_la_SOURCES = plugins/trr.c plugins/gmx_util.h $(PLUGIN_UTIL)
 plugins_trr_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_trr_la_LIBADD = -lm
 
@@ -73,5 +73,6 @@ plugins_libbuiltin_la_SOURCES = plugins/builtin/builtin.h \
 	plugins/builtin/pdb.c plugins/builtin/psf.c plugins/builtin/dcd.c plugins/builtin/xyz.c \
 	plugins/builtin/gro.c plugins/builtin/dx.c plugins/builtin/ccp4.c plugins/builtin/cube.c \
 	plugins/builtin/xtc.c plugins/builtin/trr.c plugins/builtin/pdbx.c plugins/builtin/pqr.c \
-	plugins/builtin/mol2.c plugins/builtin/namdbin.c plugins/cif_tok.c $(PLUGIN_UTIL)
+	plugins/builtin/mol2.c plugins/builtin/namdbin.c plugins/cif_tok.c plugins/gmx_util.h \
+	$(PLUGIN_UTIL)
 plugins_libbuiltin_la_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/plugins/builtin

@@ -7,6 +7,7 @@
  * are skipped. Writes single-precision frames with box and positions. */
 #include "ms_plugin.h"
 #include "plugin_util.h"
+#include "gmx_util.h"
 
 #include <errno.h>
 #include <math.h>
@@ -16,7 +17,6 @@
 #include <sys/stat.h>
 
 #define TRR_MAGIC 1993
-#define TRR_PI 3.14159265358979323846
 
 typedef struct trr_reader {
     FILE *fp;
@@ -35,20 +35,10 @@ typedef struct trr_head {
     double time;
 } trr_head;
 
-static uint32_t be32(const unsigned char *p)
-{
-    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
-}
-
 static double be_real(const unsigned char *p, int dbl)
 {
-    if (!dbl) {
-        uint32_t v = be32(p);
-        float f;
-        memcpy(&f, &v, 4);
-        return f;
-    }
-    uint64_t v = (uint64_t)be32(p) << 32 | be32(p + 4);
+    if (!dbl) return ms_be_float(p);
+    uint64_t v = (uint64_t)ms_be32(p) << 32 | ms_be32(p + 4);
     double d;
     memcpy(&d, &v, 8);
     return d;
@@ -68,18 +58,18 @@ static int read_head(trr_reader *r, trr_head *h, ms_perr *err)
     int got = read_exact(r->fp, b, 8);
     if (got == 0) return MS_PLUGIN_EOF;
     if (got < 0) return ms_perr_set(err, "truncated: the file ends in a frame header");
-    if ((int32_t)be32(b) != TRR_MAGIC)
-        return ms_perr_set(err, "bad magic number %d, expected 1993", (int)(int32_t)be32(b));
+    if ((int32_t)ms_be32(b) != TRR_MAGIC)
+        return ms_perr_set(err, "bad magic number %d, expected 1993", (int)(int32_t)ms_be32(b));
     unsigned char l[4];
     if (read_exact(r->fp, l, 4) != 1) return ms_perr_set(err, "truncated: in the version string");
-    uint32_t len = be32(l);
+    uint32_t len = ms_be32(l);
     if (len > 128) return ms_perr_set(err, "bad version string length %u", len);
     unsigned char skip[132], ints[S_COUNT * 4];
     if (read_exact(r->fp, skip, (len + 3) & ~3u) != 1 ||
         read_exact(r->fp, ints, sizeof ints) != 1)
         return ms_perr_set(err, "truncated: the file ends in a frame header");
     for (int k = 0; k < S_COUNT; k++) {
-        h->s[k] = (int32_t)be32(ints + 4 * k);
+        h->s[k] = (int32_t)ms_be32(ints + 4 * k);
         if (h->s[k] < 0 && k != S_STEP) return ms_perr_set(err, "bad header field %d", k);
     }
     int32_t n = h->s[S_NATOMS];
@@ -144,24 +134,6 @@ fail:
     return NULL;
 }
 
-static void box_to_cell(const double v[9], float cell[6])
-{
-    double len[3];
-    for (int k = 0; k < 3; k++)
-        len[k] = sqrt(v[3 * k] * v[3 * k] + v[3 * k + 1] * v[3 * k + 1] + v[3 * k + 2] * v[3 * k + 2]);
-    static const int pair[3][2] = {{1, 2}, {0, 2}, {0, 1}};
-    for (int k = 0; k < 3; k++) {
-        const double *a = v + 3 * pair[k][0], *b = v + 3 * pair[k][1];
-        double la = len[pair[k][0]], lb = len[pair[k][1]], ang = 90.0;
-        if (la > 0 && lb > 0) {
-            double c = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb);
-            ang = c == 0 ? 90.0 : acos(c > 1 ? 1 : c < -1 ? -1 : c) * 180.0 / TRR_PI;
-        }
-        cell[k] = (float)(10.0 * len[k]);
-        cell[3 + k] = (float)ang;
-    }
-}
-
 /* Read a block of n reals into out (scaled), or skip it when out is NULL. */
 static int read_block(trr_reader *r, size_t bytes, int dbl, float *out, float scale,
                       ms_perr *err)
@@ -199,7 +171,7 @@ static int trr_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
                 return ms_perr_set(err, "truncated: the file ends in the box");
             double box[9];
             for (int k = 0; k < 9; k++) box[k] = be_real(b + k * rs, hd.dbl);
-            box_to_cell(box, fr->cell);
+            ms_gmx_box_to_cell(box, fr->cell);
             fr->has_cell = 1;
         }
         if (read_block(r, (size_t)hd.s[S_VIR], hd.dbl, NULL, 1, err) ||
@@ -224,19 +196,6 @@ typedef struct trr_writer {
     unsigned char *buf;
 } trr_writer;
 
-static void put32(unsigned char *p, uint32_t v)
-{
-    p[0] = (unsigned char)(v >> 24), p[1] = (unsigned char)(v >> 16);
-    p[2] = (unsigned char)(v >> 8), p[3] = (unsigned char)v;
-}
-
-static void put_float(unsigned char *p, float f)
-{
-    uint32_t v;
-    memcpy(&v, &f, 4);
-    put32(p, v);
-}
-
 static void *trr_open_write(const char *path, long natoms, ms_perr *err)
 {
     if (natoms < 1 || natoms > INT32_MAX / 12) {
@@ -258,50 +217,33 @@ static void *trr_open_write(const char *path, long natoms, ms_perr *err)
     return w;
 }
 
-/* The box matrix (nm) of a cell a b c alpha beta gamma (Angstrom, degrees). */
-static void cell_to_box(const float c[6], float box[9])
-{
-    double al = c[3] * TRR_PI / 180, be = c[4] * TRR_PI / 180, ga = c[5] * TRR_PI / 180;
-    double ca = c[3] == 90 ? 0 : cos(al), cb = c[4] == 90 ? 0 : cos(be);
-    double cg = c[5] == 90 ? 0 : cos(ga), sg = c[5] == 90 ? 1 : sin(ga);
-    double a = c[0] / 10.0, b = c[1] / 10.0, cc = c[2] / 10.0;
-    double z2 = 1 - cb * cb - ((ca - cb * cg) / sg) * ((ca - cb * cg) / sg);
-    memset(box, 0, 9 * sizeof *box);
-    box[0] = (float)a;
-    box[3] = (float)(b * cg);
-    box[4] = (float)(b * sg);
-    box[6] = (float)(cc * cb);
-    box[7] = (float)(cc * (ca - cb * cg) / sg);
-    box[8] = (float)(cc * sqrt(z2 > 0 ? z2 : 0));
-}
-
 static int trr_write_frame(void *h, const ms_struct_view *v, const ms_frame_in *f, ms_perr *err)
 {
     (void)v;
     trr_writer *w = h;
     unsigned char hd[4 * 4 + 12 + 4 * S_COUNT + 8];
     memset(hd, 0, sizeof hd);
-    put32(hd, TRR_MAGIC);
-    put32(hd + 4, 13);
-    put32(hd + 8, 12);
+    ms_put_be32(hd, TRR_MAGIC);
+    ms_put_be32(hd + 4, 13);
+    ms_put_be32(hd + 8, 12);
     memcpy(hd + 12, "GMX_trn_file", 12);
     unsigned char *s = hd + 24;
     int has_box = f->cell[0] > 0 && f->cell[1] > 0 && f->cell[2] > 0;
-    put32(s + 4 * S_BOX, has_box ? 36 : 0);
-    put32(s + 4 * S_X, (uint32_t)(w->natoms * 12));
-    put32(s + 4 * S_NATOMS, (uint32_t)w->natoms);
-    put32(s + 4 * S_STEP, (uint32_t)f->index);
-    put_float(s + 4 * S_COUNT, (float)f->time);
-    put_float(s + 4 * S_COUNT + 4, 0.0f);
+    ms_put_be32(s + 4 * S_BOX, has_box ? 36 : 0);
+    ms_put_be32(s + 4 * S_X, (uint32_t)(w->natoms * 12));
+    ms_put_be32(s + 4 * S_NATOMS, (uint32_t)w->natoms);
+    ms_put_be32(s + 4 * S_STEP, (uint32_t)f->index);
+    ms_put_be_float(s + 4 * S_COUNT, (float)f->time);
+    ms_put_be_float(s + 4 * S_COUNT + 4, 0.0f);
     ms_out_write(&w->out, hd, 24 + 4 * S_COUNT + 8);
     if (has_box) {
         float box[9];
         unsigned char b[36];
-        cell_to_box(f->cell, box);
-        for (int k = 0; k < 9; k++) put_float(b + 4 * k, box[k]);
+        ms_gmx_cell_to_box(f->cell, box);
+        for (int k = 0; k < 9; k++) ms_put_be_float(b + 4 * k, box[k]);
         ms_out_write(&w->out, b, 36);
     }
-    for (long k = 0; k < 3 * w->natoms; k++) put_float(w->buf + 4 * k, f->pos[k] / 10.0f);
+    for (long k = 0; k < 3 * w->natoms; k++) ms_put_be_float(w->buf + 4 * k, f->pos[k] / 10.0f);
     ms_out_write(&w->out, w->buf, (size_t)w->natoms * 12);
     return w->out.failed ? ms_perr_set(err, "write failed") : MS_PLUGIN_OK;
 }

@@ -1,4 +1,4 @@
-/* xtc.c: the GROMACS XTC trajectory plugin (read only). A frame is an XDR (big-endian)
+/* xtc.c: the GROMACS XTC trajectory plugin (read and write). A frame is an XDR (big-endian)
  * header (magic 1995, or 2023 for files whose frames exceed 2 GB, atom count, step, time),
  * the box (9 floats, nm), and the coordinates: up to 9 atoms as plain floats, else the
  * compressed form: a precision, the integer bounding box, an initial small-difference
@@ -10,6 +10,10 @@
  * 1/precision in single precision, then by 10 for Angstrom, exactly as GROMACS' and
  * MDAnalysis' readers do, so coordinates agree to the bit. Implemented from the format's
  * published description.
+ *
+ * Writing: precision 1000 (GROMACS' default), coordinates rounded to the nearest integer
+ * (half away from zero); the encoder mirrors the decoder (the same size table and range
+ * rules) and chooses its own runs and size changes (see encode).
  *
  * Speed: the stream is read 64 bits at a time, the small differences are split by
  * multiplying with precomputed reciprocals instead of dividing, and each atom goes straight
@@ -26,6 +30,7 @@
  * XTC_AHEAD_BYTES of memory. */
 #include "ms_plugin.h"
 #include "plugin_util.h"
+#include "gmx_util.h"
 
 #include <errno.h>
 #include <math.h>
@@ -38,7 +43,6 @@
 
 #define XTC_MAGIC 1995
 #define XTC_MAGIC_LARGE 2023
-#define XTC_PI 3.14159265358979323846
 #define FIRSTIDX 9
 #define XTC_AHEAD_MIN_ATOMS 10000
 #define XTC_MAX_WORKERS 8
@@ -104,19 +108,6 @@ typedef struct xtc_reader {
 } xtc_reader;
 
 /* ---------------------------------------------------------------- XDR input */
-
-static uint32_t be32(const unsigned char *p)
-{
-    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
-}
-
-static float be_float(const unsigned char *p)
-{
-    uint32_t v = be32(p);
-    float f;
-    memcpy(&f, &v, 4);
-    return f;
-}
 
 /* Read n bytes; 0 at a clean end of file before any byte, 1 when all read, -1 short. */
 static int read_exact(FILE *fp, void *b, size_t n)
@@ -286,7 +277,7 @@ static int bits_of_product(const uint32_t s[3])
 /* ---------------------------------------------------------------- decoding */
 
 /* Sizes of the full triples: packed together (*bitsize) or, for large ranges, in separate
- * fields (bitsizeint[]). */
+ * fields (bitsizeint[]). The encoder sizes its triples with the same rule. */
 static int full_sizes(const xtc_head *h, uint32_t sizeint[3], int bitsizeint[3], int *bitsize,
                       int *large, ms_perr *err)
 {
@@ -401,26 +392,6 @@ static int decode_frame(const xtc_frame *f, long natoms, float *pos, ms_perr *er
 
 /* ---------------------------------------------------------------- reading frames */
 
-/* Box vectors (nm) -> a b c (Angstrom) alpha beta gamma (degrees). */
-static void box_to_cell(const float v[9], float cell[6])
-{
-    double len[3];
-    for (int k = 0; k < 3; k++)
-        len[k] = sqrt((double)v[3 * k] * v[3 * k] + (double)v[3 * k + 1] * v[3 * k + 1] +
-                      (double)v[3 * k + 2] * v[3 * k + 2]);
-    static const int pair[3][2] = {{1, 2}, {0, 2}, {0, 1}};
-    for (int k = 0; k < 3; k++) {
-        const float *a = v + 3 * pair[k][0], *b = v + 3 * pair[k][1];
-        double la = len[pair[k][0]], lb = len[pair[k][1]], ang = 90.0;
-        if (la > 0 && lb > 0) {
-            double c = ((double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]) / (la * lb);
-            ang = c == 0 ? 90.0 : acos(c > 1 ? 1 : c < -1 ? -1 : c) * 180.0 / XTC_PI;
-        }
-        cell[k] = (float)(10.0 * len[k]);
-        cell[3 + k] = (float)ang;
-    }
-}
-
 static int grow_buf(xtc_frame *f, size_t bytes, ms_perr *err)
 {
     if (bytes <= f->buf_cap) return MS_PLUGIN_OK;
@@ -437,13 +408,13 @@ static int read_stream(xtc_reader *r, xtc_frame *f, int large, int keep, ms_perr
     unsigned char h[44];
     if (read_exact(r->fp, h, large ? 40 : 36) != 1)
         return ms_perr_set(err, "truncated: the file ends in the coordinate header");
-    f->head.precision = be_float(h);
+    f->head.precision = ms_be_float(h);
     for (int d = 0; d < 3; d++) {
-        f->head.minint[d] = (int32_t)be32(h + 4 + 4 * d);
-        f->head.maxint[d] = (int32_t)be32(h + 16 + 4 * d);
+        f->head.minint[d] = (int32_t)ms_be32(h + 4 + 4 * d);
+        f->head.maxint[d] = (int32_t)ms_be32(h + 16 + 4 * d);
     }
-    f->head.smallidx = (int32_t)be32(h + 28);
-    uint64_t bytes = large ? ((uint64_t)be32(h + 32) << 32 | be32(h + 36)) : be32(h + 32);
+    f->head.smallidx = (int32_t)ms_be32(h + 28);
+    uint64_t bytes = large ? ((uint64_t)ms_be32(h + 32) << 32 | ms_be32(h + 36)) : ms_be32(h + 32);
     if (bytes > (uint64_t)r->size)
         return ms_perr_set(err, "bad compressed size %llu bytes", (unsigned long long)bytes);
     size_t padded = (size_t)((bytes + 3) & ~(uint64_t)3);
@@ -467,22 +438,22 @@ static int read_raw(xtc_reader *r, xtc_frame *f, long natoms, int keep, ms_perr 
     int got = read_exact(r->fp, b, 56);
     if (got == 0) return MS_PLUGIN_EOF;
     if (got < 0) return ms_perr_set(err, "truncated: the file ends in the frame header");
-    int32_t magic = (int32_t)be32(b), n = (int32_t)be32(b + 4);
+    int32_t magic = (int32_t)ms_be32(b), n = (int32_t)ms_be32(b + 4);
     if (magic != XTC_MAGIC && magic != XTC_MAGIC_LARGE)
         return ms_perr_set(err, "bad magic number %d at byte %lld", (int)magic,
                            (long long)ftello(r->fp) - 56);
-    if (n != natoms || (int32_t)be32(b + 52) != n)
+    if (n != natoms || (int32_t)ms_be32(b + 52) != n)
         return ms_perr_set(err, "the frame has %d atoms, expected %ld", (int)n, natoms);
-    f->time = be_float(b + 12);
-    float box[9];
-    for (int k = 0; k < 9; k++) box[k] = be_float(b + 16 + 4 * k);
-    box_to_cell(box, f->cell);
+    f->time = ms_be_float(b + 12);
+    double box[9];
+    for (int k = 0; k < 9; k++) box[k] = ms_be_float(b + 16 + 4 * k);
+    ms_gmx_box_to_cell(box, f->cell);
     f->compressed = n > 9;
     if (f->compressed) return read_stream(r, f, magic == XTC_MAGIC_LARGE, keep, err);
     unsigned char p[9 * 12];
     if (read_exact(r->fp, p, (size_t)n * 12) != 1)
         return ms_perr_set(err, "truncated: the file ends in the coordinates");
-    for (long k = 0; k < 3 * (long)n; k++) f->plain[k] = be_float(p + 4 * k) * 10.0f;
+    for (long k = 0; k < 3 * (long)n; k++) f->plain[k] = ms_be_float(p + 4 * k) * 10.0f;
     return MS_PLUGIN_OK;
 }
 
@@ -719,7 +690,7 @@ static void *xtc_open_read(const char *path, long *natoms, ms_perr *err)
         ms_perr_set(err, "not an XTC file: shorter than a frame header");
         goto fail;
     }
-    int32_t magic = (int32_t)be32(h), n = (int32_t)be32(h + 4);
+    int32_t magic = (int32_t)ms_be32(h), n = (int32_t)ms_be32(h + 4);
     if (magic != XTC_MAGIC && magic != XTC_MAGIC_LARGE) {
         ms_perr_set(err, "not an XTC file: magic number %d, expected 1995", (int)magic);
         goto fail;
@@ -738,15 +709,356 @@ fail:
     return NULL;
 }
 
+/* ---------------------------------------------------------------- encoding */
+
+#define XTC_PRECISION 1000.0f
+#define XTC_MAXABS 2147483645.0   /* integers beyond would overflow the ranges' sizes */
+#define XTC_MAX_SMALL 8           /* atoms in a run of small differences */
+
+/* Bits written most significant first, 32 at a time; fewer than 32 wait in acc. */
+typedef struct bitout {
+    unsigned char *p;
+    uint64_t acc;
+    int n;
+} bitout;
+
+/* Append the n (<= 32) low bits of v (v < 2^n). */
+static inline void put_bits(bitout *o, int n, uint64_t v)
+{
+    o->acc = o->acc << n | v;
+    o->n += n;
+    if (o->n >= 32) {
+        o->n -= 32;
+        uint32_t w = __builtin_bswap32((uint32_t)(o->acc >> o->n));
+        memcpy(o->p, &w, 4);
+        o->p += 4;
+    }
+}
+
+/* The bits still waiting, the last byte padded with zeros. */
+static void put_flush(bitout *o)
+{
+    for (; o->n >= 8; o->n -= 8) *o->p++ = (unsigned char)(o->acc >> (o->n - 8));
+    if (o->n) *o->p++ = (unsigned char)(o->acc << (8 - o->n));
+    o->n = 0;
+}
+
+/* The inverse of get_packed and get_ints_wide: nbits (<= 64) bits of v as bytes least
+ * significant first, the last byte holding the 1..8 bits left. */
+static inline void put_packed(bitout *o, int nbits, uint64_t v)
+{
+    int full = (nbits - 1) / 8, rest = nbits - 8 * full;
+    if (full) {
+        uint64_t w = __builtin_bswap64(v) >> (64 - 8 * full);
+        if (full > 4) put_bits(o, 8 * full - 32, w >> 32);
+        put_bits(o, full > 4 ? 32 : 8 * full, w & 0xffffffffu);
+    }
+    put_bits(o, rest, v >> (8 * full));
+}
+
+static void put_wide(bitout *o, int nbits, unsigned __int128 v)
+{
+    for (; nbits > 8; nbits -= 8, v >>= 8) put_bits(o, 8, (uint64_t)(v & 0xff));
+    put_bits(o, nbits, (uint64_t)v);
+}
+
+/* The sizes of a frame's full triples (from full_sizes). */
+typedef struct xtc_sizes {
+    uint32_t size[3];
+    int bits[3], bitsize, large;
+    int32_t min[3];
+} xtc_sizes;
+
+/* An atom's integers as a full triple: separate fields for large ranges, else one number in
+ * the radices size[] (the first coordinate most significant). */
+static inline void put_full(bitout *o, const xtc_sizes *z, const int32_t t[3])
+{
+    uint32_t v[3];
+    for (int d = 0; d < 3; d++) v[d] = (uint32_t)t[d] - (uint32_t)z->min[d];
+    if (z->large) {
+        for (int d = 0; d < 3; d++) put_bits(o, z->bits[d], v[d]);
+    } else if (z->bitsize <= 64) {
+        put_packed(o, z->bitsize, ((uint64_t)v[0] * z->size[1] + v[1]) * z->size[2] + v[2]);
+    } else {
+        unsigned __int128 x = (unsigned __int128)v[0] * z->size[1] + v[1];
+        put_wide(o, z->bitsize, x * z->size[2] + v[2]);
+    }
+}
+
+/* The small differences a - b (each below smallnum in size) in idx bits. */
+static inline void put_small(bitout *o, int idx, int smallnum, const int32_t *a,
+                             const int32_t *b)
+{
+    uint64_t m = (uint64_t)magicints[idx], s[3];
+    for (int d = 0; d < 3; d++) s[d] = (uint64_t)((int64_t)a[d] - b[d] + smallnum);
+    if (idx <= 64) put_packed(o, idx, (s[0] * m + s[1]) * m + s[2]);
+    else put_wide(o, idx, ((unsigned __int128)s[0] * m + s[1]) * m + s[2]);
+}
+
+/* The largest coordinate difference of atoms a and b (below 2^32: see XTC_MAXABS). */
+static inline uint32_t maxdiff(const int32_t *a, const int32_t *b)
+{
+    uint32_t m = 0;
+    for (int d = 0; d < 3; d++) {
+        int64_t x = (int64_t)a[d] - b[d];
+        uint32_t u = (uint32_t)(x < 0 ? -x : x);
+        m = u > m ? u : m;
+    }
+    return m;
+}
+
+/* Each atom's largest coordinate difference from the atom before (d1) and from the one two
+ * before (d2): all that grouping atoms into runs looks at. */
+static void neighbour_diffs(const int32_t *v, long natoms, uint32_t *d1, uint32_t *d2)
+{
+    d1[0] = d2[0] = d2[1] = UINT32_MAX;
+    for (long i = 1; i < natoms; i++) {
+        d1[i] = maxdiff(v + 3 * i, v + 3 * (i - 1));
+        if (i > 1) d2[i] = maxdiff(v + 3 * i, v + 3 * (i - 2));
+    }
+}
+
+/* The initial size index: the median of what the first (up to 31) neighbours need (the
+ * smallest size whose half exceeds their difference). */
+static int first_smallidx(const uint32_t *d1, long natoms)
+{
+    int need[31], n = 0;
+    for (long i = 1; i < natoms && n < 31; i++) {
+        int k = FIRSTIDX, j = n++;
+        while (k < LASTIDX - 1 && (uint32_t)(magicints[k] / 2) <= d1[i]) k++;
+        for (; j > 0 && need[j - 1] > k; j--) need[j] = need[j - 1];
+        need[j] = k;
+    }
+    return n ? need[n / 2] : FIRSTIDX;
+}
+
+/* Angstrom to integers (nm times the precision, rounded half away from zero) and their
+ * bounding box into h. Returns -1, or the first atom with a coordinate out of range. */
+static long to_ints(const float *pos, long natoms, int32_t *v, xtc_head *h)
+{
+    int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+    const double scale = (double)XTC_PRECISION / 10.0;
+    for (long i = 0; i < natoms; i++)
+        for (int d = 0; d < 3; d++) {
+            double x = (double)pos[3 * i + d] * scale;
+            if (!(fabs(x) <= XTC_MAXABS)) return i;
+            int32_t k = (int32_t)(x < 0 ? x - 0.5 : x + 0.5);
+            v[3 * i + d] = k;
+            lo[d] = k < lo[d] ? k : lo[d];
+            hi[d] = k > hi[d] ? k : hi[d];
+        }
+    h->precision = XTC_PRECISION;
+    memcpy(h->minint, lo, sizeof lo);
+    memcpy(h->maxint, hi, sizeof hi);
+    return -1;
+}
+
+#define XTC_LOOK 18   /* atoms looked ahead to choose the size */
+
+/* The run of the group that starts at atom i, for differences below smallnum: how many
+ * atoms follow the one in full. The run's first atom is i (its difference from i + 1, the
+ * atom in full), then i + 2 (from i), then each from the atom before. */
+static inline int run_of(const uint32_t *d1, const uint32_t *d2, long natoms, long i,
+                         uint32_t smallnum)
+{
+    if (i + 1 >= natoms || d1[i + 1] >= smallnum) return 0;
+    if (i + 2 >= natoms || d2[i + 2] >= smallnum) return 1;
+    int ns = 2;
+    while (ns < XTC_MAX_SMALL && i + ns + 1 < natoms && d1[i + ns + 1] < smallnum) ns++;
+    return ns;
+}
+
+/* Bits the atoms from i on (XTC_LOOK of them) take at size index idx: full triples of
+ * fullbits bits, a run flag and the run's length when it differs from the run before (run
+ * small integers), differences of idx bits. */
+static long lookahead_bits(const uint32_t *d1, const uint32_t *d2, long natoms, long i,
+                           int idx, int fullbits, int run)
+{
+    long end = i + XTC_LOOK < natoms ? i + XTC_LOOK : natoms, bits = 0;
+    uint32_t smallnum = (uint32_t)magicints[idx] / 2;
+    while (i < end) {
+        int ns = run_of(d1, d2, natoms, i, smallnum);
+        bits += fullbits + 1 + (3 * ns != run ? 5 : 0) + (long)ns * idx;
+        run = 3 * ns;
+        i += ns + 1;
+    }
+    return bits;
+}
+
+/* The change of the size index after a group (-1, 0 or +1): the one under which the atoms
+ * that follow take the fewest bits, a change costing its flag. */
+static int size_change(const uint32_t *d1, const uint32_t *d2, long natoms, long next, int idx,
+                       int fullbits, int run)
+{
+    if (next >= natoms) return 0;
+    long best = lookahead_bits(d1, d2, natoms, next, idx, fullbits, run);
+    int change = 0;
+    for (int c = -1; c <= 1; c += 2) {
+        if (idx + c < FIRSTIDX || idx + c >= LASTIDX) continue;
+        long b = lookahead_bits(d1, d2, natoms, next, idx + c, fullbits, run) + 5;
+        if (b < best) best = b, change = c;
+    }
+    return change;
+}
+
+/* Encode natoms (> 9) atoms' integers v into out (room for 13 bytes an atom and 16 more),
+ * the size index chosen into h; d1 and d2 are scratch for natoms each. Returns the bytes
+ * written. A group is an atom in full followed, when the atom after it is close, by a run
+ * of up to XTC_MAX_SMALL atoms as small differences (run_of); the run's first atom comes
+ * before the one in full in the file's order. After each group the size may step up or
+ * down by one, as the atoms ahead would take fewer bits. */
+static size_t encode(xtc_head *h, const int32_t *v, long natoms, uint32_t *d1, uint32_t *d2,
+                     unsigned char *out)
+{
+    xtc_sizes z;
+    ms_perr unused;
+    full_sizes(h, z.size, z.bits, &z.bitsize, &z.large, &unused); /* ranges fit: to_ints */
+    memcpy(z.min, h->minint, sizeof z.min);
+    neighbour_diffs(v, natoms, d1, d2);
+    int idx = h->smallidx = first_smallidx(d1, natoms), prevrun = -1;
+    int fullbits = z.large ? z.bits[0] + z.bits[1] + z.bits[2] : z.bitsize;
+    bitout o = {out, 0, 0};
+    for (long i = 0; i < natoms;) {
+        int smallnum = magicints[idx] / 2, ns = run_of(d1, d2, natoms, i, (uint32_t)smallnum);
+        long next = i + ns + 1;
+        int change = size_change(d1, d2, natoms, next, idx, fullbits, 3 * ns);
+        const int32_t *a = v + 3 * i;
+        put_full(&o, &z, ns ? a + 3 : a);
+        if (3 * ns != prevrun || change) {
+            put_bits(&o, 1, 1);
+            put_bits(&o, 5, (uint64_t)(3 * ns + change + 1));
+            prevrun = 3 * ns;
+        } else {
+            put_bits(&o, 1, 0);
+        }
+        if (ns) put_small(&o, idx, smallnum, a, a + 3);
+        if (ns > 1) put_small(&o, idx, smallnum, a + 6, a);
+        for (int k = 3; k <= ns; k++) put_small(&o, idx, smallnum, a + 3 * k, a + 3 * (k - 1));
+        idx += change;
+        i = next;
+    }
+    put_flush(&o);
+    return (size_t)(o.p - out);
+}
+
+/* ---------------------------------------------------------------- writing */
+
+typedef struct xtc_writer {
+    ms_out out;
+    long natoms;
+    int32_t *ints;         /* the frame's integers */
+    uint32_t *diffs;       /* scratch for encode: 2 natoms */
+    unsigned char *buf;    /* its stream */
+} xtc_writer;
+
+static void *xtc_open_write(const char *path, long natoms, ms_perr *err)
+{
+    if (natoms < 1 || natoms > INT32_MAX) {
+        ms_perr_set(err, "cannot write %ld atoms to an XTC file", natoms);
+        return NULL;
+    }
+    xtc_writer *w = calloc(1, sizeof *w);
+    if (w && natoms > 9) {
+        w->ints = malloc((size_t)natoms * 3 * sizeof *w->ints);
+        w->diffs = malloc((size_t)natoms * 2 * sizeof *w->diffs);
+        w->buf = malloc((size_t)natoms * 13 + 16);
+    }
+    if (!w || (natoms > 9 && (!w->ints || !w->diffs || !w->buf))) {
+        if (w) free(w->ints), free(w->diffs), free(w->buf);
+        free(w);
+        ms_perr_set(err, "out of memory for %ld atoms", natoms);
+        return NULL;
+    }
+    if (ms_out_open(&w->out, path, err) != MS_PLUGIN_OK) {
+        free(w->ints);
+        free(w->diffs);
+        free(w->buf);
+        free(w);
+        return NULL;
+    }
+    w->natoms = natoms;
+    return w;
+}
+
+/* The frame header: magic, atoms, step, time, the box (nm; zero without a cell) and the
+ * atom count again. */
+static void put_header(unsigned char *b, int32_t magic, long natoms, const ms_frame_in *f)
+{
+    float box[9] = {0};
+    if (f->cell[0] > 0 && f->cell[1] > 0 && f->cell[2] > 0) ms_gmx_cell_to_box(f->cell, box);
+    ms_put_be32(b, (uint32_t)magic);
+    ms_put_be32(b + 4, (uint32_t)natoms);
+    ms_put_be32(b + 8, (uint32_t)f->index);
+    ms_put_be_float(b + 12, (float)f->time);
+    for (int k = 0; k < 9; k++) ms_put_be_float(b + 16 + 4 * k, box[k]);
+    ms_put_be32(b + 52, (uint32_t)natoms);
+}
+
+/* Up to 9 atoms: the coordinates as plain floats (nm). */
+static void write_plain(xtc_writer *w, const ms_frame_in *f)
+{
+    unsigned char b[56 + 9 * 12];
+    put_header(b, XTC_MAGIC, w->natoms, f);
+    for (long k = 0; k < 3 * w->natoms; k++) ms_put_be_float(b + 56 + 4 * k, f->pos[k] / 10.0f);
+    ms_out_write(&w->out, b, 56 + (size_t)w->natoms * 12);
+}
+
+static int xtc_write_frame(void *hw, const ms_struct_view *view, const ms_frame_in *f,
+                           ms_perr *err)
+{
+    (void)view;
+    xtc_writer *w = hw;
+    if (w->natoms <= 9) {
+        write_plain(w, f);
+        return w->out.failed ? ms_perr_set(err, "write failed") : MS_PLUGIN_OK;
+    }
+    xtc_head h;
+    long bad = to_ints(f->pos, w->natoms, w->ints, &h);
+    if (bad >= 0)
+        return ms_perr_set(err, "frame %d: atom %ld: coordinates (%g, %g, %g) out of the XTC "
+                           "range (2.1e7 A)", f->index, bad, (double)f->pos[3 * bad],
+                           (double)f->pos[3 * bad + 1], (double)f->pos[3 * bad + 2]);
+    size_t bytes = encode(&h, w->ints, w->natoms, w->diffs, w->diffs + w->natoms, w->buf);
+    memset(w->buf + bytes, 0, 3);
+    int large = bytes > INT32_MAX;   /* GROMACS' magic 2023: a 64-bit byte count */
+    unsigned char b[56 + 40];
+    put_header(b, large ? XTC_MAGIC_LARGE : XTC_MAGIC, w->natoms, f);
+    ms_put_be_float(b + 56, h.precision);
+    for (int d = 0; d < 3; d++) {
+        ms_put_be32(b + 60 + 4 * d, (uint32_t)h.minint[d]);
+        ms_put_be32(b + 72 + 4 * d, (uint32_t)h.maxint[d]);
+    }
+    ms_put_be32(b + 84, (uint32_t)h.smallidx);
+    if (large) ms_put_be32(b + 88, (uint32_t)((uint64_t)bytes >> 32));
+    ms_put_be32(b + 88 + 4 * large, (uint32_t)bytes);
+    ms_out_write(&w->out, b, 92 + 4 * (size_t)large);
+    ms_out_write(&w->out, w->buf, (bytes + 3) & ~(size_t)3);
+    return w->out.failed ? ms_perr_set(err, "write failed") : MS_PLUGIN_OK;
+}
+
+static int xtc_close_write(void *hw, ms_perr *err)
+{
+    xtc_writer *w = hw;
+    int rc = ms_out_close(&w->out, err);
+    free(w->ints);
+    free(w->diffs);
+    free(w->buf);
+    free(w);
+    return rc;
+}
+
 static const ms_plugin xtc_plugin = {
     .abi = MS_PLUGIN_ABI,
     .name = "xtc",
     .description = "GROMACS compressed trajectory",
     .extensions = "xtc",
-    .caps = MS_CAN_READ_FRAMES,
+    .caps = MS_CAN_READ_FRAMES | MS_CAN_WRITE_FRAMES,
     .open_read = xtc_open_read,
     .read_frame = xtc_read_frame,
     .close_read = xtc_close_read,
+    .open_write = xtc_open_write,
+    .write_frame = xtc_write_frame,
+    .close_write = xtc_close_write,
 };
 
 const ms_plugin *ms_plugin_entry(void) { return &xtc_plugin; }

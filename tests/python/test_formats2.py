@@ -4,7 +4,8 @@ tests/tools/msdump loads files as `mol new` + `mol addfile` do and prints what i
 - MDAnalysis (python3-mdanalysis) writes XTC and TRR files of helix.psf + helix.dcd; msdump
   must read the XTC coordinates bit for bit as MDAnalysis reads them back, the TRR ones
   within 1e-5 A; MDAnalysis reads the PQR of APBS and PyMOL's MOL2 like msdump; msdump's
-  TRR, PQR and MOL2 writers are read back by MDAnalysis.
+  TRR, XTC, PQR and MOL2 writers are read back by MDAnalysis (an MDAnalysis XTC written
+  back by msdump reads identically).
 - gemmi (Debian's gemmi) converts 1tii.pdb to mmCIF: msdump reads it like the PDB (names,
   residues, resids, chains, coordinates); gemmi builds assembly 1 of 3jqh.cif and of
   1a8o.pdb (REMARK 350): msdump's `assembly 1` has the same atoms at the same places.
@@ -55,6 +56,8 @@ def trajectories(mda, np, exe, p, tmp):
                    "TRR written by MDAnalysis: coordinates within 1e-5 A",
                    "largest difference %s" % (np.abs(ours - ref).max() if same else ours.shape))
     large_xtc(mda, np, exe, p, tmp)
+    our_xtc(mda, np, exe, p, tmp)
+    our_xtc_edges(mda, np, exe, tmp)
     # Our TRR writer, read back by MDAnalysis.
     out = tmp("ours.trr")
     run(exe, ["-o", out, p("helix.psf"), p("helix.dcd")])
@@ -106,6 +109,90 @@ def large_xtc(mda, np, exe, p, tmp):
         report(same and bool((ours == want).all()), name + ": every coordinate equal to the bit",
                "shapes %s %s, largest difference %s" % (
                    ours.shape, want.shape, np.abs(ours - want).max() if same else "-"))
+
+
+def our_xtc(mda, np, exe, p, tmp):
+    """msdump's XTC writer read by MDAnalysis: helix.psf + helix.dcd written as XTC gives
+    MDAnalysis every coordinate at the file's precision (the DCD's coordinate rounded to
+    0.01 A, half away from zero, within float rounding) and the same boxes; MDAnalysis' own
+    XTC files (helix and the replicated 1tii of large_xtc) read and written back by msdump
+    read identically in MDAnalysis: coordinates and times to the bit, boxes to float
+    rounding (the cell a b c alpha beta gamma between box and box is not exact)."""
+    src = mda.Universe(p("helix.psf"), p("helix.dcd"))
+    out = tmp("ours.xtc")
+    run(exe, ["-o", out, p("helix.psf"), p("helix.dcd")])
+    u = mda.Universe(p("helix.psf"), out)
+    worst = worst_box = worst_round = 0.0
+    for a, b in zip(src.trajectory, u.trajectory):
+        x, y = src.atoms.positions.astype(np.float64), u.atoms.positions.astype(np.float64)
+        worst = max(worst, float(np.abs(x - y).max()))
+        k = np.sign(x * 100) * np.floor(np.abs(x * 100) + 0.5)
+        worst_round = max(worst_round, float(np.abs(k / 100 - y).max()))
+        worst_box = max(worst_box, float(np.abs(a.dimensions - b.dimensions).max()))
+    report(len(u.trajectory) == 10 and worst <= 0.00501 and worst_round < 2e-5,
+           "msdump's XTC read by MDAnalysis: 10 frames, coordinates within 0.005 A, each the "
+           "DCD's rounded to 0.01 A", "worst %g, from the rounded %g" % (worst, worst_round))
+    report(worst_box < 1e-4, "msdump's XTC read by MDAnalysis: the triclinic boxes",
+           "worst %g" % worst_box)
+    size, theirs = os.path.getsize(out), os.path.getsize(tmp("mda.xtc"))
+    report(size <= 1.1 * theirs, "msdump's XTC compresses like MDAnalysis' (%d bytes, "
+           "MDAnalysis %d)" % (size, theirs), "more than 10%% larger")
+    # The PDB's own coordinates are msdump's first frame: skip it.
+    for top, xtc, name, skip in ((p("helix.psf"), tmp("mda.xtc"), "helix", 0),
+                                 (tmp("big.pdb"), tmp("big.xtc"), "1tii replicated", 1)):
+        back = tmp("back.xtc")
+        run(exe, ["-o", back, top, xtc])
+        a, b = mda.Universe(top, xtc), mda.Universe(top, back)
+        same = len(a.trajectory) + skip == len(b.trajectory)
+        for fa, fb in zip(a.trajectory, b.trajectory[skip:]):
+            same = same and bool((a.atoms.positions == b.atoms.positions).all()) and \
+                same_box(np, fa.dimensions, fb.dimensions) and fa.time == fb.time
+        report(same, "MDAnalysis' XTC (%s) written back by msdump reads identically in "
+               "MDAnalysis: coordinates and times to the bit, boxes within 1e-6" % name,
+               "differs")
+
+
+def our_xtc_edges(mda, np, exe, tmp):
+    """msdump's XTC of coordinates that take the format's rarer paths, read by MDAnalysis
+    (whose decoder is GROMACS' xdrfile): ranges past 2^24 integers (separate bit fields), a
+    walk of 20000 A steps (small differences of more than 64 bits), 5 atoms (plain floats).
+    Coordinates come from XYZ files written here; MDAnalysis must read each as the integer
+    x * 100 rounded half away from zero, made a float as GROMACS' reader does, to the bit
+    (plain floats within 1e-5 A)."""
+    rng = np.random.default_rng(11)
+    n = 3000
+    far = rng.uniform(-1e6, 1e6, (n, 3))
+    far[1:][np.arange(1, n) % 5 != 0] = 0
+    far = np.cumsum(far, axis=0) % 2e6 - 1e6 + rng.uniform(-0.6, 0.6, (n, 3))
+    walk = np.cumsum(rng.uniform(-20000, 20000, (n, 3)), axis=0)
+    for name, xyz in (("ranges past 2^24 integers", far), ("20000 A steps", walk),
+                      ("5 atoms", rng.uniform(-30, 30, (5, 3)))):
+        src, out = tmp("edge.xyz"), tmp("edge.xtc")
+        with open(src, "w") as f:
+            f.write("%d\nedge\n" % len(xyz))
+            for x, y, z in xyz:
+                f.write("C %.4f %.4f %.4f\n" % (x, y, z))
+        run(exe, ["-o", out, src])
+        x = np.loadtxt(src, skiprows=2, usecols=(1, 2, 3)).astype(np.float32).astype(np.float64)
+        got = mda.Universe(src, out).atoms.positions.astype(np.float64)
+        if len(xyz) > 9:
+            # The integer, then as GROMACS' reader makes floats of it: k * (1/1000) * 10.
+            k = (np.sign(x * 100) * np.floor(np.abs(x * 100) + 0.5)).astype(np.float32)
+            want = (k * np.float32(0.001)) * np.float32(10)
+            worst = float(np.abs(want - got).max())
+            ok = worst == 0
+        else:
+            worst = float(np.abs(x - got).max())
+            ok = worst < 1e-5
+        report(ok, "msdump's XTC (%s) read by MDAnalysis at the file's precision" % name,
+               "worst %g" % worst)
+
+
+def same_box(np, a, b):
+    """Both without a box, or the same box within float rounding."""
+    if a is None or b is None:
+        return a is None and b is None
+    return bool(np.allclose(a, b, rtol=1e-6, atol=0))
 
 
 def same_atoms(name, ours, u, np, names=True, tol=1e-3):
