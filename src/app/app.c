@@ -185,6 +185,7 @@ static void on_mol_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *
 {
     ms_app *app = ud;
     char buf[32];
+    app->scene_version++;
     switch (ev) {
     case MS_EV_MOL_NEW:
         set_trace_var(app, "vmd_initialize_structure", m->id, "1");
