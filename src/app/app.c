@@ -5,6 +5,7 @@
 #include "commands/commands.h"
 #include "fileio/load.h"
 #include "gl/gl.h"
+#include "live/live.h"
 
 #include <limits.h>
 #include <stdio.h>
@@ -95,6 +96,7 @@ void ms_app_free(ms_app *app)
     if (app->idle_scheduled) Tcl_CancelIdleCall(idle_load, app);
     for (size_t i = 0; i < app->mols.n; i++) ms_loader_cancel(app->mols.mols[i]);
     if (app->interp) {
+        ms_live_stop(app);                /* before the display lists it may hold go */
         Tcl_SetVar(app->interp, "vmd_quit", "1", TCL_GLOBAL_ONLY);
         ms_molset_free(&app->mols);
         Tcl_DeleteInterp(app->interp);

@@ -45,6 +45,7 @@ static int publish(ms_live_frames *f, const ms_image *img, int passes, ms_error 
     f->png_len = len;
     f->passes = passes;
     f->serial++;
+    if (f->on_image) f->on_image(f->ud);
     return 0;
 }
 
@@ -99,7 +100,7 @@ static void restart(ms_live_frames *f)
     drop_scene(f);
     f->error[0] = '\0';
     if (ms_scene_build(f->app, &f->scene, &err)) {
-        snprintf(f->error, sizeof f->error, "%s", err.msg);
+        snprintf(f->error, sizeof f->error, "%.200s", err.msg);
         remember(f);
         return;
     }
@@ -113,10 +114,10 @@ static void restart(ms_live_frames *f)
     if (gl) {
         ms_image img;
         if (ms_gl_render(gl, &f->scene, &img, NULL, &err) == 0) {
-            if (publish(f, &img, 0, &err)) snprintf(f->error, sizeof f->error, "%s", err.msg);
+            if (publish(f, &img, 0, &err)) snprintf(f->error, sizeof f->error, "%.200s", err.msg);
             ms_image_free(&img);
         } else {
-            snprintf(f->error, sizeof f->error, "snapshot: %s", err.msg);
+            snprintf(f->error, sizeof f->error, "snapshot: %.200s", err.msg);
         }
     }
     if (!ms_rt_available()) {
@@ -125,7 +126,7 @@ static void restart(ms_live_frames *f)
         return;
     }
     f->rt = ms_rt_session_begin(&f->scene, &o, &err);
-    if (!f->rt) snprintf(f->error, sizeof f->error, "TachyonInternal: %s", err.msg);
+    if (!f->rt) snprintf(f->error, sizeof f->error, "TachyonInternal: %.200s", err.msg);
 }
 
 static void one_pass(ms_live_frames *f)
@@ -135,10 +136,10 @@ static void one_pass(ms_live_frames *f)
     ms_rt_session_pass(f->rt);
     if (ms_rt_session_image(f->rt, &img, &err) == 0) {
         if (publish(f, &img, ms_rt_session_passes(f->rt), &err))
-            snprintf(f->error, sizeof f->error, "%s", err.msg);
+            snprintf(f->error, sizeof f->error, "%.200s", err.msg);
         ms_image_free(&img);
     } else {
-        snprintf(f->error, sizeof f->error, "TachyonInternal: %s", err.msg);
+        snprintf(f->error, sizeof f->error, "TachyonInternal: %.200s", err.msg);
     }
 }
 

@@ -41,6 +41,8 @@ typedef struct ms_live_frames {
     char error[256];              /* why the last image could not be made ("" when fine) */
     int idle_queued;
     void *timer;                  /* Tcl_TimerToken of the change check */
+    void (*on_image)(void *ud);   /* called after each new image (may be NULL) */
+    void *ud;
 } ms_live_frames;
 
 /* Start following app (the first image is made at the next idle turn); stop and free. */

@@ -4,7 +4,9 @@
  * commands. libmicrohttpd parses HTTP and form bodies; this file only routes:
  *
  *   GET  /?token=T             the page (tcl/live/index.html of the Tcl library)
- *   GET  /state?token=T        {"serial":N,"passes":P,"maxpasses":M,"width":W,...} (JSON)
+ *   GET  /state?token=T        {"serial":N,"passes":P,"maxpasses":M,"width":W,...} (JSON);
+ *                              with &since=N, a long poll: the answer waits (the connection
+ *                              suspended) until the image serial is no longer N, or 20 s
  *   GET  /image.png?token=T    the current image
  *   POST /view?token=T         form fields rx ry rz scale tx ty tz (live.h bounds)
  *
@@ -26,6 +28,25 @@
 #define TOKEN_BYTES 16               /* 128 bits from /dev/urandom */
 #define MAX_BODY 4096                /* a view change is a few dozen bytes */
 #define MAX_WAIT_MS 500              /* the longest the daemon waits to be run */
+#define LONG_POLL_S 20.0             /* the longest a /state?since= request waits */
+
+/* What a request keeps between the calls libmicrohttpd makes for it: the form a POST /view
+ * gathers while its body arrives, or a long poll's place in the waiting list. */
+typedef struct req_ctx {
+    enum { REQ_VIEW = 1, REQ_WAIT } kind;
+    /* REQ_VIEW */
+    struct MHD_PostProcessor *pp;
+    ms_live_view v;
+    size_t received;
+    int bad;
+    ms_error err;
+    /* REQ_WAIT */
+    struct MHD_Connection *conn;
+    unsigned long since;
+    double deadline;
+    struct req_ctx *next;
+    int suspended;
+} req_ctx;
 
 typedef struct live_server {
     ms_app *app;
@@ -38,16 +59,8 @@ typedef struct live_server {
     char *page;
     size_t page_len;
     ms_live_frames frames;
+    req_ctx *waiting;                /* suspended long polls */
 } live_server;
-
-/* What a POST /view request gathers while its body arrives. */
-typedef struct post_ctx {
-    struct MHD_PostProcessor *pp;
-    ms_live_view v;
-    size_t received;
-    int bad;
-    ms_error err;
-} post_ctx;
 
 static live_server *server_of(ms_app *app)
 {
@@ -115,7 +128,7 @@ static enum MHD_Result on_field(void *cls, enum MHD_ValueKind kind, const char *
                                 const char *transfer_encoding, const char *data, uint64_t off,
                                 size_t size)
 {
-    post_ctx *pc = cls;
+    req_ctx *pc = cls;
     char value[64];
     if (pc->bad) return MHD_YES;
     if (off > 0 || size >= sizeof value) {
@@ -133,9 +146,10 @@ static enum MHD_Result on_field(void *cls, enum MHD_ValueKind kind, const char *
 static enum MHD_Result on_view(live_server *sv, struct MHD_Connection *c, const char *data,
                                size_t *size, void **con_cls)
 {
-    post_ctx *pc = *con_cls;
+    req_ctx *pc = *con_cls;
     if (!pc) {
         if (!(pc = calloc(1, sizeof *pc))) return MHD_NO;
+        pc->kind = REQ_VIEW;
         ms_live_view_init(&pc->v);
         pc->pp = MHD_create_post_processor(c, 1024, on_field, pc);
         if (!pc->pp) {
@@ -162,11 +176,55 @@ static enum MHD_Result on_view(live_server *sv, struct MHD_Connection *c, const 
     }
     if (pc->bad) {
         char msg[300];
-        snprintf(msg, sizeof msg, "view: refused: %s\n", pc->err.msg);
+        snprintf(msg, sizeof msg, "view: refused: %.250s\n", pc->err.msg);
         return reply_text(c, MHD_HTTP_BAD_REQUEST, msg);
     }
     ms_live_view_apply(sv->app, &pc->v);
     return reply(c, MHD_HTTP_OK, "application/json", "{\"ok\":true}", 11);
+}
+
+/* ---------------------------------------------------------------- long polls */
+
+/* Resume the long polls whose answer is due: the image changed, their time is up, or all. */
+static void wake(live_server *sv, int all)
+{
+    double now = ms_now();
+    for (req_ctx **p = &sv->waiting; *p;) {
+        req_ctx *w = *p;
+        if (all || w->since != sv->frames.serial || now >= w->deadline) {
+            *p = w->next;
+            w->suspended = 0;
+            MHD_resume_connection(w->conn);
+        } else {
+            p = &w->next;
+        }
+    }
+}
+
+static void on_image(void *ud)
+{
+    wake(ud, 0);
+}
+
+/* GET /state: at once, or (since= the current serial) suspended until wake() resumes it. */
+static enum MHD_Result on_state(live_server *sv, struct MHD_Connection *c, void **con_cls)
+{
+    const char *since = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "since");
+    char *end;
+    unsigned long n = since ? strtoul(since, &end, 10) : 0;
+    if (*con_cls || !since || *end || n != sv->frames.serial) return reply_state(sv, c);
+    req_ctx *w = calloc(1, sizeof *w);
+    if (!w) return reply_state(sv, c);
+    w->kind = REQ_WAIT;
+    w->conn = c;
+    w->since = n;
+    w->deadline = ms_now() + LONG_POLL_S;
+    w->next = sv->waiting;
+    w->suspended = 1;
+    sv->waiting = w;
+    *con_cls = w;
+    MHD_suspend_connection(c);
+    return MHD_YES;
 }
 
 static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const char *url,
@@ -183,7 +241,7 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         return reply_text(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET, and POST /view\n");
     if (!strcmp(url, "/") || !strcmp(url, "/index.html"))
         return reply(c, MHD_HTTP_OK, "text/html; charset=utf-8", sv->page, sv->page_len);
-    if (!strcmp(url, "/state")) return reply_state(sv, c);
+    if (!strcmp(url, "/state")) return on_state(sv, c, con_cls);
     if (!strcmp(url, "/image.png")) {
         if (!sv->frames.png) return reply_text(c, MHD_HTTP_SERVICE_UNAVAILABLE, "no image yet\n");
         return reply(c, MHD_HTTP_OK, "image/png", sv->frames.png, sv->frames.png_len);
@@ -194,10 +252,16 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
 static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls,
                          enum MHD_RequestTerminationCode toe)
 {
-    post_ctx *pc = *con_cls;
-    if (!pc) return;
-    MHD_destroy_post_processor(pc->pp);
-    free(pc);
+    live_server *sv = cls;
+    req_ctx *rc = *con_cls;
+    if (!rc) return;
+    if (rc->kind == REQ_VIEW) MHD_destroy_post_processor(rc->pp);
+    for (req_ctx **p = &sv->waiting; *p; p = &(*p)->next)
+        if (*p == rc) {
+            *p = rc->next;
+            break;
+        }
+    free(rc);
     *con_cls = NULL;
 }
 
@@ -208,6 +272,7 @@ static void on_timer(ClientData cd);
 /* Let the daemon do what is ready, then wake it again when its next timeout is due. */
 static void pump(live_server *sv)
 {
+    wake(sv, 0);
     MHD_run(sv->d);
     MHD_UNSIGNED_LONG_LONG ms = MAX_WAIT_MS;
     if (MHD_get_timeout(sv->d, &ms) != MHD_YES || ms > MAX_WAIT_MS) ms = MAX_WAIT_MS;
@@ -233,6 +298,8 @@ static void server_free(live_server *sv)
 {
     if (sv->d) {
         Tcl_DeleteFileHandler(sv->epoll_fd);
+        wake(sv, 1);                 /* no connection may stay suspended at the stop */
+        MHD_run(sv->d);
         MHD_stop_daemon(sv->d);
     }
     if (sv->timer) Tcl_DeleteTimerHandler(sv->timer);
@@ -288,7 +355,7 @@ static int start_daemon(live_server *sv, int port, const char *addr, ms_error *e
         ms_error_set(err, "'%s' is not an IPv4 address", addr);
         return -1;
     }
-    sv->d = MHD_start_daemon(MHD_USE_EPOLL, 0, NULL, NULL, on_request, sv,
+    sv->d = MHD_start_daemon(MHD_USE_EPOLL | MHD_ALLOW_SUSPEND_RESUME, 0, NULL, NULL, on_request, sv,
                              MHD_OPTION_SOCK_ADDR, (struct sockaddr *)&sa,
                              MHD_OPTION_CONNECTION_LIMIT, (unsigned)64,
                              MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)30,
@@ -335,8 +402,10 @@ int ms_live_start(ms_app *app, int port, const char *bind_addr, ms_live_status *
     char host[256];
     if (!strcmp(addr, "0.0.0.0") && gethostname(host, sizeof host) == 0) host[sizeof host - 1] = '\0';
     else snprintf(host, sizeof host, "%s", addr);
-    snprintf(sv->url, sizeof sv->url, "http://%s:%d/?token=%s", host, sv->port, sv->token);
+    snprintf(sv->url, sizeof sv->url, "http://%.200s:%d/?token=%s", host, sv->port, sv->token);
     ms_live_frames_start(&sv->frames, app);
+    sv->frames.on_image = on_image;
+    sv->frames.ud = sv;
     Tcl_SetAssocData(app->interp, ASSOC, on_interp_delete, sv);
     pump(sv);
     ms_live_get_status(app, st);

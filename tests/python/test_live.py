@@ -268,6 +268,51 @@ def check_browser(s, url):
         drv.quit()
 
 
+# ---------------------------------------------------------------- long polls
+
+def long_poll(base, token, since):
+    """Start GET /state?since= in a thread; returns (thread, result dict)."""
+    res = {}
+
+    def run():
+        t0 = time.time()
+        try:
+            st, body = http("%s/state?token=%s&since=%d" % (base, token, since))
+            res["status"], res["state"] = st, json.loads(body) if st == 200 else None
+        except OSError as e:
+            res["status"], res["error"] = None, str(e)
+        res["seconds"] = time.time() - t0
+    t = threading.Thread(target=run, daemon=True)
+    t.start()
+    return t, res
+
+
+def settled(base, token):
+    """The state once the passes are done and the serial holds still."""
+    a = state(base, token)
+    time.sleep(0.3)
+    b = state(base, token)
+    return b if a["serial"] == b["serial"] and b["passes"] == b["maxpasses"] else None
+
+
+def check_long_poll(s, base, token):
+    st0 = wait_for(lambda: settled(base, token), timeout=30, step=0.1)
+    if st0 is None:
+        R.report(False, "the passes finish", str(state(base, token)))
+        return
+    t, res = long_poll(base, token, st0["serial"])
+    time.sleep(0.6)
+    R.report(t.is_alive(), "a long poll waits while nothing changes", str(res))
+    s.cmd("rotate x by 5")
+    t.join(10)
+    ok = res.get("status") == 200 and res["state"]["serial"] > st0["serial"]
+    R.report(ok, "a change answers it with the new serial", str(res))
+    t, res = long_poll(base, token, st0["serial"] - 1)
+    t.join(5)
+    R.report(res.get("status") == 200 and res["seconds"] < 2,
+             "a long poll for an old serial is answered at once", str(res))
+
+
 # ---------------------------------------------------------------- sessions
 
 def gl_session():
@@ -289,8 +334,14 @@ def gl_session():
         R.report(bool(first), "the first image is made")
         check_refusals(s, base, token)
         check_browser(s, url)
+        check_long_poll(s, base, token)
+        st1 = wait_for(lambda: settled(base, token), timeout=30, step=0.1)
+        t, res = long_poll(base, token, st1["serial"] if st1 else 0)
+        time.sleep(0.3)
         code = s.quit()
         R.report(code == 0, "quit ends molscope", str(code))
+        t.join(5)
+        R.report(not t.is_alive(), "quit ends a waiting long poll", str(res))
         R.report(refused(port), "after quit the port refuses connections")
     finally:
         if s.p.poll() is None:
