@@ -62,10 +62,10 @@ typedef struct ms_live_view {
     float rot[3], scale, trans[3];
 } ms_live_view;
 
-#define MS_LIVE_MAX_DEG 180.0f
-#define MS_LIVE_MIN_SCALE 0.1f
-#define MS_LIVE_MAX_SCALE 10.0f
-#define MS_LIVE_MAX_TRANS 10.0f
+#define MS_LIVE_MAX_DEG 180.0
+#define MS_LIVE_MIN_SCALE 0.1
+#define MS_LIVE_MAX_SCALE 10.0
+#define MS_LIVE_MAX_TRANS 10.0
 
 void ms_live_view_init(ms_live_view *v);
 /* Set one field from a form pair (rx ry rz scale tx ty tz): 0, or -1 with err set for an
