@@ -13,6 +13,7 @@ by chromedriver through python3-selenium; those checks are skipped when either i
   - in a -dispdev text session the images are ray traced only (no pass-0 raster image) and
     the pass count grows while nothing moves
   - `quit` (and `display live off`) close the server: the port refuses connections
+  - under mpirun, rank 0 serves and the other ranks say they do not
 """
 import json
 import os
@@ -34,6 +35,8 @@ R = Reporter("live")
 EXE = os.environ.get("MOLSCOPE", "molscope")
 DATA = os.environ.get("MS_TEST_DATA", os.path.join(os.path.dirname(__file__), "..", "data"))
 OUT = os.environ.get("MS_TEST_OUT", tempfile.gettempdir())
+os.makedirs(OUT, exist_ok=True)
+os.environ["HOME"] = tempfile.mkdtemp(prefix="home.", dir=OUT)   # no user's .molscoperc
 
 
 class Session:
@@ -381,6 +384,56 @@ def text_session():
             s.p.kill()
 
 
+MPI_SCRIPT = """
+mol new %s/1a8o.pdb
+display resize 64 48
+set r [display live on 0]
+puts "rank [parallel noderank]: $r"
+after 4000 {set go 1}
+vwait go
+set st [display live status]
+puts "rank [parallel noderank]: [expr {$st eq "off" ? "off" : "images [dict get $st images]"}]"
+quit
+"""
+
+
+def mpi_session():
+    """Under mpirun -np 2: rank 0 serves while the ranks wait in the event loop, rank 1
+    says it does not."""
+    if not shutil.which("mpirun"):
+        R.skip("mpi", "no mpirun")
+        return
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+    probe = subprocess.run(["timeout", "60", "mpirun", "-np", "2", EXE, "-dispdev", "text"],
+                           input="puts [parallel nodecount]\n", capture_output=True, text=True,
+                           env=env)
+    if probe.stdout.replace("\r", "").split("\n").count("2") != 2:
+        R.skip("mpi", "molscope is built without MPI or mpirun does not start it")
+        return
+    p = subprocess.Popen(["timeout", "60", "mpirun", "-np", "2", EXE, "-dispdev", "text"],
+                         stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         text=True, env=env)
+    p.stdin.write(MPI_SCRIPT % DATA)
+    p.stdin.close()
+    lines, url = [], None
+    for line in p.stdout:
+        line = line.replace("\r", "").rstrip("\n")
+        lines.append(line)
+        if line.startswith("rank 0: http://"):
+            url = line.split(": ", 1)[1]
+            base, token = split(url)
+            got = wait_for(lambda: state(base, token)["serial"] > 0, timeout=3.5)
+            R.report(bool(got), "mpi: rank 0 serves images while the ranks wait")
+            R.report(http(base + "/state")[0] == 403, "mpi: and refuses a request without the token")
+    p.wait(timeout=60)
+    R.report(url is not None, "mpi: rank 0 prints the URL", " | ".join(lines[-6:]))
+    R.report("rank 1: display live: served by rank 0 only" in lines, "mpi: rank 1 does not serve",
+             " | ".join(lines[-6:]))
+    R.report("rank 1: off" in lines and any(l.startswith("rank 0: images ") for l in lines),
+             "mpi: status on rank 0 only", " | ".join(lines[-6:]))
+
+
 def main():
     probe = subprocess.run([EXE, "-dispdev", "text"], input="catch {display live on 0} m; puts $m\n",
                            capture_output=True, text=True, timeout=60)
@@ -394,6 +447,7 @@ def main():
         return 0
     gl_session()
     text_session()
+    mpi_session()
     return 1 if R.failures else 0
 
 
