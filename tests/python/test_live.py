@@ -370,10 +370,24 @@ def text_session():
                  "text session: the pass count grows while nothing moves", "%s -> %s" % (a, b))
         st, png = http("%s/image.png?token=%s" % (base, token))
         R.report(st == 200 and png[:8] == b"\x89PNG\r\n\x1a\n", "the image is a PNG", str(st))
-        s.cmd("rotate y by 10")
-        c = wait_for(lambda: (lambda st: st if st["passes"] < b["passes"] else None)(
-            state(base, token)), timeout=10)
-        R.report(c is not None, "a rotate command restarts the passes", str(c))
+        s.cmd("set sel [atomselect top all]")
+        for cmd in ["rotate y by 10", "$sel moveby {0.5 0 0}", "mol modstyle 0 top VDW",
+                    "color Display Background white", "animate goto 0",
+                    "display projection Orthographic"]:
+            time.sleep(0.3)
+            b = state(base, token)
+            s.cmd(cmd)
+            c = wait_for(lambda: (lambda st: st if st["passes"] < b["passes"] else None)(
+                state(base, token)), timeout=10)
+            R.report(c is not None, "'%s' restarts the passes" % cmd, "%s -> %s" % (b, c))
+        for cmd in ["molinfo top get rotate_matrix", "display get projection", "$sel get x",
+                    "measure center $sel", "display live status"]:
+            a = state(base, token)
+            s.cmd(cmd)
+            time.sleep(0.2)
+            b = state(base, token)
+            R.report(b["passes"] > a["passes"], "'%s' does not restart them" % cmd,
+                     "%s -> %s" % (a, b))
         s.cmd("display live off")
         R.report(refused(port), "display live off closes the port")
         R.report(s.cmd("display live status") == "off", "display live status is off")
