@@ -53,6 +53,7 @@ static void drop_scene(ms_live_frames *f)
 {
     ms_rt_session_end(f->rt);
     f->rt = NULL;
+    f->rt_pending = 0;
     if (f->have_scene) ms_scene_free(&f->scene);
     f->have_scene = 0;
     f->valid = 0;
@@ -93,7 +94,8 @@ static void rt_settings(ms_live_frames *f, ms_rt_options *o)
     f->max_passes = o->aasamples + 1;
 }
 
-/* A new scene: the raster image when a GL display runs, and a ray-tracing session. */
+/* A new scene, and its raster image when a GL display runs; the ray tracer starts on it at
+ * the next step (so the raster image is sent first). */
 static void restart(ms_live_frames *f)
 {
     ms_error err = {{0}};
@@ -110,6 +112,7 @@ static void restart(ms_live_frames *f)
     rt_settings(f, &o);
     f->scene.aa_samples = o.aasamples;
     f->scene.ao_samples = o.aosamples;
+    f->rt_pending = ms_rt_available();
     ms_gl *gl = ms_gl_display_current();
     if (gl) {
         ms_image img;
@@ -120,11 +123,17 @@ static void restart(ms_live_frames *f)
             snprintf(f->error, sizeof f->error, "snapshot: %.200s", err.msg);
         }
     }
-    if (!ms_rt_available()) {
-        if (!gl) snprintf(f->error, sizeof f->error, "no renderer: no GL display runs and molscope "
-                          "was built without Embree (TachyonInternal)");
-        return;
-    }
+    if (!gl && !ms_rt_available())
+        snprintf(f->error, sizeof f->error, "no renderer: no GL display runs and molscope was "
+                 "built without Embree (TachyonInternal)");
+}
+
+static void begin_rt(ms_live_frames *f)
+{
+    ms_error err = {{0}};
+    ms_rt_options o;
+    rt_settings(f, &o);
+    f->rt_pending = 0;
     f->rt = ms_rt_session_begin(&f->scene, &o, &err);
     if (!f->rt) snprintf(f->error, sizeof f->error, "TachyonInternal: %.200s", err.msg);
 }
@@ -148,7 +157,12 @@ int ms_live_frames_step(ms_live_frames *f)
     if (ms_live_frames_stale(f)) {
         restart(f);
         /* without a raster image, the first pass is the first image */
-        if (f->rt && !ms_gl_display_current()) one_pass(f);
+        if (f->rt_pending && !ms_gl_display_current()) {
+            begin_rt(f);
+            if (f->rt) one_pass(f);
+        }
+    } else if (f->rt_pending) {
+        begin_rt(f);
     } else if (f->rt && ms_rt_session_passes(f->rt) < f->max_passes) {
         one_pass(f);
     }
@@ -156,7 +170,7 @@ int ms_live_frames_step(ms_live_frames *f)
         ms_rt_session_end(f->rt);      /* done: the scene is kept for the change check */
         f->rt = NULL;
     }
-    return ms_live_frames_stale(f) || f->rt != NULL;
+    return ms_live_frames_stale(f) || f->rt_pending || f->rt != NULL;
 }
 
 /* ---------------------------------------------------------------- scheduling */
@@ -171,13 +185,18 @@ static void on_idle(ClientData cd)
     }
 }
 
-static void on_check(ClientData cd)
+void ms_live_frames_kick(ms_live_frames *f)
 {
-    ms_live_frames *f = cd;
-    if (!f->idle_queued && (ms_live_frames_stale(f) || f->rt)) {
+    if (!f->idle_queued && (ms_live_frames_stale(f) || f->rt_pending || f->rt)) {
         f->idle_queued = 1;
         Tcl_DoWhenIdle(on_idle, f);
     }
+}
+
+static void on_check(ClientData cd)
+{
+    ms_live_frames *f = cd;
+    ms_live_frames_kick(f);
     f->timer = Tcl_CreateTimerHandler(CHECK_MS, on_check, f);
 }
 

@@ -33,6 +33,7 @@ typedef struct ms_live_frames {
     ms_scene scene;               /* what the ray tracer traces (its lists must not change) */
     int have_scene;
     ms_rt_session *rt;
+    int rt_pending;               /* the ray tracer starts at the next step */
     int max_passes;               /* TachyonInternal's aasamples + 1 */
     unsigned char *png;           /* the current image, PNG (malloc'd) */
     size_t png_len;
@@ -48,6 +49,8 @@ typedef struct ms_live_frames {
 /* Start following app (the first image is made at the next idle turn); stop and free. */
 void ms_live_frames_start(ms_live_frames *f, ms_app *app);
 void ms_live_frames_stop(ms_live_frames *f);
+/* Render at the next idle turn, not at the next change check (after a view change). */
+void ms_live_frames_kick(ms_live_frames *f);
 /* Whether the picture may have changed since the image was made. */
 int ms_live_frames_stale(const ms_live_frames *f);
 /* One unit of work: a new scene and its first image when stale, else one more pass.

@@ -180,24 +180,40 @@ static enum MHD_Result on_view(live_server *sv, struct MHD_Connection *c, const 
         return reply_text(c, MHD_HTTP_BAD_REQUEST, msg);
     }
     ms_live_view_apply(sv->app, &pc->v);
+    ms_live_frames_kick(&sv->frames);
     return reply(c, MHD_HTTP_OK, "application/json", "{\"ok\":true}", 11);
 }
 
 /* ---------------------------------------------------------------- long polls */
 
-/* Resume the long polls whose answer is due: the image changed, their time is up, or all. */
-static void wake(live_server *sv, int all)
+static void on_timer(ClientData cd);
+
+/* Resume the long polls whose answer is due: the image changed, their time is up, or all.
+ * Returns how many were resumed (the daemon must run to answer them). */
+static int resume_due(live_server *sv, int all)
 {
     double now = ms_now();
+    int n = 0;
     for (req_ctx **p = &sv->waiting; *p;) {
         req_ctx *w = *p;
         if (all || w->since != sv->frames.serial || now >= w->deadline) {
             *p = w->next;
             w->suspended = 0;
             MHD_resume_connection(w->conn);
+            n++;
         } else {
             p = &w->next;
         }
+    }
+    return n;
+}
+
+/* Resume what is due and have the daemon run at once when something was. */
+static void wake(live_server *sv, int all)
+{
+    if (resume_due(sv, all) && sv->d) {
+        if (sv->timer) Tcl_DeleteTimerHandler(sv->timer);
+        sv->timer = Tcl_CreateTimerHandler(0, on_timer, sv);
     }
 }
 
@@ -267,12 +283,10 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls,
 
 /* ---------------------------------------------------------------- the event loop */
 
-static void on_timer(ClientData cd);
-
 /* Let the daemon do what is ready, then wake it again when its next timeout is due. */
 static void pump(live_server *sv)
 {
-    wake(sv, 0);
+    resume_due(sv, 0);
     MHD_run(sv->d);
     MHD_UNSIGNED_LONG_LONG ms = MAX_WAIT_MS;
     if (MHD_get_timeout(sv->d, &ms) != MHD_YES || ms > MAX_WAIT_MS) ms = MAX_WAIT_MS;
@@ -298,7 +312,7 @@ static void server_free(live_server *sv)
 {
     if (sv->d) {
         Tcl_DeleteFileHandler(sv->epoll_fd);
-        wake(sv, 1);                 /* no connection may stay suspended at the stop */
+        resume_due(sv, 1);           /* no connection may stay suspended at the stop */
         MHD_run(sv->d);
         MHD_stop_daemon(sv->d);
     }
