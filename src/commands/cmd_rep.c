@@ -1,7 +1,7 @@
 /* cmd_rep.c: the representation subcommands of `mol` and molinfo's rep keywords, with VMD's
  * argument orders (modstyle, modselect, modcolor, modmaterial, modrep, delrep, selupdate and
- * colupdate take <repid> <molid>; showrep, drawframes, smoothrep, scaleminmax, repname and
- * repindex take <molid> <repid>):
+ * colupdate take <repid> <molid>; showrep, drawframes, smoothrep, scaleminmax, showperiodic,
+ * numperiodic, repname and repindex take <molid> <repid>):
  *
  *   mol representation|rep ?style...?   mol selection ?text...?   mol color ?method...?
  *   mol material ?name?                 (set the current settings; with no value, get them)
@@ -9,6 +9,7 @@
  *   mol modstyle|modselect|modcolor|modmaterial repid molid value...
  *   mol showrep molid repid ?on|off?    mol drawframes molid repid ?spec|now?
  *   mol smoothrep molid repid ?n?       mol scaleminmax molid repid ?min max|auto?
+ *   mol showperiodic molid repid ?xyzXYZn?   mol numperiodic molid repid ?n?
  *   mol selupdate|colupdate repid molid ?on|off?
  *   mol repname molid repid             mol repindex molid name      (-1 when none)
  *   mol default color|style|selection|material ?value?
@@ -277,6 +278,34 @@ static int m_scaleminmax(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
     return TCL_OK;
 }
 
+/* ---------------------------------------------------------------- periodic images */
+
+/* mol showperiodic <molid> <repid> ?flags?; mol numperiodic <molid> <repid> ?n? */
+static int m_periodic(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    char cmd[64], text[8];
+    int num = ms_word_eq(Tcl_GetString(objv[1]), "numperiodic"), rc;
+    cmd_name(objv, cmd, sizeof cmd);
+    if (objc != 4 && objc != 5)
+        return ms_cmd_error(interp, "%s: usage: %s <molid> <repid> ?%s?", cmd, cmd,
+                            num ? "<n>" : "<flags of xyzXYZn>");
+    ms_rep *r = target(app, interp, objv, 0, cmd, NULL, NULL);
+    if (!r) return TCL_ERROR;
+    if (objc == 4) {
+        ms_rep_periodic_text(r, text);
+        Tcl_SetObjResult(interp, num ? Tcl_NewIntObj(r->npbc) : Tcl_NewStringObj(text, -1));
+        return TCL_OK;
+    }
+    ms_error err = {{0}};
+    long n;
+    if (!num) rc = ms_rep_set_periodic(r, Tcl_GetString(objv[4]), &err);
+    else if (Tcl_GetLongFromObj(NULL, objv[4], &n) != TCL_OK)
+        return ms_cmd_error(interp, "%s: expected a whole number, got '%s'", cmd,
+                            Tcl_GetString(objv[4]));
+    else rc = ms_rep_set_numperiodic(r, n, &err);
+    return rc ? ms_cmd_error(interp, "%s: %s", cmd, err.msg) : TCL_OK;
+}
+
 /* ---------------------------------------------------------------- names */
 
 static int m_repname(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
@@ -475,7 +504,8 @@ static const ms_subcmd rep_table[] = {
     {"modmaterial", m_modify},     {"showrep", m_flag},       {"selupdate", m_flag},
     {"colupdate", m_flag},         {"drawframes", m_drawframes}, {"smoothrep", m_smoothrep},
     {"scaleminmax", m_scaleminmax}, {"repname", m_repname},   {"repindex", m_repindex},
-    {"repinfo", m_repinfo},        {NULL, NULL}};
+    {"showperiodic", m_periodic},  {"numperiodic", m_periodic}, {"repinfo", m_repinfo},
+    {NULL, NULL}};
 
 void ms_cmd_rep_register(ms_app *app)
 {

@@ -1,8 +1,10 @@
-/* molecule.c: creating, growing and freeing molecules; frames; the bond table setter. */
+/* molecule.c: creating, growing and freeing molecules; frames and their cell vectors; the bond
+ * table setter. */
 #include "config.h"
 #include "molecule/molecule.h"
 #include "molecule/analysis.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -187,6 +189,19 @@ const float *ms_mol_pos(const ms_molecule *m)
 {
     if (m->frame < 0 || (size_t)m->frame >= m->nframes) return NULL;
     return m->frames[m->frame].pos;
+}
+
+int ms_cell_vectors(const float cell[6], double v[3][3])
+{
+    double a = cell[0], b = cell[1], c = cell[2];
+    double al = cell[3] * M_PI / 180, be = cell[4] * M_PI / 180, ga = cell[5] * M_PI / 180;
+    if (!(a > 0 && b > 0 && c > 0) || !(sin(ga) != 0)) return 0;
+    double cx = c * cos(be), cy = c * (cos(al) - cos(be) * cos(ga)) / sin(ga);
+    double cz2 = c * c - cx * cx - cy * cy;
+    if (!(cz2 > 0) || !isfinite(a) || !isfinite(b) || !isfinite(cz2)) return 0;
+    double vv[3][3] = {{a, 0, 0}, {b * cos(ga), b * sin(ga), 0}, {cx, cy, sqrt(cz2)}};
+    memcpy(v, vv, sizeof vv);
+    return 1;
 }
 
 int ms_mol_set_bonds(ms_molecule *m, size_t npairs, const uint32_t *pairs, const float *order,

@@ -131,6 +131,11 @@ void ms_mol_delete_frames(ms_molecule *m, size_t first, size_t last, size_t step
 /* Current frame's coordinates, or NULL. */
 const float *ms_mol_pos(const ms_molecule *m);
 
+/* The cell vectors A, B, C (rows of v) of a frame's cell a b c alpha beta gamma (degrees), in
+ * VMD's orientation: A along x, B in the xy plane. Returns 1, or 0 (v untouched) when the
+ * cell is unknown (zeros) or degenerate (no volume, or not finite). */
+int ms_cell_vectors(const float cell[6], double v[3][3]);
+
 /* Replace all bonds with the given undirected pairs (i < j not required; duplicates and
  * self-bonds are dropped). order may be NULL. Recomputes fragments and classification. */
 int ms_mol_set_bonds(ms_molecule *m, size_t npairs, const uint32_t *pairs, const float *order,

@@ -1,7 +1,8 @@
 /* rep.c: rep objects and the lists of them molecules carry; VMD's "current" settings new reps
  * take and the defaults a new structure resets them to; the edits the `mol` subcommands make
- * (all or nothing); the molecule events that invalidate caches; the scene source giving the
- * shown reps' display lists; and resetview's centre on the displayed reps' atoms. */
+ * (all or nothing); VMD's periodic images; the molecule events that invalidate caches; the
+ * scene source giving the shown reps' display lists (once per periodic image); and
+ * resetview's centre on the displayed reps' atoms. */
 #include "config.h"
 #include "rep/rep_int.h"
 #include "scene/mat4.h"
@@ -143,6 +144,7 @@ ms_rep *ms_rep_add(ms_app *app, ms_molecule *m, ms_error *err)
     r->material = cur->material;
     r->shown = 1;
     r->range_auto = 1;
+    r->npbc = 1;
     l->reps[l->n++] = r;
     return r;
 }
@@ -221,8 +223,10 @@ int ms_rep_apply_current(ms_app *app, const ms_molecule *m, ms_rep *r, ms_error 
     ms_rep_coloring k = r->coloring;
     ms_selexpr *e = ms_sel_compile(cur->selection, err);
     char *t = e ? ms_strdup(cur->selection) : NULL;
-    if (!e || !t || ms_rep_style_parse(&s, cur->style.text, err) ||
-        ms_rep_coloring_parse(&k, cur->coloring.text, err) ||
+    s.method = cur->style.method;   /* the current method with all its values, as VMD */
+    memcpy(s.param[s.method], cur->style.param[s.method], sizeof s.param[s.method]);
+    memcpy(s.text, cur->style.text, sizeof s.text);
+    if (!e || !t || ms_rep_coloring_parse(&k, cur->coloring.text, err) ||
         ms_rep_check_volumes(m, &s, &k, err)) {
         if (e && !t) ms_error_set(err, "out of memory");
         ms_sel_free(e);
@@ -268,6 +272,75 @@ void ms_rep_auto_range(ms_rep *r)
 {
     r->range_auto = 1;
     r->cache->col_valid = 0;
+}
+
+/* ---------------------------------------------------------------- periodic images */
+
+static const char pbc_chars[] = "xyzXYZn";   /* bit k of MS_PBC_* is character k */
+
+int ms_rep_set_periodic(ms_rep *r, const char *flags, ms_error *err)
+{
+    int pbc = 0;
+    for (const char *p = flags; *p; p++) {
+        const char *k = strchr(pbc_chars, *p);
+        if (!k) {
+            ms_error_set(err, "bad periodic flag '%c' in '%s': expected characters of x y z "
+                              "X Y Z n", *p, flags);
+            return -1;
+        }
+        pbc |= 1 << (k - pbc_chars);
+    }
+    r->pbc = pbc;
+    return 0;
+}
+
+void ms_rep_periodic_text(const ms_rep *r, char *out)
+{
+    for (int k = 0; pbc_chars[k]; k++)
+        if (r->pbc & (1 << k)) *out++ = pbc_chars[k];
+    *out = '\0';
+}
+
+int ms_rep_set_numperiodic(ms_rep *r, long n, ms_error *err)
+{
+    if (n < 1 || n > MS_REP_MAXPERIODIC) {
+        ms_error_set(err, "number of periodic images must be 1 to %d, got %ld",
+                     MS_REP_MAXPERIODIC, n);
+        return -1;
+    }
+    r->npbc = (int)n;
+    return 0;
+}
+
+int ms_rep_periodic_images(const ms_rep *r, const float cell[6], float **out, size_t *n,
+                           ms_error *err)
+{
+    double v[3][3];
+    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    int periodic = r->pbc && cell && ms_cell_vectors(cell, v);
+    if (!periodic) memset(v, 0, sizeof v);   /* no cell: the primary image alone */
+    for (int k = 0; k < 3 && periodic; k++) {
+        if (r->pbc & (MS_PBC_X << k)) hi[k] = r->npbc;
+        if (r->pbc & (MS_PBC_OPX << k)) lo[k] = -r->npbc;
+    }
+    int noself = periodic && (r->pbc & MS_PBC_NOSELF);   /* "n" alone: nothing, as VMD */
+    size_t count = (size_t)(hi[0] - lo[0] + 1) * (size_t)(hi[1] - lo[1] + 1) *
+                   (size_t)(hi[2] - lo[2] + 1) - (size_t)noself;
+    *out = count ? malloc(3 * count * sizeof **out) : NULL;
+    *n = 0;
+    if (count && !*out) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    for (int i = lo[0]; i <= hi[0]; i++)
+        for (int j = lo[1]; j <= hi[1]; j++)
+            for (int k = lo[2]; k <= hi[2]; k++) {
+                if (noself && !i && !j && !k) continue;
+                float *t = *out + 3 * (*n)++;
+                for (int c = 0; c < 3; c++)
+                    t[c] = (float)(i * v[0][c] + j * v[1][c] + k * v[2][c]);
+            }
+    return 0;
 }
 
 /* ---------------------------------------------------------------- current settings */
@@ -362,6 +435,27 @@ static void on_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg)
     }
 }
 
+/* The rep's list placed once per periodic image: model * translation * the list's model. */
+static int place_images(ms_app *app, const ms_molecule *m, const ms_rep *r, ms_scene *s,
+                        const float model[16], ms_error *err)
+{
+    const ms_displaylist *dl = &r->cache->dl;
+    const float *cell = m->frame >= 0 && (size_t)m->frame < m->nframes ? m->frames[m->frame].cell
+                                                                        : NULL;
+    float *t, shift[16], a[16], xform[16];
+    size_t n;
+    if (ms_rep_periodic_images(r, cell, &t, &n, err)) return -1;
+    int rc = 0;
+    for (size_t i = 0; i < n && !rc; i++) {
+        ms_mat4_translation(shift, t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+        ms_mat4_mul(model, shift, a);
+        ms_mat4_mul(a, dl->model, xform);
+        rc = ms_scene_add(s, dl, xform, app->materials, err);
+    }
+    free(t);
+    return rc;
+}
+
 static int scene_source(ms_app *app, ms_molecule *m, ms_scene *s, const float model[16],
                         ms_error *err)
 {
@@ -376,9 +470,7 @@ static int scene_source(ms_app *app, ms_molecule *m, ms_scene *s, const float mo
         ms_displaylist *dl = &r->cache->dl;
         dl->material = r->material;
         if (ms_dl_count(dl) == 0) continue;
-        float xform[16];
-        ms_mat4_mul(model, dl->model, xform);
-        if (ms_scene_add(s, dl, xform, app->materials, err)) return -1;
+        if (place_images(app, m, r, s, model, err)) return -1;
     }
     return 0;
 }

@@ -66,7 +66,7 @@ int ms_rep_method_find(const char *name);
 typedef struct ms_rep_style {
     int method;
     float param[MS_REP_MAXMETHODS][MS_REP_MAXPARAMS];
-    char text[MS_REP_TEXTMAX];  /* the string as given ("Off" is stored as "Lines") */
+    char text[MS_REP_TEXTMAX];  /* VMD's: every parameter written out, "VDW 1.000000 12.000000" */
 } ms_rep_style;
 
 /* Lines, every method at its defaults. */
@@ -143,6 +143,8 @@ typedef struct ms_rep {
     int shown, selupdate, colupdate;
     float cmin, cmax;           /* colour scale range */
     int range_auto;             /* take the range from the data when colours are next made */
+    int pbc;                    /* periodic images drawn: MS_PBC_* bits, 0 = none */
+    int npbc;                   /* images in each direction drawn (numperiodic), 1.. */
     ms_rep_cache *cache;
 } ms_rep;
 
@@ -210,5 +212,33 @@ const ms_displaylist *ms_rep_list(const ms_rep *r);
 const uint32_t *ms_rep_atoms(const ms_rep *r, size_t *n);
 /* How many times the display list was built (for tests of the cache). */
 unsigned long ms_rep_builds(const ms_rep *r);
+
+/* ---------------------------------------------------------------- periodic images
+ * VMD's showperiodic: besides (or, with MS_PBC_NOSELF, instead of) the primary image, a rep
+ * draws copies translated by i A + j B + k C, A B C the current frame's cell vectors
+ * (vecmath.h), for every i in -n..n along a direction drawn both ways, 0..n along +x only,
+ * -n..0 along -x only, 0 along x when neither (and so for y and z), n = numperiodic. The
+ * copies are the same display list placed again with another transform. Flag n alone draws
+ * nothing (as VMD). A frame without a cell (or a degenerate one) draws only the primary
+ * image, whatever the flags. */
+enum {
+    MS_PBC_X = 1, MS_PBC_Y = 2, MS_PBC_Z = 4,            /* flags x y z */
+    MS_PBC_OPX = 8, MS_PBC_OPY = 16, MS_PBC_OPZ = 32,    /* flags X Y Z */
+    MS_PBC_NOSELF = 64                                   /* flag n */
+};
+#define MS_REP_MAXPERIODIC 10
+
+/* Set the images from VMD's flag string (characters of "xyzXYZn", any order, "" = none);
+ * another character is an error naming it, and nothing changes. */
+int ms_rep_set_periodic(ms_rep *r, const char *flags, ms_error *err);
+/* The flag string, in VMD's order x y z X Y Z n (out holds at least 8 bytes). */
+void ms_rep_periodic_text(const ms_rep *r, char *out);
+/* numperiodic: 1..MS_REP_MAXPERIODIC, else an error and nothing changes. */
+int ms_rep_set_numperiodic(ms_rep *r, long n, ms_error *err);
+/* The translations (molecule coordinates, 3 floats each) of the images r draws for a
+ * frame's cell, primary image included when drawn, into *out (malloc'd, NULL when none);
+ * -1 with err set when memory runs out. */
+int ms_rep_periodic_images(const ms_rep *r, const float cell[6], float **out, size_t *n,
+                           ms_error *err);
 
 #endif

@@ -1,6 +1,8 @@
 /* style.c: VMD's representation style strings ("Licorice 0.2 12 12"): the first word picks
  * the method; numbers replace that method's parameters in order, "-" keeps one, missing
- * ones keep the values this style last used with the method; "Off" means Lines. */
+ * ones keep the values this style last used with the method; "Off" means Lines. The text a
+ * style keeps is VMD's: the method with every parameter written out ("Licorice 0.200000
+ * 12.000000 12.000000"), whatever was typed. */
 #include "config.h"
 #include "rep/rep_int.h"
 
@@ -28,6 +30,35 @@ static int split(char *buf, char **w, int max)
     return n;
 }
 
+/* How VMD writes parameter i of method m: %f, except the whole numbers below (%d); a bond
+ * cutoff is written only when it is set (VMD's strings leave it out: "Lines 1.000000"). */
+enum { PARAM_FLOAT, PARAM_INT, PARAM_CUTOFF };
+
+static int param_kind(const ms_rep_method *m, int i)
+{
+    const char *name = m->param[i].name;
+    if (!strcmp(name, "spline")) return PARAM_INT;                  /* NewCartoon, NewRibbons */
+    if (!strcmp(m->name, "Isosurface") && i > 0) return PARAM_INT;   /* volid box style step thickness */
+    if (!strcmp(name, "bond cutoff")) return PARAM_CUTOFF;
+    return PARAM_FLOAT;
+}
+
+/* s->text from the method and its parameters. */
+static void format_text(ms_rep_style *s)
+{
+    const ms_rep_method *m = ms_rep_method_at((size_t)s->method);
+    const float *p = s->param[s->method];
+    size_t len = (size_t)snprintf(s->text, sizeof s->text, "%s", m->name);
+    for (int i = 0; i < m->nparams && len < sizeof s->text; i++) {
+        int kind = param_kind(m, i);
+        if (kind == PARAM_CUTOFF && p[i] == 0.0f) continue;
+        if (kind == PARAM_INT)
+            len += (size_t)snprintf(s->text + len, sizeof s->text - len, " %d", (int)p[i]);
+        else
+            len += (size_t)snprintf(s->text + len, sizeof s->text - len, " %f", (double)p[i]);
+    }
+}
+
 void ms_rep_style_init(ms_rep_style *s)
 {
     memset(s, 0, sizeof *s);
@@ -36,7 +67,7 @@ void ms_rep_style_init(ms_rep_style *s)
         for (int i = 0; i < m->nparams; i++) s->param[k][i] = m->param[i].def;
     }
     s->method = ms_rep_method_find("Lines");
-    snprintf(s->text, sizeof s->text, "Lines");
+    format_text(s);
 }
 
 static int parse_number(const char *w, float *out)
@@ -65,7 +96,6 @@ int ms_rep_style_parse(ms_rep_style *s, const char *text, ms_error *err)
     }
     if (n == 0) return 0;   /* nothing given: keep everything, as VMD */
     if (!strcasecmp(w[0], "off")) {   /* VMD's alias */
-        text = "Lines";
         n = 1;
         w[0] = "Lines";
     }
@@ -95,6 +125,6 @@ int ms_rep_style_parse(ms_rep_style *s, const char *text, ms_error *err)
     }
     memcpy(s->param[k], v, sizeof v);
     s->method = k;
-    snprintf(s->text, sizeof s->text, "%s", text);
+    format_text(s);
     return 0;
 }

@@ -38,21 +38,6 @@ static int push(points *p, float x, float y, float z)
     return 0;
 }
 
-/* The cell vectors A, B, C from a b c alpha beta gamma (A along x, B in the xy plane);
- * 0 when the cell is unknown or degenerate. */
-static int cell_vectors(const float *cell, double v[3][3])
-{
-    double a = cell[0], b = cell[1], c = cell[2];
-    double al = cell[3] * M_PI / 180, be = cell[4] * M_PI / 180, ga = cell[5] * M_PI / 180;
-    if (!(a > 0 && b > 0 && c > 0) || !(sin(ga) != 0)) return 0;
-    double cx = c * cos(be), cy = c * (cos(al) - cos(be) * cos(ga)) / sin(ga);
-    double cz2 = c * c - cx * cx - cy * cy;
-    if (!(cz2 > 0)) return 0;
-    double vv[3][3] = {{a, 0, 0}, {b * cos(ga), b * sin(ga), 0}, {cx, cy, sqrt(cz2)}};
-    memcpy(v, vv, sizeof vv);
-    return 1;
-}
-
 /* Bounding box of the candidates' coordinates, grown by d. */
 static void candidate_box(const ms_selctx *c, const ms_bitset *cand, double d, float lo[3],
                           float hi[3])
@@ -74,9 +59,9 @@ static void candidate_box(const ms_selctx *c, const ms_bitset *cand, double d, f
 static int gather(const ms_selctx *c, const ms_bitset *cand, const ms_bitset *src, double d,
                   int periodic, points *pts)
 {
-    double v[3][3];
+    double v[3][3] = {{0}};   /* zero unless periodic: 0 * garbage could be NaN */
     float lo[3], hi[3];
-    int images = periodic && c->cell && cell_vectors(c->cell, v);
+    int images = periodic && c->cell && ms_cell_vectors(c->cell, v);
     if (images) candidate_box(c, cand, d, lo, hi);
     for (size_t w = 0; w < ms_bitset_nwords(src); w++)
         for (uint64_t m = src->words[w]; m; m &= m - 1) {

@@ -31,8 +31,8 @@ static void test_style(void)
     ms_rep_style s;
     ms_rep_style_init(&s);
     ms_error err = {{0}};
-    t_ok(!strcmp(ms_rep_method_at((size_t)s.method)->name, "Lines") && !strcmp(s.text, "Lines"),
-         "a new style is Lines");
+    t_ok(!strcmp(ms_rep_method_at((size_t)s.method)->name, "Lines") && !strcmp(s.text, "Lines 1.000000"),
+         "a new style is Lines (VMD's text: \"Lines 1.000000\")");
     /* vmd-compat section 3 */
     const float *p = params(&s, "CPK");
     t_ok(p[0] == 1.0f && p[1] == 0.3f && p[2] == 12 && p[3] == 12 && p[4] == 0, "CPK defaults");
@@ -70,8 +70,17 @@ static void test_style(void)
          "a VMD method molscope does not draw is known and named (%s)", err.msg);
     t_ok(ms_rep_style_parse(&s, "   ", &err) == 0 && !memcmp(&s, &before, sizeof s),
          "an empty style changes nothing");
-    t_ok(ms_rep_style_parse(&s, "Off", &err) == 0 && !strcmp(s.text, "Lines") &&
+    t_ok(ms_rep_style_parse(&s, "Off", &err) == 0 && !strcmp(s.text, "Lines 1.000000") &&
          !strcmp(ms_rep_method_at((size_t)s.method)->name, "Lines"), "Off is Lines");
+    /* VMD's own strings (its state files): %f, the spline style %d, no zero bond cutoff */
+    t_ok(ms_rep_style_parse(&s, "newcartoon 0.3 10 4.1 0", &err) == 0 &&
+         !strcmp(s.text, "NewCartoon 0.300000 10.000000 4.100000 0"), "NewCartoon text (%s)", s.text);
+    t_ok(ms_rep_style_parse(&s, "CPK", &err) == 0 &&
+         !strcmp(s.text, "CPK 1.000000 0.300000 12.000000 12.000000"), "CPK text (%s)", s.text);
+    t_ok(ms_rep_style_parse(&s, "Isosurface 0.5 0 0 0 1 1", &err) == 0 &&
+         !strcmp(s.text, "Isosurface 0.500000 0 0 0 1 1"), "Isosurface text (%s)", s.text);
+    t_ok(ms_rep_style_parse(&s, "Lines 1 2.5", &err) == 0 && !strcmp(s.text, "Lines 1.000000 2.500000"),
+         "a bond cutoff that is set is written (%s)", s.text);
     char longtext[600];
     memset(longtext, 'x', sizeof longtext - 1);
     longtext[sizeof longtext - 1] = '\0';
