@@ -45,7 +45,6 @@ typedef struct req_ctx {
     unsigned long since;
     double deadline;
     struct req_ctx *next;
-    int suspended;
 } req_ctx;
 
 typedef struct live_server {
@@ -198,7 +197,6 @@ static int resume_due(live_server *sv, int all)
         req_ctx *w = *p;
         if (all || w->since != sv->frames.serial || now >= w->deadline) {
             *p = w->next;
-            w->suspended = 0;
             MHD_resume_connection(w->conn);
             n++;
         } else {
@@ -236,7 +234,6 @@ static enum MHD_Result on_state(live_server *sv, struct MHD_Connection *c, void 
     w->since = n;
     w->deadline = ms_now() + LONG_POLL_S;
     w->next = sv->waiting;
-    w->suspended = 1;
     sv->waiting = w;
     *con_cls = w;
     MHD_suspend_connection(c);
