@@ -258,15 +258,16 @@ def check_browser(s, url):
         R.report(sc1 is not None and abs(sc1 / sc0 - 1.1) < 1e-3,
                  "the wheel scales by 1.1 (molinfo scale_matrix)", "%s -> %s" % (sc0, sc1))
         g0 = matrix(s, "global_matrix")
+        serial = drv.execute_script(PIXELS_JS)["serial"]
         ActionChains(drv).key_down(Keys.SHIFT).move_to_element(img).click_and_hold() \
             .move_by_offset(30, 0).release().key_up(Keys.SHIFT).perform()
         g1 = wait_for(lambda: (lambda g: g if g != g0 else None)(matrix(s, "global_matrix")))
         R.report(g1 is not None and g1[0][3] > g0[0][3] and abs(g1[1][3] - g0[1][3]) < 1e-6,
                  "shift-drag translates along screen x (molinfo global_matrix)",
                  "%s -> %s" % (g0, g1))
-        serial = drv.execute_script(PIXELS_JS)["serial"]
         later = wait_for(lambda: drv.execute_script(PIXELS_JS)["serial"] > serial, timeout=10)
-        R.report(bool(later), "the page shows new images after the view changed")
+        R.report(bool(later), "the page shows new images after the view changed",
+                 "serial %d before the change" % serial)
     finally:
         drv.quit()
 
