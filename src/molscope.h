@@ -21,6 +21,7 @@
  *   surf/       QuickSurf: Gaussian density maps, marching cubes, the surface engine
  *   gl/         offscreen OpenGL (OSMesa, EGL): the display device and `render snapshot`
  *   rt/         TachyonInternal: the photorealistic CPU ray tracer on Embree
+ *   live/       the live view in a browser: frames rendered at idle, a small web server
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
  *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
@@ -60,6 +61,7 @@
 #include "surf/qsurf.h"
 #include "gl/gl.h"
 #include "rt/rt.h"
+#include "live/live.h"
 #include "app/app.h"
 #include "commands/commands.h"
 #include "select/atomsel.h"

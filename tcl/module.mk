@@ -1,6 +1,10 @@
 # tcl: the Tcl library shipped with molscope.
 tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl
 
+# The page of the live view (display live, doc/live.md).
+livepagedir = $(tcllibdir)/live
+dist_livepage_DATA = tcl/live/index.html
+
 # The molscope::parallel package: a loadable Tcl extension (libtool module) with its
 # pkgIndex.tcl, in tcl/parallel/ of the Tcl library. It carries its own copy of the MPI
 # layer (src/parallel) so it also works in a plain tclsh; Tcl stubs when available.

@@ -5,6 +5,7 @@
 #include "commands/commands.h"
 #include "fileio/load.h"
 #include "gl/gl.h"
+#include "live/live.h"
 
 #include <limits.h>
 #include <stdio.h>
@@ -95,6 +96,7 @@ void ms_app_free(ms_app *app)
     if (app->idle_scheduled) Tcl_CancelIdleCall(idle_load, app);
     for (size_t i = 0; i < app->mols.n; i++) ms_loader_cancel(app->mols.mols[i]);
     if (app->interp) {
+        ms_live_stop(app);                /* before the display lists it may hold go */
         Tcl_SetVar(app->interp, "vmd_quit", "1", TCL_GLOBAL_ONLY);
         ms_molset_free(&app->mols);
         Tcl_DeleteInterp(app->interp);
@@ -185,6 +187,7 @@ static void on_mol_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *
 {
     ms_app *app = ud;
     char buf[32];
+    app->scene_version++;
     switch (ev) {
     case MS_EV_MOL_NEW:
         set_trace_var(app, "vmd_initialize_structure", m->id, "1");

@@ -20,6 +20,9 @@ typedef struct ms_app {
     int interactive;           /* stdin is a terminal */
     int quit_requested, quit_status;
     int idle_scheduled;        /* a background frame-loading callback is queued */
+    unsigned long scene_version;   /* bumped by whatever may change the picture: molecule
+                                    * events, view changes, scene-changing commands (the
+                                    * live view re-renders when it moves) */
     void *module[16];          /* state owned by other modules (scene, reps, ...) */
     /* Scene-side state, created by ms_cmd_scene_register (commands/scenecmds.h). */
     struct ms_colors *colors;        /* scene/color.h: colour table and categories */

@@ -366,4 +366,5 @@ void ms_cmd_color_register(ms_app *app)
     ms_cmdset_create(app, "color", color_table);
     ms_cmdset_fallback(app, "color", color_item);
     ms_cmdset_create(app, "colorinfo", colorinfo_table);
+    ms_cmdset_quiet(app, "colorinfo");
 }

@@ -416,21 +416,24 @@ static int light_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int axes_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
+    ((ms_app *)cd)->scene_version++;
     return axes_cmd(cd, interp, objc, objv);
 }
 
 static int stage_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
+    ((ms_app *)cd)->scene_version++;
     return stage_cmd(cd, interp, objc, objv);
 }
 
 static int light_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
+    ((ms_app *)cd)->scene_version++;
     return light_cmd(cd, interp, objc, objv);
 }
 
 static const ms_subcmd display_table[] = {
-    {"get", disp_get}, {"resetview", disp_resetview}, {"update", disp_update},
+    {"resetview", disp_resetview}, {"update", disp_update},
     {"resize", disp_resize}, {"reposition", disp_reposition}, {"size", disp_size},
     {"nearclip", disp_clip}, {"farclip", disp_clip},
     {"projection", disp_choice}, {"proj", disp_choice}, {"cuemode", disp_choice},
@@ -439,7 +442,9 @@ static const ms_subcmd display_table[] = {
 
 void ms_cmd_display_register(ms_app *app)
 {
+    static const ms_subcmd queries[] = {{"get", disp_get}, {NULL, NULL}};
     ms_cmdset_create(app, "display", display_table);
+    ms_cmdset_extend_quiet(app, "display", queries);
     ms_subcmd one[2] = {{NULL, disp_setting}, {NULL, NULL}};
     for (size_t i = 0; i < MS_COUNTOF(settings); i++) {
         one[0].name = settings[i].name;

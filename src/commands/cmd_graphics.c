@@ -227,6 +227,7 @@ static int manage(gctx *c, int objc, Tcl_Obj *const objv[])
 static int graphics_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     ms_app *app = cd;
+    app->scene_version++;
     if (objc < 3)
         return ms_cmd_error(interp, "graphics: usage: graphics <molid|top> <command> ?args?");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "graphics");
@@ -248,6 +249,7 @@ static int graphics_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *co
 static int draw_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     ms_app *app = cd;
+    app->scene_version++;
     if (objc < 2) return ms_cmd_error(interp, "draw: usage: draw <shape> ?args?");
     ms_molecule *top = ms_molset_top(&app->mols);
     if (!top) {

@@ -742,4 +742,5 @@ void ms_cmd_measure_register(ms_app *app)
         {"sasa", m_sasa},       {"sumweights", m_sumweights},
         {NULL, NULL}};
     ms_cmdset_create(app, "measure", table);
+    ms_cmdset_quiet(app, "measure");
 }

@@ -316,6 +316,7 @@ static int molinfo_set(ms_app *app, Tcl_Interp *interp, ms_molecule *m, int objc
 {
     if (objc != 5 && objc != 7)
         return ms_cmd_error(interp, "molinfo: usage: molinfo <molid> set <keywords> <values> ?frame <n>?");
+    app->scene_version++;
     long frame = m->frame;
     if (objc == 7) {
         if (strcasecmp(Tcl_GetString(objv[5]), "frame"))
@@ -405,4 +406,5 @@ void ms_cmd_molinfo_register(ms_app *app)
 {
     ms_cmdset_create(app, "molinfo", molinfo_table);
     ms_cmdset_fallback(app, "molinfo", molinfo_mol);
+    ms_cmdset_quiet(app, "molinfo");
 }

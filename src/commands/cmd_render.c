@@ -154,4 +154,5 @@ void ms_cmd_render_register(ms_app *app)
 {
     ms_cmdset_create(app, "render", render_table);
     ms_cmdset_fallback(app, "render", r_render);
+    ms_cmdset_quiet(app, "render");
 }

@@ -123,6 +123,7 @@ void ms_cmd_scene_register(ms_app *app)
     ms_cmd_color_register(app);
     ms_cmd_material_register(app);
     ms_cmd_display_register(app);
+    ms_cmd_live_register(app);
     ms_cmd_trans_register(app);
     ms_cmd_graphics_register(app);
     ms_cmd_render_register(app);

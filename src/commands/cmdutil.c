@@ -19,8 +19,10 @@ struct ms_cmdset {
     char *name;
     ms_app *app;
     ms_subcmd *items;
+    unsigned char *quiet_items;   /* per item: never changes the picture */
     size_t n, cap;
     ms_subcmd_fn fallback;
+    int quiet;              /* no subcommand changes the picture */
 };
 
 #define MS_MAX_CMDSETS 32
@@ -68,23 +70,46 @@ static int cmdset_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *con
     }
     const char *word = Tcl_GetString(objv[1]);
     for (size_t i = 0; i < s->n; i++)
-        if (ms_word_eq(word, s->items[i].name)) return s->items[i].fn(s->app, interp, objc, objv);
-    if (s->fallback) return s->fallback(s->app, interp, objc, objv);
+        if (ms_word_eq(word, s->items[i].name)) {
+            if (!s->quiet && !s->quiet_items[i]) s->app->scene_version++;
+            return s->items[i].fn(s->app, interp, objc, objv);
+        }
+    if (s->fallback) {
+        if (!s->quiet) s->app->scene_version++;
+        return s->fallback(s->app, interp, objc, objv);
+    }
     Tcl_Obj *msg = Tcl_ObjPrintf("%s: unknown subcommand \"%s\": must be ", s->name, word);
     Tcl_AppendObjToObj(msg, subcommand_list(s));
     Tcl_SetObjResult(interp, msg);
     return TCL_ERROR;
 }
 
-int ms_cmdset_extend(ms_app *app, const char *name, const ms_subcmd *table)
+static int extend(const char *name, const ms_subcmd *table, int quiet)
 {
     ms_cmdset *s = find_set(name);
     if (!s) return -1;
     for (const ms_subcmd *t = table; t->name; t++) {
+        size_t cap = s->cap;
         if (ms_grow((void **)&s->items, &s->cap, s->n + 1, sizeof *s->items)) return -1;
+        if (s->cap != cap) {
+            unsigned char *q = realloc(s->quiet_items, s->cap);
+            if (!q) return -1;
+            s->quiet_items = q;
+        }
+        s->quiet_items[s->n] = (unsigned char)quiet;
         s->items[s->n++] = *t;
     }
     return 0;
+}
+
+int ms_cmdset_extend(ms_app *app, const char *name, const ms_subcmd *table)
+{
+    return extend(name, table, 0);
+}
+
+int ms_cmdset_extend_quiet(ms_app *app, const char *name, const ms_subcmd *table)
+{
+    return extend(name, table, 1);
 }
 
 static void cmdset_delete(ClientData cd)
@@ -96,6 +121,7 @@ static void cmdset_delete(ClientData cd)
             break;
         }
     free(s->items);
+    free(s->quiet_items);
     free(s->name);
     free(s);
 }
@@ -119,6 +145,12 @@ void ms_cmdset_fallback(ms_app *app, const char *name, ms_subcmd_fn fn)
 {
     ms_cmdset *s = find_set(name);
     if (s) s->fallback = fn;
+}
+
+void ms_cmdset_quiet(ms_app *app, const char *name)
+{
+    ms_cmdset *s = find_set(name);
+    if (s) s->quiet = 1;
 }
 
 /* ---------------------------------------------------------------- molecules */

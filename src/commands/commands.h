@@ -28,6 +28,11 @@ ms_cmdset *ms_cmdset_create(ms_app *app, const char *name, const ms_subcmd *tabl
 int ms_cmdset_extend(ms_app *app, const char *name, const ms_subcmd *table);
 /* Called for words that match no subcommand (molinfo <id> get ...): may be NULL. */
 void ms_cmdset_fallback(ms_app *app, const char *name, ms_subcmd_fn fn);
+/* Every subcommand of a command bumps app->scene_version (the live view follows it) unless
+ * it was added by ms_cmdset_extend_quiet (queries) or the whole command is marked quiet
+ * (molinfo, measure ...: what they change, they bump themselves). */
+int ms_cmdset_extend_quiet(ms_app *app, const char *name, const ms_subcmd *table);
+void ms_cmdset_quiet(ms_app *app, const char *name);
 
 /* Set an error message "<fmt...>" and return TCL_ERROR. */
 int ms_cmd_error(Tcl_Interp *interp, const char *fmt, ...)

@@ -16,6 +16,8 @@ void ms_cmd_material_register(ms_app *app);
 void ms_cmd_display_register(ms_app *app);
 void ms_cmd_trans_register(ms_app *app);
 void ms_cmd_graphics_register(ms_app *app);
+/* display live (cmd_live.c): the live view in a browser (live/live.h). */
+void ms_cmd_live_register(ms_app *app);
 void ms_cmd_render_register(ms_app *app);
 
 /* {x y z} into v; an error "<what>: expected {x y z}, got '...'" otherwise. */

@@ -110,18 +110,24 @@ static void progress(const ms_rt_stats *st, int total, double t0)
             el > 0 ? (double)ms_rt_stats_rays(st) / el / 1e6 : 0.0);
 }
 
+/* Pass f->pass over every tile; the counts of rays so far into st. */
+static void one_pass(frame *f, ms_rt_stats *st)
+{
+    size_t ntiles = (size_t)f->tiles_x * (size_t)((f->height + TILE - 1) / TILE);
+    ms_parallel_for(ntiles, 1, trace_tiles, f);
+    st->passes = f->pass + 1;
+    memset(st->rays, 0, sizeof st->rays);
+    for (int t = 0; t < ms_threads_count(); t++)
+        for (int k = 0; k < MS_RT_NRAYKINDS; k++) st->rays[k] += f->rays[t][k];
+}
+
 static void run_passes(frame *f, const ms_rt_options *o, ms_rt_stats *st)
 {
-    int total = o->aasamples + 1, nthreads = ms_threads_count();
+    int total = o->aasamples + 1;
     if (o->max_passes > 0 && o->max_passes < total) total = o->max_passes;
-    size_t ntiles = (size_t)f->tiles_x * (size_t)((f->height + TILE - 1) / TILE);
     double t0 = ms_now(), c0 = cpu_now();
     for (f->pass = 0; f->pass < total; f->pass++) {
-        ms_parallel_for(ntiles, 1, trace_tiles, f);
-        st->passes = f->pass + 1;
-        memset(st->rays, 0, sizeof st->rays);
-        for (int t = 0; t < nthreads; t++)
-            for (int k = 0; k < MS_RT_NRAYKINDS; k++) st->rays[k] += f->rays[t][k];
+        one_pass(f, st);
         if (o->progress) progress(st, total, t0);
         if (o->time_budget > 0 && ms_now() - t0 >= o->time_budget) break;
     }
@@ -141,30 +147,45 @@ static void to_image(const frame *f, int passes, ms_image *img)
     }
 }
 
+/* The frame's buffers (sh is kept by pointer); 0, or -1 with err set and nothing held. */
+static int frame_init(frame *f, const ms_scene *s, const rt_shader *sh, ms_error *err)
+{
+    size_t npix = (size_t)s->width * (size_t)s->height;
+    *f = (frame){sh, s->width, s->height, (s->width + TILE - 1) / TILE, 0, MS_RT_MAX_DEPTH, NULL, NULL, NULL};
+    f->accum = ms_calloc_array(3 * npix, sizeof(float));
+    f->rng = ms_alloc_array(npix, sizeof(uint32_t));
+    f->rays = ms_calloc_array((size_t)ms_threads_count(), sizeof *f->rays);
+    if (!f->accum || !f->rng || !f->rays) {
+        ms_error_set(err, "out of memory for a %dx%d image", s->width, s->height);
+        free(f->accum);
+        free(f->rng);
+        free(f->rays);
+        return -1;
+    }
+    for (size_t i = 0; i < npix; i++) f->rng[i] = rt_hash2((uint32_t)i, 0x6d2b79f5u);
+    return 0;
+}
+
+static void frame_free(frame *f)
+{
+    free(f->accum);
+    free(f->rng);
+    free(f->rays);
+}
+
 static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options *o, ms_image *img,
                        ms_rt_stats *st, ms_error *err)
 {
-    size_t npix = (size_t)s->width * (size_t)s->height;
-    frame f = {NULL, s->width, s->height, (s->width + TILE - 1) / TILE, 0, MS_RT_MAX_DEPTH, NULL, NULL, NULL};
+    frame f;
     rt_shader sh;
     rt_shader_init(&sh, s, w, o->aosamples);
-    f.sh = &sh;
-    f.accum = ms_calloc_array(3 * npix, sizeof(float));
-    f.rng = ms_alloc_array(npix, sizeof(uint32_t));
-    f.rays = ms_calloc_array((size_t)ms_threads_count(), sizeof *f.rays);
-    int rc = -1;
-    if (!f.accum || !f.rng || !f.rays || ms_image_alloc(img, s->width, s->height, err)) {
-        if (!f.accum || !f.rng || !f.rays) ms_error_set(err, "out of memory for a %dx%d image", s->width, s->height);
-        goto done;
+    if (frame_init(&f, s, &sh, err)) return -1;
+    int rc = ms_image_alloc(img, s->width, s->height, err);
+    if (rc == 0) {
+        run_passes(&f, o, st);
+        to_image(&f, st->passes, img);
     }
-    for (size_t i = 0; i < npix; i++) f.rng[i] = rt_hash2((uint32_t)i, 0x6d2b79f5u);
-    run_passes(&f, o, st);
-    to_image(&f, st->passes, img);
-    rc = 0;
-done:
-    free(f.accum);
-    free(f.rng);
-    free(f.rays);
+    frame_free(&f);
     return rc;
 }
 
@@ -208,4 +229,73 @@ int ms_rt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_
         ms_image_free(&img);
     }
     return ms_render_commit(f, tmp, path, ok, err);
+}
+
+/* ---------------------------------------------------------------- sessions */
+
+struct ms_rt_session {
+    rt_world world;
+    rt_shader sh;
+    frame f;
+    ms_rt_stats st;
+};
+
+ms_rt_session *ms_rt_session_begin(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+{
+    if (check_options(s, o, err) || plan_memory(s, o, err)) return NULL;
+    ms_rt_session *ss = calloc(1, sizeof *ss);
+    if (!ss) {
+        ms_error_set(err, "out of memory");
+        rt_device_set_budget(0);
+        return NULL;
+    }
+    double t0 = ms_now();
+    int rc = rt_world_build(&ss->world, s, err);
+    ss->st.build_s = ms_now() - t0;
+    rt_device_set_budget(0);
+    if (rc) {
+        free(ss);
+        return NULL;
+    }
+    rt_shader_init(&ss->sh, s, &ss->world, o->aosamples);
+    if (frame_init(&ss->f, s, &ss->sh, err)) {
+        rt_world_free(&ss->world);
+        free(ss);
+        return NULL;
+    }
+    return ss;
+}
+
+int ms_rt_session_pass(ms_rt_session *ss)
+{
+    double t0 = ms_now();
+    one_pass(&ss->f, &ss->st);
+    ss->f.pass++;
+    ss->st.trace_s += ms_now() - t0;
+    return ss->f.pass;
+}
+
+int ms_rt_session_passes(const ms_rt_session *ss)
+{
+    return ss->f.pass;
+}
+
+int ms_rt_session_image(const ms_rt_session *ss, ms_image *img, ms_error *err)
+{
+    memset(img, 0, sizeof *img);
+    if (ss->f.pass < 1) {
+        ms_error_set(err, "no pass has been traced yet");
+        return -1;
+    }
+    if (ms_image_alloc(img, ss->f.width, ss->f.height, err)) return -1;
+    to_image(&ss->f, ss->f.pass, img);
+    return 0;
+}
+
+void ms_rt_session_end(ms_rt_session *ss)
+{
+    if (!ss) return;
+    frame_free(&ss->f);
+    rt_world_free(&ss->world);
+    free(ss);
 }

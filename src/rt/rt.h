@@ -67,4 +67,17 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
 int ms_rt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
                 ms_error *err);
 
+/* A progressive render one pass at a time, for callers that interleave passes with other
+ * work (the live view, live/live.h): begin builds the world for s, which must stay unchanged
+ * (with its display lists) until the session ends; each ms_rt_session_pass adds one sample to
+ * every pixel (the same samples, in the same order, as ms_rt_render) and returns the passes
+ * done; ms_rt_session_image gives their average (img allocated here). begin returns NULL
+ * with err set on the errors of ms_rt_render; image returns -1 before the first pass. */
+typedef struct ms_rt_session ms_rt_session;
+ms_rt_session *ms_rt_session_begin(const ms_scene *s, const ms_rt_options *o, ms_error *err);
+int ms_rt_session_pass(ms_rt_session *ss);
+int ms_rt_session_passes(const ms_rt_session *ss);
+int ms_rt_session_image(const ms_rt_session *ss, ms_image *img, ms_error *err);
+void ms_rt_session_end(ms_rt_session *ss);
+
 #endif

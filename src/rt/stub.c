@@ -25,3 +25,20 @@ int ms_rt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_
     if (st) memset(st, 0, sizeof *st);
     return unavailable(err);
 }
+
+ms_rt_session *ms_rt_session_begin(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+{
+    unavailable(err);
+    return NULL;
+}
+
+int ms_rt_session_pass(ms_rt_session *ss) { return 0; }
+int ms_rt_session_passes(const ms_rt_session *ss) { return 0; }
+
+int ms_rt_session_image(const ms_rt_session *ss, ms_image *img, ms_error *err)
+{
+    memset(img, 0, sizeof *img);
+    return unavailable(err);
+}
+
+void ms_rt_session_end(ms_rt_session *ss) {}

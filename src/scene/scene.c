@@ -163,8 +163,11 @@ static int add_decorations(ms_app *app, ms_scene *s, ms_error *err)
     return 0;
 }
 
+unsigned long ms_scene_builds;
+
 int ms_scene_build(ms_app *app, ms_scene *s, ms_error *err)
 {
+    ms_scene_builds++;
     ms_scene_init(s);
     copy_settings(app, s);
     for (size_t i = 0; i < app->mols.n; i++) {

@@ -92,5 +92,8 @@ int ms_scene_register_source(ms_scene_source_fn fn);
 /* Assemble the scene from the application state (see above). On failure the scene is
  * freed and err says why. */
 int ms_scene_build(ms_app *app, ms_scene *s, ms_error *err);
+/* How many scenes were built so far: building may rebuild stale display lists, so a holder
+ * of an older scene (the live view's ray tracer) knows its lists may have changed. */
+extern unsigned long ms_scene_builds;
 
 #endif

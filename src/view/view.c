@@ -115,6 +115,7 @@ static ms_view *view_of(ms_app *app)
 /* Pre-multiply (by) or set (to) a rotation on the non-fixed molecules and the axes. */
 static void apply_rotation(ms_app *app, const float r[16], int by)
 {
+    app->scene_version++;
     for (size_t i = 0; i < app->mols.n; i++) {
         ms_molecule *m = app->mols.mols[i];
         if (m->fixed) continue;
@@ -147,6 +148,7 @@ void ms_view_rotmat(ms_app *app, const float r[16], int by)
 
 void ms_view_translate(ms_app *app, float x, float y, float z, int by)
 {
+    app->scene_version++;
     for (size_t i = 0; i < app->mols.n; i++) {
         ms_molecule *m = app->mols.mols[i];
         if (m->fixed) continue;
@@ -158,6 +160,7 @@ void ms_view_translate(ms_app *app, float x, float y, float z, int by)
 int ms_view_scale(ms_app *app, float s, int by)
 {
     if (!(s > 0)) return -1;
+    app->scene_version++;
     for (size_t i = 0; i < app->mols.n; i++) {
         ms_molecule *m = app->mols.mols[i];
         if (!m->fixed) m->scale = by ? m->scale * s : s;
@@ -257,6 +260,7 @@ int ms_view_mol_cov(ms_app *app, ms_molecule *m, float center[3], float *scale)
 
 void ms_view_reset(ms_app *app)
 {
+    app->scene_version++;
     ms_view *v = view_of(app);
     ms_molecule *top = ms_molset_top(&app->mols);
     float c[3], s;

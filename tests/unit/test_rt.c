@@ -629,6 +629,51 @@ static void test_passes(void)
 
 /* Degenerate primitives are left out, a degenerate camera gives background, and a mesh whose
  * triangle names a missing vertex is an error: nothing crashes or reads out of bounds. */
+/* A session (rt.h): its first pass is the pinhole image whose centre pixel the shading
+ * formula gives; after n passes its image is the one ms_rt_render makes with n passes, byte
+ * for byte; before any pass there is no image. */
+static void test_session(void)
+{
+    t_suite = "rt session";
+    ms_scene s;
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float c[3] = {0, 0, 0}, l[3] = {0.57735027f, 0.57735027f, 0.57735027f}, n[3] = {0, 0, 1};
+    ms_rgba8 col = {200, 120, 40, 255};
+    ms_dl_sphere(&dl, c, 0.5f, col, 12);
+    scene_new(&s, 101, 101, 0);
+    light(&s, 0, 1, 1, 1);
+    place(&s, &dl, 0.1f, 0.65f, 0.5f, 40.0f, 1.0f);
+    ms_rt_options o;
+    ms_rt_options_default(&o);
+    o.aasamples = 4;
+    ms_error err = {{0}};
+    ms_image img, ref;
+    ms_rt_session *ss = ms_rt_session_begin(&s, &o, &err);
+    if (!t_ok(ss != NULL, "begin (%s)", err.msg)) return;
+    t_ok(ms_rt_session_passes(ss) == 0 && ms_rt_session_image(ss, &img, &err) == -1 && !img.rgb,
+         "no image before the first pass");
+    t_ok(ms_rt_session_pass(ss) == 1 && ms_rt_session_image(ss, &img, &err) == 0, "pass 1");
+    int e[3];
+    expect_shade(n, l, col, 0.1f, 0.65f, 0.5f, 40.0f, e);
+    const uint8_t *p = px(&img, 50, 50);
+    t_ok(near8(p, e[0], e[1], e[2], 1), "pass 1: centre pixel %d %d %d, expected %d %d %d",
+         p[0], p[1], p[2], e[0], e[1], e[2]);
+    ms_image_free(&img);
+    for (int k = 2; k <= 5; k++) ms_rt_session_pass(ss);
+    int ok = ms_rt_session_passes(ss) == 5 && ms_rt_session_image(ss, &img, &err) == 0 &&
+             ms_rt_render(&s, &o, &ref, NULL, &err) == 0;
+    t_ok(ok && !memcmp(img.rgb, ref.rgb, 3 * 101 * 101),
+         "5 passes: the image ms_rt_render makes with aasamples 4");
+    if (ok) {
+        ms_image_free(&img);
+        ms_image_free(&ref);
+    }
+    ms_rt_session_end(ss);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+
 static void test_degenerate(void)
 {
     t_suite = "degenerate input";
@@ -752,6 +797,7 @@ int main(void)
     test_gradient();
     test_dof();
     test_passes();
+    test_session();
     test_degenerate();
     test_errors();
     ms_materials_free(mats);
