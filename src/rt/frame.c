@@ -58,7 +58,7 @@ static void trace_tiles(void *ctx, size_t b, size_t e, int thread)
 
 /* ---------------------------------------------------------------- checks and memory */
 
-static int check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)
 {
     if (o->aasamples < 0 || o->aasamples > MS_RT_MAX_AASAMPLES) {
         ms_error_set(err, "aasamples %d: expected 0 to %d", o->aasamples, MS_RT_MAX_AASAMPLES);
@@ -78,7 +78,7 @@ static int check_options(const ms_scene *s, const ms_rt_options *o, ms_error *er
 
 /* Room for the frame's buffers, then for Embree (90% of what is available): an error when
  * the buffers alone do not fit. */
-static int plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
 {
     size_t npix = (size_t)s->width * (size_t)s->height;
     size_t need = npix * (3 * sizeof(float) + sizeof(uint32_t) + 3);
@@ -175,7 +175,7 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     if (!st) st = &local;
     memset(st, 0, sizeof *st);
     memset(img, 0, sizeof *img);
-    if (check_options(s, o, err) || plan_memory(s, o, err)) return -1;
+    if (rt_check_options(s, o, err) || rt_plan_memory(s, o, err)) return -1;
     rt_world w;
     double t0 = ms_now(), c0 = cpu_now();
     int rc = rt_world_build(&w, s, err);

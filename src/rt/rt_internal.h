@@ -105,6 +105,13 @@ void rt_world_free(rt_world *w);
 /* The lines, points and text of a placed list as world-space cylinders and spheres appended
  * to out (strokes.c). 0, or -1 when memory runs out. */
 int rt_strokes(const ms_scene_item *it, ms_displaylist *out);
+/* Tachyon's texture terms of a material as render/tachyon.c writes them (lit: the list is
+ * shaded; unlit lists are ambient only). */
+void rt_material_terms(const ms_material *m, int lit, rt_material *t);
+/* A transform (4x4 row-major), its inverse and its normal matrix into ri; -1 when singular. */
+int rt_item_matrices(rt_item *ri, const float x[16]);
+/* The secondary-ray offset of a scene, from its size. */
+float rt_world_eps(const ms_scene *s);
 /* Memory the world owns: the helper of the primitive files. NULL with err set. */
 void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err);
 
@@ -252,6 +259,15 @@ void rt_shader_init(rt_shader *sh, const ms_scene *s, const rt_world *w, int aos
  * transmission left; primary: a camera ray (its fog coordinate is the planar depth). */
 void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
               int depth, int primary, float out[3]);
+
+/* ---------------------------------------------------------------- frames (frame.c) */
+
+/* The limits of the samples and the image size: 0, or -1 with err saying which is wrong. */
+int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err);
+/* The frame's buffers against the memory allowed (o->memory, else what is available): an
+ * error when they do not fit, else what is left becomes Embree's budget (lifted by
+ * rt_device_set_budget(0) after the render). */
+int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err);
 
 /* ---------------------------------------------------------------- sampling (sample.c) */
 

@@ -69,7 +69,7 @@ static ms_displaylist *new_list(rt_world *w, ms_error *err)
 
 /* Tachyon's texture terms for a list, as render/tachyon.c writes them (unlit lists: ambient
  * 1, no diffuse, no mirror; the highlight stays, as in VMD's files). */
-static void material_terms(const ms_material *m, int lit, rt_material *t)
+void rt_material_terms(const ms_material *m, int lit, rt_material *t)
 {
     t->ambient = lit ? m->ambient : 1.0f;
     t->diffuse = lit ? m->diffuse : 0.0f;
@@ -83,7 +83,7 @@ static void material_terms(const ms_material *m, int lit, rt_material *t)
 }
 
 /* xf, its inverse and its normal matrix; -1 when xf is singular (nothing to see). */
-static int item_matrices(rt_item *ri, const float x[16])
+int rt_item_matrices(rt_item *ri, const float x[16])
 {
     double a[3][3], inv[3][3];
     for (int r = 0; r < 3; r++)
@@ -201,7 +201,7 @@ static int no_scene(rt_world *w, ms_error *err)
 
 /* The secondary-ray offset: two millionths of the scene's size (its largest coordinate), at
  * least 1e-5: well above float rounding at a hit, far below any feature. */
-static float world_eps(const ms_scene *s)
+float rt_world_eps(const ms_scene *s)
 {
     float big = fabsf(s->cam.eye[0]) + fabsf(s->cam.eye[1]) + fabsf(s->cam.eye[2]);
     for (size_t i = 0; i < s->nitems; i++) {
@@ -234,7 +234,7 @@ static source *sources_of(rt_world *w, const ms_scene *s, size_t *n, ms_error *e
         const ms_scene_item *it = &s->items[i];
         source *o = &src[(*n)++];
         o->dl = it->dl, o->xform = it->xform;
-        material_terms(&it->mat, it->dl->lit, &o->mat);
+        rt_material_terms(&it->mat, it->dl->lit, &o->mat);
         if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
         ms_displaylist *extra = new_list(w, err);
         if (!extra) return NULL;
@@ -244,7 +244,7 @@ static source *sources_of(rt_world *w, const ms_scene *s, size_t *n, ms_error *e
         }
         o = &src[(*n)++];
         o->dl = extra, o->xform = identity;
-        material_terms(&it->mat, 0, &o->mat);
+        rt_material_terms(&it->mat, 0, &o->mat);
     }
     return src;
 }
@@ -332,7 +332,7 @@ static int add_instance(rt_world *w, const source *src, size_t n, size_t first, 
 {
     rt_item *ri = &w->items[w->nitems];
     memset(ri, 0, sizeof *ri);
-    if (item_matrices(ri, src[first].xform)) return 0;      /* singular: nothing to see */
+    if (rt_item_matrices(ri, src[first].xform)) return 0;      /* singular: nothing to see */
     ri->geoms = w->geoms + w->ngeoms;
     RTCScene sub = rtcNewScene(w->dev);
     if (!sub) return no_scene(w, err);
@@ -374,7 +374,7 @@ int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
     memset(w, 0, sizeof *w);
     w->dev = rt_device(err);
     if (!w->dev) return -1;
-    w->eps = world_eps(s);
+    w->eps = rt_world_eps(s);
     size_t nsrc, ngroups;
     source *src = sources_of(w, s, &nsrc, err);
     if (!src) goto fail;

@@ -5,7 +5,11 @@
  * degree crevice (half the sky) and on an open plane (all of it), a shadow where the light
  * direction puts it and a shadow of glass, fog at the cue distances, mirror reflection, cylinder caps, cone
  * silhouettes, interpolated mesh colours, and the errors (absurd samples and sizes, a scene
- * too large for the memory allowed, an unwritable file). Skipped without Embree. */
+ * too large for the memory allowed, an unwritable file). Skipped without Embree.
+ *
+ * Compiled a second time with MS_TEST_OCLRT as test_oclrt: the same scenes and the same
+ * expected values through the OpenCL tracer (oclrt/oclrt.h), with no fallback to
+ * TachyonInternal, so that each check is of the OpenCL kernels; skipped without OpenCL. */
 #include "config.h"
 #include "ms_test.h"
 #include "image/image.h"
@@ -21,6 +25,26 @@
 #include <unistd.h>
 
 static ms_materials *mats;
+
+#ifdef MS_TEST_OCLRT
+#include "oclrt/oclrt.h"
+#define TRACER "TachyonLOpenCLInternal"
+static int ocl_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt_stats *st,
+                      ms_error *err)
+{
+    return ms_oclrt_render(s, o, img, st, NULL, NULL, err) ? -1 : 0;
+}
+static int ocl_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
+                     ms_error *err)
+{
+    int fell_back = 0, rc = ms_oclrt_write(s, o, path, st, &fell_back, err);
+    return fell_back ? -1 : rc;
+}
+#define ms_rt_render ocl_render
+#define ms_rt_write ocl_write
+#else
+#define TRACER "TachyonInternal"
+#endif
 
 /* VMD's camera, no lights, black background, w x h. */
 static void scene_new(ms_scene *s, int w, int h, int ortho)
@@ -609,7 +633,7 @@ static void test_passes(void)
         fclose(lf);
         lf = fopen(log, "r");
         char line[256];
-        while (lf && fgets(line, sizeof line, lf)) lines += !strncmp(line, "TachyonInternal: pass ", 22);
+        while (lf && fgets(line, sizeof line, lf)) lines += !strncmp(line, TRACER ": pass ", strlen(TRACER ": pass "));
         if (lf) fclose(lf);
     }
     if (saved >= 0) close(saved);
@@ -733,9 +757,31 @@ static void test_errors(void)
 int main(void)
 {
     if (!ms_rt_available()) {
-        t_skip("TachyonInternal", "molscope was built without Embree");
+        t_skip(TRACER, "molscope was built without Embree");
         return 0;
     }
+#ifdef MS_TEST_OCLRT
+    if (!ms_oclrt_available()) {
+        t_skip(TRACER, "molscope was built without OpenCL");
+        return 0;
+    }
+    {
+        ms_scene s;
+        ms_image img;
+        ms_rt_options o;
+        ms_error err = {{0}};
+        scene_new(&s, 4, 4, 0);
+        ms_rt_options_default(&o);
+        int rc = ms_oclrt_render(&s, &o, &img, NULL, NULL, NULL, &err);
+        ms_scene_free(&s);
+        if (rc == MS_OCLRT_EDEVICE) {
+            t_skip(TRACER, err.msg);
+            return 0;
+        }
+        if (!rc) ms_image_free(&img);
+        printf("# OpenCL device: %s\n", ms_oclrt_device_name());
+    }
+#endif
     ms_error err;
     mats = ms_materials_new(&err);
     test_sphere_shading();
