@@ -754,6 +754,100 @@ static void test_errors(void)
     ms_dl_free(&dl);
 }
 
+#ifdef MS_TEST_OCLRT
+/* ---------------------------------------------------------------- OpenCL only */
+
+typedef struct seen {
+    int calls, last;
+    int centre[64];
+} seen;
+
+static int on_pass(void *user, int passes, const ms_image *img)
+{
+    seen *s = user;
+    if (s->calls < 64) s->centre[s->calls] = img->rgb[3 * (16 * 32 + 16)];
+    s->calls++;
+    s->last = passes;
+    return passes >= 5;
+}
+
+/* The pass callback sees each pass's average; a nonzero return stops the render. */
+static void test_callback(void)
+{
+    t_suite = "pass callback";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float c[3] = {0, 0, 0};
+    ms_dl_sphere(&dl, c, 0.5f, (ms_rgba8){255, 255, 255, 255}, 12);
+    ms_scene s;
+    scene_new(&s, 32, 32, 0);
+    light(&s, 0, 0, 0, 1);
+    place(&s, &dl, 0.1f, 0.65f, 0.5f, 40, 1);
+    ms_rt_options o;
+    ms_rt_options_default(&o);
+    o.aasamples = 20;
+    ms_image img;
+    ms_rt_stats st;
+    ms_error err = {{0}};
+    seen sn = {0, 0, {0}};
+    int rc = ms_oclrt_render(&s, &o, &img, &st, on_pass, &sn, &err);
+    /* the sphere's centre faces the light: 0.1 + 0.65 + 0.5 saturates at every pass */
+    t_ok(rc == 0 && sn.calls == 5 && sn.last == 5 && st.passes == 5 && sn.centre[0] == 255 && sn.centre[4] == 255,
+         "called after passes 1 to 5, stopped by its return (%d calls, %d passes, centre %d)", sn.calls, st.passes,
+         sn.centre[0]);
+    if (!rc) ms_image_free(&img);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+
+/* An injected allocation failure or build failure: ms_oclrt_render reports a device problem,
+ * ms_oclrt_write falls back to TachyonInternal and still writes the image. */
+static void test_fallback(void)
+{
+    t_suite = "fallback";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float c[3] = {0, 0, 0};
+    ms_dl_sphere(&dl, c, 0.5f, (ms_rgba8){255, 255, 255, 255}, 12);
+    ms_scene s;
+    scene_new(&s, 16, 16, 0);
+    place(&s, &dl, 1, 0, 0, 40, 1);
+    ms_rt_options o;
+    ms_rt_options_default(&o);
+    o.aasamples = 0;
+    static const int modes[2] = {MS_OCLRT_FAIL_ALLOC, MS_OCLRT_FAIL_BUILD};
+    static const char *const want[2] = {"CL_MEM_OBJECT_ALLOCATION_FAILURE", "do not build"};
+    for (int k = 0; k < 2; k++) {
+        ms_image img;
+        ms_error err = {{0}};
+        char path[512];
+        snprintf(path, sizeof path, "%s/oclrt_fallback.ppm", getenv("MS_TEST_OUT") ? getenv("MS_TEST_OUT") : "/tmp");
+        ms_oclrt_fail = modes[k];
+        int rc = ms_oclrt_render(&s, &o, &img, NULL, NULL, NULL, &err);
+        t_ok(rc == MS_OCLRT_EDEVICE && strstr(err.msg, want[k]), "%s: a device failure (%s)",
+             k ? "injected build failure" : "injected allocation failure", err.msg);
+        int fell_back = 0;
+        remove(path);
+        rc = ms_oclrt_write(&s, &o, path, NULL, &fell_back, &err);
+        ms_oclrt_fail = MS_OCLRT_FAIL_NONE;
+        FILE *f = fopen(path, "rb");
+        unsigned char pix[3] = {0, 0, 0};
+        int ok = f && fseek(f, -(long)(3 * (8 * 16 + 8)), SEEK_END) == 0 && fread(pix, 1, 3, f) == 3;
+        if (f) fclose(f);
+        remove(path);
+        t_ok(rc == 0 && fell_back && ok && pix[0] == 255, "%s: TachyonInternal wrote the image (centre %d)",
+             k ? "injected build failure" : "injected allocation failure", pix[0]);
+    }
+    ms_image img;
+    ms_error err = {{0}};
+    int rc = ms_oclrt_render(&s, &o, &img, NULL, NULL, NULL, &err);
+    t_ok(rc == 0, "the next render runs on OpenCL again (%s)", rc ? err.msg : "ok");
+    if (!rc) ms_image_free(&img);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+#endif
+
 int main(void)
 {
     if (!ms_rt_available()) {
@@ -800,6 +894,10 @@ int main(void)
     test_passes();
     test_degenerate();
     test_errors();
+#ifdef MS_TEST_OCLRT
+    test_callback();
+    test_fallback();
+#endif
     ms_materials_free(mats);
     return t_done();
 }
