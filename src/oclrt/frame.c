@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 enum { B_P, B_LO0, B_HI0, B_LO1, B_HI1, B_CHILD, B_LEAF, B_QA, B_QB, B_QM, B_TRI, B_VXYZ,
        B_VNORM, B_VCOL, B_GMAT0, B_GMAT1, B_GFLAG, B_ITEM, B_ACCUM, B_RNG, B_RAYS, B_COUNT };
@@ -115,6 +116,15 @@ static void release(ocl_frame *f)
 
 /* ---------------------------------------------------------------- passes */
 
+/* CPU seconds of the process so far, all threads (PoCL's included). */
+static double cpu_now(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+           1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
 static int launch_init(ocl_frame *f, ms_error *err)
 {
     cl_kernel k = f->e->init;
@@ -183,7 +193,7 @@ static int run_passes(ocl_frame *f, const pass_ctl *c, ms_image *img, ms_rt_stat
 {
     int total = c->o->aasamples + 1;
     if (c->o->max_passes > 0 && c->o->max_passes < total) total = c->o->max_passes;
-    double t0 = ms_now();
+    double t0 = ms_now(), c0 = cpu_now();
     if (launch_init(f, err)) return -1;
     for (int pass = 0; pass < total; pass++) {
         if (launch_pass(f, pass, err)) return -1;
@@ -203,6 +213,7 @@ static int run_passes(ocl_frame *f, const pass_ctl *c, ms_image *img, ms_rt_stat
         if (stop) break;
     }
     st->trace_s = ms_now() - t0;
+    st->trace_cpu_s = cpu_now() - c0;
     if (read_accum(f, err) || read_rays(f, st, err)) return -1;
     to_image(f->accum, f->npix, st->passes, img);
     return 0;
@@ -226,7 +237,11 @@ static int trace(orc_engine *e, const ms_scene *s, const pass_ctl *c, const orc_
         release(&f);
         return MS_OCLRT_EINPUT;
     }
-    int rc = upload(&f, w, P, err) || run_passes(&f, c, img, st, err) ? MS_OCLRT_EDEVICE : 0;
+    double t0 = ms_now(), c0 = cpu_now();
+    int rc = upload(&f, w, P, err);
+    st->build_s += ms_now() - t0;         /* the build includes the upload */
+    st->build_cpu_s += cpu_now() - c0;
+    rc = rc || run_passes(&f, c, img, st, err) ? MS_OCLRT_EDEVICE : 0;
     release(&f);
     return rc;
 }
@@ -245,13 +260,14 @@ int ms_oclrt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms
         return MS_OCLRT_EDEVICE;
     }
     orc_world w;
-    double t0 = ms_now();
+    double t0 = ms_now(), c0 = cpu_now();
     int rc = orc_world_build(&w, s, err);
     if (rc == 0 && orc_bvh_build(&w, err)) {
         orc_world_free(&w);
         rc = MS_OCLRT_EINPUT;
     }
     st->build_s = ms_now() - t0;
+    st->build_cpu_s = cpu_now() - c0;
     if (rc == 0) {
         pass_ctl c = {o, cb, user};
         rc = trace(e, s, &c, &w, img, st, err);

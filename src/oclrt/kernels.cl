@@ -302,12 +302,13 @@ static float prim_opacity(const scene *S, uint ref, float u, float v)
 
 /* ---------------------------------------------------------------- traversal */
 
-static int box_hit(float4 lo, float4 hi, float3 o, float3 inv, float tnear, float tfar)
+/* The ray's entry distance into a box, or INFINITY when it misses it within (tnear, tfar). */
+static float box_hit(float4 lo, float4 hi, float3 o, float3 inv, float tnear, float tfar)
 {
     float3 t0 = (lo.xyz - o) * inv, t1 = (hi.xyz - o) * inv;
     float3 mn = fmin(t0, t1), mx = fmax(t0, t1);
     float a = fmax(fmax(mn.x, mn.y), fmax(mn.z, tnear)), b = fmin(fmin(mx.x, mx.y), fmin(mx.z, tfar));
-    return a <= b;
+    return a <= b ? a : INFINITY;
 }
 
 /* Walk the tree: closest (any == 0: the nearest hit in *t, *ref, *u, *v) or visibility
@@ -325,11 +326,13 @@ static float traverse(const scene *S, float3 o, float3 d, float tnear, int any, 
     for (;;) {
         int4 c = S->child[node];
         int go[2] = {-1, -1};
+        float enter[2] = {INFINITY, INFINITY};
         for (int k = 0; k < 2; k++) {
             int r = k ? c.y : c.x, cnt = k ? c.w : c.z;
             if (r < 0) continue;
             float4 lo = k ? S->lo1[node] : S->lo0[node], hi = k ? S->hi1[node] : S->hi0[node];
-            if (!box_hit(lo, hi, o, inv, tnear, tfar)) continue;
+            enter[k] = box_hit(lo, hi, o, inv, tnear, tfar);
+            if (enter[k] == INFINITY) continue;
             if (cnt == 0) {
                 go[k] = r;
                 continue;
@@ -348,9 +351,10 @@ static float traverse(const scene *S, float3 o, float3 d, float tnear, int any, 
                 f *= n == 2 ? (1.0f - op) * (1.0f - op) : 1.0f - op;
             }
         }
-        if (go[0] >= 0 && go[1] >= 0) {
-            if (sp < MAXDEPTH_BVH) stack[sp++] = go[1];
-            node = go[0];
+        if (go[0] >= 0 && go[1] >= 0) {     /* the nearer box first */
+            int near = enter[1] < enter[0];
+            if (sp < MAXDEPTH_BVH) stack[sp++] = go[1 - near];
+            node = go[near];
         } else if (go[0] >= 0 || go[1] >= 0) {
             node = go[0] >= 0 ? go[0] : go[1];
         } else if (sp > 0) {
