@@ -7,7 +7,9 @@
  * Trans_VMD does; then planar fog (Fog_VMD: the depth along the view for camera rays, the
  * ray length for others). Shadow and occlusion rays pass transparent surfaces, each one
  * letting (1 - opacity) of the light through. Rays that leave the scene see the background
- * or its gradient. */
+ * or its gradient.
+ * src/oclrt/kernels.cl mirrors this file function by function for the OpenCL tracer: change
+ * both together. */
 #include "config.h"
 #include "rt/rt_internal.h"
 
