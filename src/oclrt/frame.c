@@ -57,7 +57,7 @@ static void make_params(const ms_scene *s, const ms_rt_options *o, const orc_wor
     P[P_FOG] = (float)sh.fog, P[P_CUEMODE] = (float)sh.cuemode;
     P[P_FOG_START] = sh.fog_start, P[P_FOG_END] = sh.fog_end, P[P_FOG_DENSITY] = sh.fog_density;
     P[P_EPS] = w->eps;
-    P[P_DEPTH] = (float)MS_RT_MAX_DEPTH;
+    P[P_DEPTH] = (float)(o->max_depth > 0 && o->max_depth < MS_RT_MAX_DEPTH ? o->max_depth : MS_RT_MAX_DEPTH);
     P[P_NNODES] = (float)w->nnodes;
 }
 

@@ -145,7 +145,8 @@ static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options
                        ms_rt_stats *st, ms_error *err)
 {
     size_t npix = (size_t)s->width * (size_t)s->height;
-    frame f = {NULL, s->width, s->height, (s->width + TILE - 1) / TILE, 0, MS_RT_MAX_DEPTH, NULL, NULL, NULL};
+    int depth = o->max_depth > 0 && o->max_depth < MS_RT_MAX_DEPTH ? o->max_depth : MS_RT_MAX_DEPTH;
+    frame f = {NULL, s->width, s->height, (s->width + TILE - 1) / TILE, 0, depth, NULL, NULL, NULL};
     rt_shader sh;
     rt_shader_init(&sh, s, w, o->aosamples);
     f.sh = &sh;

@@ -241,6 +241,41 @@ static void test_transparency(void)
     ms_dl_free(&back);
 }
 
+/* The ray depth: the same spheres as test_transparency (ambient only, opacity 0.5). With one
+ * level the transmitted ray sees the (black) background: a A; with two, the back face of the
+ * glass and then the background: a A + (1-a) a A; with three, the blue sphere as well. */
+static void test_depth(void)
+{
+    t_suite = "ray depth";
+    ms_displaylist front, back;
+    ms_dl_init(&front);
+    ms_dl_init(&back);
+    float c1[3] = {0, 0, 1}, c2[3] = {0, 0, -1};
+    ms_dl_sphere(&front, c1, 0.3f, (ms_rgba8){255, 0, 0, 255}, 12);
+    ms_dl_sphere(&back, c2, 0.5f, (ms_rgba8){0, 0, 255, 255}, 12);
+    ms_scene s;
+    scene_new(&s, 21, 21, 1);
+    place(&s, &front, 1, 0, 0, 40, 0.5f);
+    place(&s, &back, 1, 0, 0, 40, 1.0f);
+    static const float red[3] = {0.5f, 0.75f, 0.75f}, blue[3] = {0, 0, 0.25f};
+    for (int d = 1; d <= 3; d++) {
+        ms_rt_options o;
+        ms_rt_options_default(&o);
+        o.aasamples = 0;
+        o.max_depth = d;
+        ms_image img;
+        ms_error err = {{0}};
+        if (ms_rt_render(&s, &o, &img, NULL, &err)) return t_ok(0, "render: %s", err.msg), (void)0;
+        const uint8_t *p = px(&img, 10, 10);
+        t_ok(near8(p, v8(red[d - 1]), 0, v8(blue[d - 1]), 1), "depth %d: centre %d %d %d, expected %d 0 %d", d,
+             p[0], p[1], p[2], v8(red[d - 1]), v8(blue[d - 1]));
+        ms_image_free(&img);
+    }
+    ms_scene_free(&s);
+    ms_dl_free(&front);
+    ms_dl_free(&back);
+}
+
 /* ---------------------------------------------------------------- ambient occlusion */
 
 static void quad(ms_displaylist *dl, const float p[12], ms_rgba8 c)
@@ -881,6 +916,7 @@ int main(void)
     test_sphere_shading();
     test_outline();
     test_transparency();
+    test_depth();
     test_ao();
     test_shadow();
     test_shadow_glass();
