@@ -17,7 +17,8 @@
 #include "rt/rt.h"
 
 /* After each pass: the passes so far and their average as an image (owned by the tracer,
- * valid during the call); return nonzero to stop the render after this pass. */
+ * valid during the call); return nonzero to stop the render after this pass. It runs while
+ * the tracer holds the OpenCL engine: it must not start another OpenCL render. */
 typedef int (*ms_oclrt_pass_fn)(void *user, int passes, const ms_image *img);
 
 /* What ms_oclrt_render reports besides 0: a problem of the request (bad options or sizes,

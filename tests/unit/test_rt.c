@@ -27,6 +27,8 @@
 static ms_materials *mats;
 
 #ifdef MS_TEST_OCLRT
+#include <dirent.h>
+
 #include "oclrt/oclrt.h"
 #define TRACER "TachyonLOpenCLInternal"
 static int ocl_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt_stats *st,
@@ -878,6 +880,16 @@ static void test_fallback(void)
     int rc = ms_oclrt_render(&s, &o, &img, NULL, NULL, NULL, &err);
     t_ok(rc == 0, "the next render runs on OpenCL again (%s)", rc ? err.msg : "ok");
     if (!rc) ms_image_free(&img);
+    /* the built program was cached where MOLSCOPE_OPENCL_CACHE says (run-tests sets it) */
+    const char *cache = getenv("MOLSCOPE_OPENCL_CACHE");
+    if (cache && *cache) {
+        DIR *d = opendir(cache);
+        int bins = 0;
+        for (struct dirent *e; d && (e = readdir(d));)
+            bins += !strncmp(e->d_name, "oclrt-", 6) && strstr(e->d_name, ".bin") && !strstr(e->d_name, ".tmp");
+        if (d) closedir(d);
+        t_ok(bins == 1, "one cached program binary in MOLSCOPE_OPENCL_CACHE (%d)", bins);
+    }
     ms_scene_free(&s);
     ms_dl_free(&dl);
 }
