@@ -93,7 +93,6 @@ static int cache_file(cl_device_id dev, const char *options, char *path, size_t 
 {
     char dir[1024], name[256] = "", driver[256] = "", version[256] = "";
     if (cache_dir(dir, sizeof dir)) return -1;
-    pocl_cache(dir);
     clGetDeviceInfo(dev, CL_DEVICE_NAME, sizeof name, name, NULL);
     clGetDeviceInfo(dev, CL_DRIVER_VERSION, sizeof driver, driver, NULL);
     clGetDeviceInfo(dev, CL_DEVICE_VERSION, sizeof version, version, NULL);
@@ -272,6 +271,8 @@ orc_engine *orc_engine_acquire(ms_error *err)
     }
     if (state == 0) {
         ms_error e = {{0}};
+        char dir[1024];
+        if (cache_dir(dir, sizeof dir) == 0) pocl_cache(dir);     /* before PoCL starts */
         state = pick_device(&engine, &e) == 0 && start(&engine, kernel_source, &e) == 0 ? 1 : -1;
         if (state < 0) {
             snprintf(failure, sizeof failure, "%s", e.msg);
