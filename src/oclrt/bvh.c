@@ -1,9 +1,9 @@
-/* bvh.c: the OpenCL tracer's BVH, built on the host by Embree's BVH builder (rtcBuildBVH:
- * binned SAH, in parallel) over the bounds of the flat world's primitives, then flattened
- * depth first into the structure-of-arrays node buffers the kernels walk: per node the
- * boxes of its two children (float4 each) and their references (int4). Primitives that
- * Embree's own geometries would leave out (a radius that is not positive, a non-finite
- * coordinate) get no leaf. */
+/* bvh.c: the OpenCL tracer's BVH, built on the host over the bounds of the flat world's
+ * primitives by Embree's BVH builder (rtcBuildBVH: binned SAH, in parallel), or by our own
+ * (sah.c) without Embree, then flattened depth first into the structure-of-arrays node
+ * buffers the kernels walk: per node the boxes of its two children (float4 each) and their
+ * references (int4). Primitives that Embree's own geometries would leave out (a radius that
+ * is not positive, a non-finite coordinate) get no leaf. */
 #include "config.h"
 #include "oclrt/oclrt_impl.h"
 
@@ -14,37 +14,34 @@
 #define LEAF_MAX 4
 #define DEPTH_MAX 60            /* below the kernels' stack of 64 */
 
-typedef struct bnode {
-    int leaf;
-    uint32_t n;                 /* leaf: references */
-    uint32_t *refs;
-    struct bnode *kid[2];
-    struct RTCBounds box[2];
-} bnode;
-
+#ifdef MS_HAVE_EMBREE
+/* Embree's builder makes our tree through these callbacks. */
 static void *create_node(RTCThreadLocalAllocator a, unsigned int count, void *user)
 {
-    bnode *n = rtcThreadLocalAlloc(a, sizeof *n, 16);
+    orc_bnode *n = rtcThreadLocalAlloc(a, sizeof *n, 16);
     if (n) memset(n, 0, sizeof *n);
     return n;
 }
 
 static void set_children(void *node, void **kids, unsigned int count, void *user)
 {
-    bnode *n = node;
+    orc_bnode *n = node;
     for (unsigned i = 0; n && i < count && i < 2; i++) n->kid[i] = kids[i];
 }
 
 static void set_bounds(void *node, const struct RTCBounds **b, unsigned int count, void *user)
 {
-    bnode *n = node;
-    for (unsigned i = 0; n && i < count && i < 2; i++) n->box[i] = *b[i];
+    orc_bnode *n = node;
+    for (unsigned i = 0; n && i < count && i < 2; i++) {
+        n->box[i].lo[0] = b[i]->lower_x, n->box[i].lo[1] = b[i]->lower_y, n->box[i].lo[2] = b[i]->lower_z;
+        n->box[i].hi[0] = b[i]->upper_x, n->box[i].hi[1] = b[i]->upper_y, n->box[i].hi[2] = b[i]->upper_z;
+    }
 }
 
 static void *create_leaf(RTCThreadLocalAllocator a, const struct RTCBuildPrimitive *p, size_t count,
                          void *user)
 {
-    bnode *n = rtcThreadLocalAlloc(a, sizeof *n + count * sizeof(uint32_t), 16);
+    orc_bnode *n = rtcThreadLocalAlloc(a, sizeof *n + count * sizeof(uint32_t), 16);
     if (!n) return NULL;
     memset(n, 0, sizeof *n);
     n->leaf = 1;
@@ -53,6 +50,7 @@ static void *create_leaf(RTCThreadLocalAllocator a, const struct RTCBuildPrimiti
     for (size_t i = 0; i < count; i++) n->refs[i] = p[i].primID;
     return n;
 }
+#endif
 
 /* ---------------------------------------------------------------- primitive bounds */
 
@@ -116,32 +114,29 @@ static int triangle_box(const orc_world *w, size_t i, float lo[3], float hi[3])
     return box_ok(lo, hi);
 }
 
-/* The builder's input: one box per valid primitive, its reference in primID. */
-static struct RTCBuildPrimitive *build_prims(const orc_world *w, size_t *n, ms_error *err)
+/* The builders' input: one box per valid primitive, with its reference. */
+static orc_bprim *build_prims(const orc_world *w, size_t *n, ms_error *err)
 {
-    struct RTCBuildPrimitive *p = ms_alloc_array(w->nq + w->ntri + 1, sizeof *p);
+    orc_bprim *p = ms_alloc_array(w->nq + w->ntri + 1, sizeof *p);
     if (!p) {
         ms_error_set(err, "out of memory for the BVH of %zu primitives", w->nq + w->ntri);
         return NULL;
     }
     *n = 0;
     for (size_t i = 0; i < w->nq + w->ntri; i++) {
-        float lo[3], hi[3];
         int tri = i >= w->nq;
         size_t j = tri ? i - w->nq : i;
-        if (!(tri ? triangle_box(w, j, lo, hi) : quadric_box(w, j, lo, hi))) continue;
-        struct RTCBuildPrimitive *q = &p[(*n)++];
-        q->lower_x = lo[0], q->lower_y = lo[1], q->lower_z = lo[2];
-        q->upper_x = hi[0], q->upper_y = hi[1], q->upper_z = hi[2];
-        q->geomID = 0;
-        q->primID = (tri ? ORC_TRIANGLE : w->qkind[j]) << ORC_KIND_SHIFT | (uint32_t)j;
+        orc_bprim *q = &p[*n];
+        if (!(tri ? triangle_box(w, j, q->box.lo, q->box.hi) : quadric_box(w, j, q->box.lo, q->box.hi))) continue;
+        q->ref = (tri ? ORC_TRIANGLE : w->qkind[j]) << ORC_KIND_SHIFT | (uint32_t)j;
+        (*n)++;
     }
     return p;
 }
 
 /* ---------------------------------------------------------------- flattening */
 
-static void count_tree(const bnode *n, size_t *nodes, size_t *refs)
+static void count_tree(const orc_bnode *n, size_t *nodes, size_t *refs)
 {
     if (n->leaf) {
         *refs += n->n;
@@ -157,21 +152,19 @@ typedef struct flat {
     size_t node, ref;
 } flat;
 
-static void put_box(float *dst, const struct RTCBounds *b, int upper)
+static void put_box(float *dst, const orc_box *b, int upper)
 {
-    dst[0] = upper ? b->upper_x : b->lower_x;
-    dst[1] = upper ? b->upper_y : b->lower_y;
-    dst[2] = upper ? b->upper_z : b->lower_z;
-    dst[3] = 0;
+    const float *v = upper ? b->hi : b->lo;
+    dst[0] = v[0], dst[1] = v[1], dst[2] = v[2], dst[3] = 0;
 }
 
 /* Node n at index f->node (an inner node), its subtrees after it. */
-static void flatten_node(flat *f, const bnode *n)
+static void flatten_node(flat *f, const orc_bnode *n)
 {
     orc_world *w = f->w;
     size_t me = f->node++;
     for (int k = 0; k < 2; k++) {
-        const bnode *c = n->kid[k];
+        const orc_bnode *c = n->kid[k];
         float *lo = k ? w->lo1 : w->lo0, *hi = k ? w->hi1 : w->hi0;
         put_box(lo + 4 * me, &n->box[k], 0);
         put_box(hi + 4 * me, &n->box[k], 1);
@@ -190,17 +183,13 @@ static void flatten_node(flat *f, const bnode *n)
     }
 }
 
-static int flatten(orc_world *w, const bnode *root, ms_error *err)
+static int flatten(orc_world *w, const orc_bnode *root, ms_error *err)
 {
-    bnode top;                  /* a leaf root goes under an inner node of its own */
+    orc_bnode top;              /* a leaf root goes under an inner node of its own */
     if (root->leaf) {
         memset(&top, 0, sizeof top);
-        top.kid[0] = (bnode *)root;
-        for (int k = 0; k < 3; k++) {
-            float lo = -INFINITY, hi = INFINITY;
-            (&top.box[0].lower_x)[k] = lo;
-            (&top.box[0].upper_x)[k] = hi;
-        }
+        top.kid[0] = (orc_bnode *)root;
+        for (int k = 0; k < 3; k++) top.box[0].lo[k] = -INFINITY, top.box[0].hi[k] = INFINITY;
         root = &top;
     }
     size_t nodes = 0, refs = 0;
@@ -222,22 +211,25 @@ static int flatten(orc_world *w, const bnode *root, ms_error *err)
     return 0;
 }
 
-int orc_bvh_build(orc_world *w, ms_error *err)
+#ifdef MS_HAVE_EMBREE
+/* Embree's builder over p[0..n), flattened into w. */
+static int embree_build(orc_world *w, const orc_bprim *p, size_t n, ms_error *err)
 {
-    size_t n;
-    w->nnodes = w->nleaf = 0;
     RTCDevice dev = rt_device(err);
     if (!dev) return -1;
-    struct RTCBuildPrimitive *prims = build_prims(w, &n, err);
-    if (!prims) return -1;
-    if (!n) {
-        free(prims);
-        return 0;
-    }
-    RTCBVH bvh = rtcNewBVH(dev);
+    struct RTCBuildPrimitive *prims = ms_alloc_array(n, sizeof *prims);
+    RTCBVH bvh = prims ? rtcNewBVH(dev) : NULL;
     if (!bvh) {
         free(prims);
-        return rt_device_check(dev, "BVH", err) ? -1 : (ms_error_set(err, "out of memory for the BVH"), -1);
+        if (!prims || !rt_device_check(dev, "BVH", err)) ms_error_set(err, "out of memory for the BVH");
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++) {
+        struct RTCBuildPrimitive *q = &prims[i];
+        q->lower_x = p[i].box.lo[0], q->lower_y = p[i].box.lo[1], q->lower_z = p[i].box.lo[2];
+        q->upper_x = p[i].box.hi[0], q->upper_y = p[i].box.hi[1], q->upper_z = p[i].box.hi[2];
+        q->geomID = 0;
+        q->primID = p[i].ref;
     }
     struct RTCBuildArguments a = rtcDefaultBuildArguments();
     a.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
@@ -255,17 +247,40 @@ int orc_bvh_build(orc_world *w, ms_error *err)
     a.setNodeChildren = set_children;
     a.setNodeBounds = set_bounds;
     a.createLeaf = create_leaf;
-    const bnode *root = rtcBuildBVH(&a);
+    const orc_bnode *root = rtcBuildBVH(&a);
     int rc = -1;
     if (rt_device_check(dev, "BVH build", err) == 0) {
         if (!root) ms_error_set(err, "BVH build failed");
     } else {
         root = NULL;            /* memory was refused: the tree may be incomplete */
     }
-    if (root) {
-        rc = flatten(w, root, err);
-    }
+    if (root) rc = flatten(w, root, err);
     rtcReleaseBVH(bvh);
     free(prims);
+    return rc;
+}
+#endif
+
+int orc_bvh_build(orc_world *w, ms_error *err)
+{
+    size_t n;
+    w->nnodes = w->nleaf = 0;
+    orc_bprim *p = build_prims(w, &n, err);
+    if (!p) return -1;
+    int rc = 0;
+    if (n) {
+#ifdef MS_HAVE_EMBREE
+        if (!ms_oclrt_own_bvh) {
+            rc = embree_build(w, p, n, err);
+            free(p);
+            return rc;
+        }
+#endif
+        void *arena = NULL;
+        orc_bnode *root = orc_sah_build(p, n, LEAF_MAX, DEPTH_MAX, &arena, err);
+        rc = root ? flatten(w, root, err) : -1;
+        orc_sah_free(arena);
+    }
+    free(p);
     return rc;
 }

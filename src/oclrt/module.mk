@@ -6,7 +6,7 @@ if HAVE_OPENCL
 if HAVE_EMBREE
 src_libmscore_la_SOURCES += \
 	src/oclrt/oclrt_impl.h src/oclrt/params.h src/oclrt/flatten.c src/oclrt/bvh.c \
-	src/oclrt/device.c src/oclrt/frame.c
+	src/oclrt/sah.c src/oclrt/device.c src/oclrt/frame.c
 endif
 endif
 

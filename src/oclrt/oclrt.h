@@ -43,5 +43,7 @@ const char *ms_oclrt_device_name(void);
  * (MS_OCLRT_FAIL_ALLOC) or the kernels did not build (MS_OCLRT_FAIL_BUILD). */
 enum { MS_OCLRT_FAIL_NONE, MS_OCLRT_FAIL_ALLOC, MS_OCLRT_FAIL_BUILD };
 extern int ms_oclrt_fail;
+/* For the tests: build the BVH with molscope's own SAH builder even when Embree's is there. */
+extern int ms_oclrt_own_bvh;
 
 #endif

@@ -49,10 +49,34 @@ typedef struct orc_world {
     size_t nlists;
 } orc_world;
 
+/* The tree the builders make (bvh.c: Embree's rtcBuildBVH; sah.c: our own binned SAH
+ * builder), which bvh.c flattens: binary, a leaf holding n references. */
+typedef struct orc_box {
+    float lo[3], hi[3];
+} orc_box;
+typedef struct orc_bnode {
+    int leaf;
+    uint32_t n, *refs;
+    struct orc_bnode *kid[2];
+    orc_box box[2];
+} orc_bnode;
+/* A primitive to build over: its box and its leaf reference. */
+typedef struct orc_bprim {
+    orc_box box;
+    uint32_t ref;
+} orc_bprim;
+/* Our binned SAH builder over p[0..n) (reordered), leaves of at most max_leaf references
+ * (more only below max_depth levels). The tree lives in *arena (orc_sah_free). NULL with
+ * err set when memory runs out. */
+orc_bnode *orc_sah_build(orc_bprim *p, size_t n, int max_leaf, int max_depth, void **arena,
+                         ms_error *err);
+void orc_sah_free(void *arena);
+
 /* Flatten s into w. 0, or MS_OCLRT_EINPUT (bad input) / -1 (no memory) with err set. */
 int orc_world_build(orc_world *w, const ms_scene *s, ms_error *err);
 void orc_world_free(orc_world *w);
-/* The BVH of w's primitives (Embree's builder). 0, or -1 with err set. */
+/* The BVH of w's primitives (Embree's builder, or ours when ms_oclrt_own_bvh is set or
+ * there is no Embree). 0, or -1 with err set. */
 int orc_bvh_build(orc_world *w, ms_error *err);
 
 /* ---------------------------------------------------------------- the engine (device.c) */

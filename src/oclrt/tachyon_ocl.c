@@ -12,6 +12,7 @@
 #include <string.h>
 
 int ms_oclrt_fail = MS_OCLRT_FAIL_NONE;
+int ms_oclrt_own_bvh;
 
 #if !(defined MS_HAVE_OPENCL && defined MS_HAVE_EMBREE)
 int ms_oclrt_available(void)
