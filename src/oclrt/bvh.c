@@ -6,6 +6,9 @@
  * is not positive, a non-finite coordinate) get no leaf. */
 #include "config.h"
 #include "oclrt/oclrt_impl.h"
+#ifdef MS_HAVE_EMBREE
+#include "rt/rt_internal.h"
+#endif
 
 #include <math.h>
 #include <stdlib.h>

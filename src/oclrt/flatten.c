@@ -111,7 +111,7 @@ static int alloc_arrays(orc_world *w, size_t nsrc, ms_error *err)
 
 typedef struct placer {
     orc_world *w;
-    rt_item ri;
+    rt_xform ri;
     float scale;                /* the transform's (uniform) scale */
     uint32_t item;
 } placer;
@@ -242,7 +242,7 @@ static void place_source(orc_world *w, const source *s)
     placer pl;
     memset(&pl, 0, sizeof pl);
     pl.w = w, pl.scale = 1.0f, pl.item = (uint32_t)w->nitems;
-    if (rt_item_matrices(&pl.ri, s->xform)) return;
+    if (rt_xform_make(&pl.ri, s->xform)) return;
     const float *x = pl.ri.xf;
     float det = x[0] * (x[5] * x[10] - x[6] * x[9]) - x[1] * (x[4] * x[10] - x[6] * x[8]) +
                 x[2] * (x[4] * x[9] - x[5] * x[8]);

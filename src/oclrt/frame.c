@@ -7,6 +7,9 @@
  * for a pass callback) and become the image as TachyonInternal's do. */
 #include "config.h"
 #include "oclrt/oclrt_impl.h"
+#ifdef MS_HAVE_EMBREE
+#include "rt/rt_internal.h"
+#endif
 
 #include <math.h>
 #include <stdio.h>
@@ -221,6 +224,24 @@ static int run_passes(ocl_frame *f, const pass_ctl *c, ms_image *img, ms_rt_stat
 
 /* ---------------------------------------------------------------- render */
 
+/* With Embree: TachyonInternal's memory plan (the image's buffers must fit; what is left
+ * bounds Embree's BVH build). Without it the host's own allocations report a shortage. */
+static int plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+{
+#ifdef MS_HAVE_EMBREE
+    return rt_plan_memory(s, o, err);
+#else
+    return 0;
+#endif
+}
+
+static void budget_off(void)
+{
+#ifdef MS_HAVE_EMBREE
+    rt_device_set_budget(0);
+#endif
+}
+
 static int trace(orc_engine *e, const ms_scene *s, const pass_ctl *c, const orc_world *w,
                  ms_image *img, ms_rt_stats *st, ms_error *err)
 {
@@ -253,10 +274,10 @@ int ms_oclrt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms
     if (!st) st = &local;
     memset(st, 0, sizeof *st);
     memset(img, 0, sizeof *img);
-    if (rt_check_options(s, o, err) || rt_plan_memory(s, o, err)) return MS_OCLRT_EINPUT;
+    if (rt_check_options(s, o, err) || plan_memory(s, o, err)) return MS_OCLRT_EINPUT;
     orc_engine *e = orc_engine_acquire(err);
     if (!e) {
-        rt_device_set_budget(0);
+        budget_off();
         return MS_OCLRT_EDEVICE;
     }
     orc_world w;
@@ -274,7 +295,7 @@ int ms_oclrt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms
         orc_world_free(&w);
     }
     orc_engine_release(e);
-    rt_device_set_budget(0);
+    budget_off();
     if (rc) ms_image_free(img);
     return rc ? (rc == MS_OCLRT_EDEVICE ? MS_OCLRT_EDEVICE : MS_OCLRT_EINPUT) : 0;
 }

@@ -1,4 +1,4 @@
-/* oclrt_impl.h: what the files of the OpenCL tracer share (built with OpenCL and Embree):
+/* oclrt_impl.h: what the files of the OpenCL tracer share (built with OpenCL):
  * the flat world (flatten.c: every primitive in world space, in the structure-of-arrays
  * layout the kernels read, params.h numbering the kinds), its BVH (bvh.c), and the engine
  * (device.c: device, context, queue, kernels). */
@@ -11,7 +11,7 @@
 
 #include "oclrt/oclrt.h"
 #include "oclrt/params.h"
-#include "rt/rt_internal.h"
+#include "rt/rt_common.h"
 
 typedef struct orc_world {
     /* quadrics (spheres, cylinders, cones, rings): two float4 and (geometry, RGBA8) each

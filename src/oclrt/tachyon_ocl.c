@@ -2,8 +2,8 @@
  * VMD's name for its GPU tracer, so that VMD scripts run): oclrt.h's tracer with the
  * device's `render aasamples` and `render aosamples` (VMD's defaults, 12 and 12) and
  * TachyonInternal's pass limit, time budget and progress lines, falling back to
- * TachyonInternal with a one-line message when OpenCL cannot render. Without OpenCL or
- * Embree at build time every render falls back. */
+ * TachyonInternal with a one-line message when OpenCL cannot render. Without OpenCL at
+ * build time every render falls back. */
 #include "config.h"
 #include "oclrt/oclrt.h"
 #include "render/render.h"
@@ -14,7 +14,7 @@
 int ms_oclrt_fail = MS_OCLRT_FAIL_NONE;
 int ms_oclrt_own_bvh;
 
-#if !(defined MS_HAVE_OPENCL && defined MS_HAVE_EMBREE)
+#ifndef MS_HAVE_OPENCL
 int ms_oclrt_available(void)
 {
     return 0;
@@ -25,7 +25,7 @@ int ms_oclrt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms
 {
     memset(img, 0, sizeof *img);
     if (st) memset(st, 0, sizeof *st);
-    ms_error_set(err, "molscope was built without %s", ms_rt_available() ? "OpenCL" : "Embree");
+    ms_error_set(err, "molscope was built without OpenCL");
     return MS_OCLRT_EDEVICE;
 }
 

@@ -9,7 +9,7 @@
  * src/oclrt/kernels.cl mirrors this file function by function for the OpenCL tracer: change
  * both together. */
 #include "config.h"
-#include "rt/rt_internal.h"
+#include "rt/rt_common.h"
 
 #include <math.h>
 

@@ -58,23 +58,6 @@ static void trace_tiles(void *ctx, size_t b, size_t e, int thread)
 
 /* ---------------------------------------------------------------- checks and memory */
 
-int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)
-{
-    if (o->aasamples < 0 || o->aasamples > MS_RT_MAX_AASAMPLES) {
-        ms_error_set(err, "aasamples %d: expected 0 to %d", o->aasamples, MS_RT_MAX_AASAMPLES);
-        return -1;
-    }
-    if (o->aosamples < 0 || o->aosamples > MS_RT_MAX_AOSAMPLES) {
-        ms_error_set(err, "aosamples %d: expected 0 to %d", o->aosamples, MS_RT_MAX_AOSAMPLES);
-        return -1;
-    }
-    if (s->width < 1 || s->height < 1 || s->width > MS_IMAGE_MAX_SIDE || s->height > MS_IMAGE_MAX_SIDE) {
-        ms_error_set(err, "image size %dx%d: expected 1 to %d pixels a side", s->width, s->height,
-                     MS_IMAGE_MAX_SIDE);
-        return -1;
-    }
-    return 0;
-}
 
 /* Room for the frame's buffers, then for Embree (90% of what is available): an error when
  * the buffers alone do not fit. */
