@@ -1,9 +1,10 @@
 /* oclrt.h: TachyonLOpenCLInternal, the OpenCL ray tracer (doc/ocl.md). It renders what
  * TachyonInternal renders (rt/rt.h), with the same shading, samples and options, on any
  * OpenCL device: a GPU, or the CPU through PoCL. The host builds a binary BVH over the
- * scene's primitives (Embree's rtcBuildBVH) and uploads it with the primitives as
- * structure-of-arrays buffers; each sample pass is one kernel launch, with the sums and the
- * pixels' random states kept on the device between launches.
+ * scene's primitives (Embree's rtcBuildBVH, or its own SAH builder without Embree) and
+ * uploads it with the primitives as structure-of-arrays buffers; each sample pass is one
+ * kernel launch, with the sums and the pixels' random states kept on the device between
+ * launches.
  *
  * The device is the first GPU (else any device), or the one MOLSCOPE_OPENCL_DEVICE names by
  * index or by part of its name; MOLSCOPE_NOOPENCL set to anything but 0 turns OpenCL off.
@@ -25,7 +26,7 @@ typedef int (*ms_oclrt_pass_fn)(void *user, int passes, const ms_image *img);
  * bad input: TachyonInternal would refuse it too) or of OpenCL (fall back). */
 enum { MS_OCLRT_EINPUT = -1, MS_OCLRT_EDEVICE = -2 };
 
-/* Whether this build has the OpenCL tracer (OpenCL and Embree found at configure time). */
+/* Whether this build has the OpenCL tracer (OpenCL found at configure time). */
 int ms_oclrt_available(void);
 /* Render s into img (allocated here) on the OpenCL device; cb (may be NULL) sees every pass.
  * 0, MS_OCLRT_EINPUT or MS_OCLRT_EDEVICE with err set and img empty. No fallback. */
