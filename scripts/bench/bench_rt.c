@@ -11,7 +11,8 @@
  * Switches for experiments (environment): BENCH_RT_NOEXPORT (no .dat), BENCH_RT_NOSHELL,
  * BENCH_RT_OPAQUESHELL, BENCH_RT_STACKS=n (a shell of 4 n^2 triangles; default 500),
  * BENCH_RT_NOAO, BENCH_RT_TRACERS="rt ocl" (which tracers render each sample count, in that
- * order: rt TachyonInternal, ocl TachyonLOpenCLInternal; default "rt"). */
+ * order: rt TachyonInternal, ocl TachyonLOpenCLInternal; default "rt"), BENCH_RT_OWNBVH (the
+ * OpenCL tracer's BVH from its own SAH builder instead of rtcBuildBVH). */
 #include "config.h"
 #include "base/threads.h"
 #include "render/render.h"
@@ -207,6 +208,7 @@ int main(int argc, char **argv)
     }
     fflush(stdout);
     const char *tracers = getenv("BENCH_RT_TRACERS") ? getenv("BENCH_RT_TRACERS") : "rt";
+    ms_oclrt_own_bvh = getenv("BENCH_RT_OWNBVH") != NULL;
     for (int i = 5; i < argc; i++) {
         int spp = atoi(argv[i]) < 1 ? 1 : atoi(argv[i]);
         for (const char *p = tracers; *p; p++) {
