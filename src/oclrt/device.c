@@ -258,8 +258,7 @@ static void injected_build_failure(ms_error *err)
 
 orc_engine *orc_engine_acquire(ms_error *err)
 {
-    const char *off = getenv("MOLSCOPE_NOOPENCL");
-    if (off && *off && strcmp(off, "0")) {
+    if (ms_env_flag("MOLSCOPE_NOOPENCL")) {
         ms_error_set(err, "OpenCL is off (MOLSCOPE_NOOPENCL)");
         return NULL;
     }
