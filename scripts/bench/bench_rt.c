@@ -10,10 +10,13 @@
  * usage: bench_rt data-folder copies size out-folder spp...   (bench_rt.sh runs it)
  * Switches for experiments (environment): BENCH_RT_NOEXPORT (no .dat), BENCH_RT_NOSHELL,
  * BENCH_RT_OPAQUESHELL, BENCH_RT_STACKS=n (a shell of 4 n^2 triangles; default 500),
- * BENCH_RT_NOAO. */
+ * BENCH_RT_NOAO, BENCH_RT_TRACERS="rt ocl" (which tracers render each sample count, in that
+ * order: rt TachyonInternal, ocl TachyonLOpenCLInternal; default "rt"), BENCH_RT_OWNBVH (the
+ * OpenCL tracer's BVH from its own SAH builder instead of rtcBuildBVH). */
 #include "config.h"
 #include "base/threads.h"
 #include "render/render.h"
+#include "oclrt/oclrt.h"
 #include "rt/rt.h"
 #include "scene/displaylist.h"
 #include "scene/mat4.h"
@@ -130,7 +133,7 @@ static double cpu_seconds(void)
     return ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
 
-static void run(const ms_scene *sc, int spp, const char *out, ms_error *err)
+static void run(const ms_scene *sc, int spp, int ocl, const char *out, ms_error *err)
 {
     ms_rt_options o;
     ms_rt_options_default(&o);
@@ -138,19 +141,23 @@ static void run(const ms_scene *sc, int spp, const char *out, ms_error *err)
     o.aosamples = 12;
     ms_rt_stats st;
     char path[1024];
-    snprintf(path, sizeof path, "%s/rt_%d.png", out, spp);
+    const char *tag = ocl ? "ocl" : "rt";
+    snprintf(path, sizeof path, "%s/%s_%d.png", out, tag, spp);
     double cpu = cpu_seconds();
-    if (ms_rt_write(sc, &o, path, &st, err)) {
-        printf("TachyonInternal %d spp: %s\n", spp, err->msg);
+    int fell_back = 0;
+    if (ocl ? ms_oclrt_write(sc, &o, path, &st, &fell_back, err) || fell_back : ms_rt_write(sc, &o, path, &st, err)) {
+        printf("%s %d spp: %s\n", ocl ? "TachyonLOpenCLInternal" : "TachyonInternal", spp,
+               fell_back ? "fell back to TachyonInternal" : err->msg);
         return;
     }
     uint64_t rays = ms_rt_stats_rays(&st);
-    printf("rt spp=%d build=%.3f trace=%.3f total=%.3f rays=%llu primary=%llu shadow=%llu "
-           "ao=%llu secondary=%llu mrays=%.2f cpu=%.3f build_cpu=%.3f trace_cpu=%.3f\n", spp, st.build_s, st.trace_s, st.build_s + st.trace_s,
+    printf("%s spp=%d build=%.3f trace=%.3f total=%.3f rays=%llu primary=%llu shadow=%llu "
+           "ao=%llu secondary=%llu mrays=%.2f cpu=%.3f build_cpu=%.3f trace_cpu=%.3f\n", tag, spp, st.build_s, st.trace_s, st.build_s + st.trace_s,
            (unsigned long long)rays, (unsigned long long)st.rays[MS_RT_PRIMARY],
            (unsigned long long)st.rays[MS_RT_SHADOW], (unsigned long long)st.rays[MS_RT_AO],
            (unsigned long long)st.rays[MS_RT_SECONDARY], rays / st.trace_s / 1e6,
            cpu_seconds() - cpu, st.build_cpu_s, st.trace_cpu_s);
+    if (ocl) printf("ocl device: %s\n", ms_oclrt_device_name());
     fflush(stdout);
 }
 
@@ -200,7 +207,15 @@ int main(int argc, char **argv)
         printf("exported %s in %.2f s\n", path, ms_now() - t);
     }
     fflush(stdout);
-    for (int i = 5; i < argc; i++) run(&sc, atoi(argv[i]) < 1 ? 1 : atoi(argv[i]), argv[4], &err);
+    const char *tracers = getenv("BENCH_RT_TRACERS") ? getenv("BENCH_RT_TRACERS") : "rt";
+    ms_oclrt_own_bvh = getenv("BENCH_RT_OWNBVH") != NULL;
+    for (int i = 5; i < argc; i++) {
+        int spp = atoi(argv[i]) < 1 ? 1 : atoi(argv[i]);
+        for (const char *p = tracers; *p; p++) {
+            if (!strncmp(p, "rt", 2)) run(&sc, spp, 0, argv[4], &err);
+            if (!strncmp(p, "ocl", 3)) run(&sc, spp, 1, argv[4], &err);
+        }
+    }
     ms_scene_free(&sc);
     ms_dl_free(&vdw);
     ms_dl_free(&lic);

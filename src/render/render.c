@@ -41,11 +41,14 @@ const ms_render_device *ms_render_find(const char *name)
 
 extern const ms_render_device ms_render_tachyon, ms_render_pov3, ms_render_wavefront;
 extern const ms_render_device ms_render_tachyon_internal;     /* rt/tachyon_internal.c */
+extern const ms_render_device ms_render_tachyon_ocl, ms_render_tachyon_optix; /* oclrt/ */
 
 void ms_render_register_builtin(void)
 {
     ms_render_register(&ms_render_tachyon);
     ms_render_register(&ms_render_tachyon_internal);
+    ms_render_register(&ms_render_tachyon_ocl);
+    ms_render_register(&ms_render_tachyon_optix);
     ms_render_register(&ms_render_pov3);
     ms_render_register(&ms_render_wavefront);
 }

@@ -5,9 +5,11 @@
  * dof_focaldist and dof_fnumber, perspective only) jitters the origin over a lens and aims
  * at the point focal-distance along the pinhole ray, as Tachyon does; the lens radius is
  * Tachyon's for the aperture the exporter writes (focal distance / (2 f-number), sampled over
- * a disc of half that radius). */
+ * a disc of half that radius).
+ * src/oclrt/kernels.cl mirrors this file function by function for the OpenCL tracer: change
+ * both together. */
 #include "config.h"
-#include "rt/rt_internal.h"
+#include "rt/rt_common.h"
 
 #include <math.h>
 

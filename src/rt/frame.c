@@ -58,27 +58,10 @@ static void trace_tiles(void *ctx, size_t b, size_t e, int thread)
 
 /* ---------------------------------------------------------------- checks and memory */
 
-static int check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)
-{
-    if (o->aasamples < 0 || o->aasamples > MS_RT_MAX_AASAMPLES) {
-        ms_error_set(err, "aasamples %d: expected 0 to %d", o->aasamples, MS_RT_MAX_AASAMPLES);
-        return -1;
-    }
-    if (o->aosamples < 0 || o->aosamples > MS_RT_MAX_AOSAMPLES) {
-        ms_error_set(err, "aosamples %d: expected 0 to %d", o->aosamples, MS_RT_MAX_AOSAMPLES);
-        return -1;
-    }
-    if (s->width < 1 || s->height < 1 || s->width > MS_IMAGE_MAX_SIDE || s->height > MS_IMAGE_MAX_SIDE) {
-        ms_error_set(err, "image size %dx%d: expected 1 to %d pixels a side", s->width, s->height,
-                     MS_IMAGE_MAX_SIDE);
-        return -1;
-    }
-    return 0;
-}
 
 /* Room for the frame's buffers, then for Embree (90% of what is available): an error when
  * the buffers alone do not fit. */
-static int plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
 {
     size_t npix = (size_t)s->width * (size_t)s->height;
     size_t need = npix * (3 * sizeof(float) + sizeof(uint32_t) + 3);
@@ -148,10 +131,12 @@ static void to_image(const frame *f, int passes, ms_image *img)
 }
 
 /* The frame's buffers (sh is kept by pointer); 0, or -1 with err set and nothing held. */
-static int frame_init(frame *f, const ms_scene *s, const rt_shader *sh, ms_error *err)
+static int frame_init(frame *f, const ms_scene *s, const rt_shader *sh, const ms_rt_options *o,
+                      ms_error *err)
 {
     size_t npix = (size_t)s->width * (size_t)s->height;
-    *f = (frame){sh, s->width, s->height, (s->width + TILE - 1) / TILE, 0, MS_RT_MAX_DEPTH, NULL, NULL, NULL};
+    int depth = o->max_depth > 0 && o->max_depth < MS_RT_MAX_DEPTH ? o->max_depth : MS_RT_MAX_DEPTH;
+    *f = (frame){sh, s->width, s->height, (s->width + TILE - 1) / TILE, 0, depth, NULL, NULL, NULL};
     f->accum = ms_calloc_array(3 * npix, sizeof(float));
     f->rng = ms_alloc_array(npix, sizeof(uint32_t));
     f->rays = ms_calloc_array((size_t)ms_threads_count(), sizeof *f->rays);
@@ -179,7 +164,7 @@ static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options
     frame f;
     rt_shader sh;
     rt_shader_init(&sh, s, w, o->aosamples);
-    if (frame_init(&f, s, &sh, err)) return -1;
+    if (frame_init(&f, s, &sh, o, err)) return -1;
     int rc = ms_image_alloc(img, s->width, s->height, err);
     if (rc == 0) {
         run_passes(&f, o, st);
@@ -196,7 +181,7 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     if (!st) st = &local;
     memset(st, 0, sizeof *st);
     memset(img, 0, sizeof *img);
-    if (check_options(s, o, err) || plan_memory(s, o, err)) return -1;
+    if (rt_check_options(s, o, err) || rt_plan_memory(s, o, err)) return -1;
     rt_world w;
     double t0 = ms_now(), c0 = cpu_now();
     int rc = rt_world_build(&w, s, err);
@@ -242,7 +227,7 @@ struct ms_rt_session {
 
 ms_rt_session *ms_rt_session_begin(const ms_scene *s, const ms_rt_options *o, ms_error *err)
 {
-    if (check_options(s, o, err) || plan_memory(s, o, err)) return NULL;
+    if (rt_check_options(s, o, err) || rt_plan_memory(s, o, err)) return NULL;
     ms_rt_session *ss = calloc(1, sizeof *ss);
     if (!ss) {
         ms_error_set(err, "out of memory");
@@ -258,7 +243,7 @@ ms_rt_session *ms_rt_session_begin(const ms_scene *s, const ms_rt_options *o, ms
         return NULL;
     }
     rt_shader_init(&ss->sh, s, &ss->world, o->aosamples);
-    if (frame_init(&ss->f, s, &ss->sh, err)) {
+    if (frame_init(&ss->f, s, &ss->sh, o, err)) {
         rt_world_free(&ss->world);
         free(ss);
         return NULL;

@@ -35,15 +35,19 @@ static int env_number(const char *name, double max, double *out, ms_error *err)
 
 int ms_rt_options_from_env(ms_rt_options *o, ms_error *err)
 {
-    double passes, seconds;
+    double passes, seconds, depth;
     if (env_number("MOLSCOPE_RT_PASSES", MS_RT_MAX_AASAMPLES + 1, &passes, err) ||
-        env_number("MOLSCOPE_RT_TIME", 1e7, &seconds, err))
+        env_number("MOLSCOPE_RT_TIME", 1e7, &seconds, err) ||
+        env_number("MOLSCOPE_RT_DEPTH", MS_RT_MAX_DEPTH, &depth, err))
         return -1;
-    if (passes > 0 && passes != (double)(int)passes) {
-        ms_error_set(err, "MOLSCOPE_RT_PASSES='%s': expected a whole number", getenv("MOLSCOPE_RT_PASSES"));
+    const char *whole = passes != (double)(int)passes ? "MOLSCOPE_RT_PASSES" :
+                        depth != (double)(int)depth ? "MOLSCOPE_RT_DEPTH" : NULL;
+    if (whole) {
+        ms_error_set(err, "%s='%s': expected a whole number", whole, getenv(whole));
         return -1;
     }
     o->max_passes = (int)passes;
+    o->max_depth = (int)depth;
     o->time_budget = seconds;
     o->progress = isatty(2);
     return 0;

@@ -31,6 +31,7 @@ typedef struct ms_rt_options {
     int aasamples;        /* samples after the first: aasamples + 1 passes */
     int aosamples;        /* occlusion rays per shaded point when the scene has AO on */
     int max_passes;       /* 0: no limit beyond aasamples + 1 */
+    int max_depth;        /* reflection and transmission levels (0: MS_RT_MAX_DEPTH) */
     double time_budget;   /* seconds (0: none); checked after each pass, one pass always runs */
     int progress;         /* a line per pass on stderr */
     size_t memory;        /* bytes the render may use; 0: what the system has available */
@@ -49,9 +50,9 @@ typedef struct ms_rt_stats {
 
 /* 12 antialiasing and 12 occlusion samples (VMD's defaults), no limits, no progress. */
 void ms_rt_options_default(ms_rt_options *o);
-/* The pass limit and time budget from MOLSCOPE_RT_PASSES and MOLSCOPE_RT_TIME (unset or
- * empty: none), and progress lines when stderr is a terminal. 0, or -1 with err set when a
- * value is not a positive number. */
+/* The pass limit, time budget and ray depth from MOLSCOPE_RT_PASSES, MOLSCOPE_RT_TIME and
+ * MOLSCOPE_RT_DEPTH (unset or empty: none, none, MS_RT_MAX_DEPTH), and progress lines when
+ * stderr is a terminal. 0, or -1 with err set when a value is not a positive number. */
 int ms_rt_options_from_env(ms_rt_options *o, ms_error *err);
 /* Whether this build can trace (Embree was found at configure time). */
 int ms_rt_available(void);

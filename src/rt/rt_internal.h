@@ -11,11 +11,9 @@
 #include <stdint.h>
 
 #include "rt/rt.h"
+#include "rt/rt_common.h"
 #include "scene/displaylist.h"
 #include "scene/scene.h"
-
-/* Tachyon's smallest contribution worth computing (1/512). */
-#define RT_MINCONTRIB 0.001953125f
 
 /* ---------------------------------------------------------------- device (device.c) */
 
@@ -40,15 +38,6 @@ void rt_fpu_restore(unsigned state);
 /* Instance masks: the opaque and the transparent geometry of each transform. */
 #define RT_MASK_OPAQUE 1u
 #define RT_MASK_TRANS 2u
-
-/* The Tachyon texture terms of a display list, as render/tachyon.c writes them. */
-typedef struct rt_material {
-    float ambient, diffuse, mirror;   /* mirror: Tachyon's "Specular" (reflection) */
-    float phong, phongexp;            /* Blinn-Phong highlight: VMD's specular, shininess */
-    float opacity;                    /* multiplied by each primitive's alpha */
-    float outline, outlinewidth;
-    int r3d;                          /* angle-modulated (Raster3D) transparency */
-} rt_material;
 
 typedef enum rt_kind { RT_SPHERE, RT_CYLINDER, RT_CONE, RT_RING, RT_MESH, RT_NKINDS } rt_kind;
 
@@ -101,10 +90,9 @@ typedef struct rt_world {
 
 /* Build the world of a scene (Embree scenes committed). 0, or -1 with err set and w freed. */
 int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err);
+/* The matrices of an item from a 4x4 row-major transform; -1 when singular. */
+int rt_item_matrices(rt_item *ri, const float x[16]);
 void rt_world_free(rt_world *w);
-/* The lines, points and text of a placed list as world-space cylinders and spheres appended
- * to out (strokes.c). 0, or -1 when memory runs out. */
-int rt_strokes(const ms_scene_item *it, ms_displaylist *out);
 /* Memory the world owns: the helper of the primitive files. NULL with err set. */
 void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err);
 
@@ -204,41 +192,7 @@ static inline void rt_user_occluded(const struct RTCOccludedFunctionNArguments *
     }
 }
 
-/* ---------------------------------------------------------------- camera (camera.c) */
-
-typedef struct rt_camera {
-    int ortho, width, height;
-    float eye[3], dir[3], up[3], right[3];
-    float half_w, half_h;       /* perspective: at unit distance; orthographic: world units */
-    int dof;
-    float focal, lens_radius;
-} rt_camera;
-
-void rt_camera_init(rt_camera *c, const ms_scene *s);
-/* The ray through image point (px, py) (pixels from the top left corner); lens: a point of
- * the unit disc for depth of field, or NULL for the pinhole ray. dir is unit length. */
-void rt_camera_ray(const rt_camera *c, float px, float py, const float lens[2], float org[3],
-                   float dir[3]);
-
-/* ---------------------------------------------------------------- shading (shade.c) */
-
-typedef enum rt_bg_mode { RT_BG_SOLID, RT_BG_SKY_SPHERE, RT_BG_SKY_PLANE } rt_bg_mode;
-
-typedef struct rt_shader {
-    const rt_world *w;
-    rt_camera cam;
-    int nlights;
-    float ldir[MS_SCENE_LIGHTS][3], lcol[MS_SCENE_LIGHTS][3];
-    float light_scale;          /* AO's aodirect, else 1 */
-    int full;                   /* Tachyon's Full shader: shadows (and AO) */
-    int ao_samples;
-    float ao_col[3];
-    rt_bg_mode bg_mode;
-    float bg[3], bg_top[3], bg_bot[3], grad_top, grad_bot;
-    int fog;
-    ms_cuemode cuemode;
-    float fog_start, fog_end, fog_density;
-} rt_shader;
+/* ---------------------------------------------------------------- tracing (shade.c) */
 
 /* Per rendering thread. */
 typedef struct rt_thread {
@@ -247,11 +201,17 @@ typedef struct rt_thread {
     uint64_t rays[MS_RT_NRAYKINDS];
 } rt_thread;
 
-void rt_shader_init(rt_shader *sh, const ms_scene *s, const rt_world *w, int aosamples);
 /* The colour seen along a ray (dir unit length), with depth levels of reflection and
  * transmission left; primary: a camera ray (its fog coordinate is the planar depth). */
 void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
               int depth, int primary, float out[3]);
+
+/* ---------------------------------------------------------------- frames (frame.c) */
+
+/* The frame's buffers against the memory allowed (o->memory, else what is available): an
+ * error when they do not fit, else what is left becomes Embree's budget (lifted by
+ * rt_device_set_budget(0) after the render). */
+int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err);
 
 /* ---------------------------------------------------------------- sampling (sample.c) */
 
@@ -290,25 +250,5 @@ typedef struct rt_hemisphere {
 void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t *rng);
 /* Direction i (0 <= i < count) in d; returns its cosine with the normal. */
 float rt_hemisphere_dir(const rt_hemisphere *h, int i, float d[3]);
-
-/* ---------------------------------------------------------------- small vectors */
-
-static inline float rt_dot(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static inline void rt_cross(const float a[3], const float b[3], float out[3])
-{
-    float x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2],
-          z = a[0] * b[1] - a[1] * b[0];
-    out[0] = x;
-    out[1] = y;
-    out[2] = z;
-}
-/* Normalise in place; a zero vector stays zero. Returns the old length. */
-float rt_normalize(float v[3]);
-/* out = m (3x4 row-major) applied to point p, or (3x3) to vector v. */
-void rt_xf_point(const float m[12], const float p[3], float out[3]);
-void rt_m3_vec(const float m[9], const float v[3], float out[3]);
 
 #endif

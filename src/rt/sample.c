@@ -4,7 +4,9 @@
  * of the hemisphere, uniform as Tachyon's (its uniform sphere directions flipped onto the
  * normal's side), but stratified: cos theta in n equal slices, azimuth spread by the golden
  * ratio, the whole set rotated at random per shaded point. Random numbers come from the
- * pixel's own state (rt_rand), kept from pass to pass. */
+ * pixel's own state (rt_rand), kept from pass to pass.
+ * src/oclrt/kernels.cl mirrors this file function by function for the OpenCL tracer: change
+ * both together. */
 #include "config.h"
 #include "rt/rt_internal.h"
 

@@ -7,54 +7,16 @@
  * Trans_VMD does; then planar fog (Fog_VMD: the depth along the view for camera rays, the
  * ray length for others). Shadow and occlusion rays pass transparent surfaces, each one
  * letting (1 - opacity) of the light through. Rays that leave the scene see the background
- * or its gradient. */
+ * or its gradient.
+ * src/oclrt/kernels.cl mirrors this file function by function for the OpenCL tracer: change
+ * both together. */
 #include "config.h"
 #include "rt/rt_internal.h"
 
 #include <math.h>
 #include <string.h>
 
-/* The Tachyon gradient the exporter writes: top and bottom values of the sky sphere (ray
- * direction) or the orthographic sky plane (ray origin) along +y. */
-static void background_init(rt_shader *sh, const ms_scene *s)
-{
-    memcpy(sh->bg, s->background, sizeof sh->bg);
-    memcpy(sh->bg_top, s->bg_top, sizeof sh->bg_top);
-    memcpy(sh->bg_bot, s->bg_bottom, sizeof sh->bg_bot);
-    sh->bg_mode = RT_BG_SOLID;
-    if (!s->bg_gradient) return;
-    int ortho = s->cam.projection == MS_PROJ_ORTHOGRAPHIC;
-    float mag = ortho ? s->cam.height / 4.0f
-                      : fminf(1.0f, (s->cam.height / 2.0f) / (s->cam.eye[2] - s->cam.distance));
-    sh->bg_mode = ortho ? RT_BG_SKY_PLANE : RT_BG_SKY_SPHERE;
-    sh->grad_top = mag;
-    sh->grad_bot = -mag;
-}
 
-void rt_shader_init(rt_shader *sh, const ms_scene *s, const rt_world *w, int aosamples)
-{
-    memset(sh, 0, sizeof *sh);
-    sh->w = w;
-    rt_camera_init(&sh->cam, s);
-    for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
-        const ms_light *l = &s->lights[i];
-        float d[3] = {l->pos[0], l->pos[1], l->pos[2]};
-        if (!l->on || rt_normalize(d) == 0.0f) continue;
-        memcpy(sh->ldir[sh->nlights], d, sizeof d);
-        memcpy(sh->lcol[sh->nlights], l->color, sizeof d);
-        sh->nlights++;
-    }
-    sh->full = s->shadows || s->ao;
-    sh->light_scale = s->ao ? s->ao_direct : 1.0f;
-    sh->ao_samples = s->ao ? aosamples : 0;
-    for (int k = 0; k < 3; k++) sh->ao_col[k] = s->ao_ambient;
-    background_init(sh, s);
-    sh->fog = s->depthcue;
-    sh->cuemode = s->cuemode;
-    sh->fog_start = s->cuemode == MS_CUE_LINEAR ? s->cue_start : 0.0f;
-    sh->fog_end = s->cue_end;
-    sh->fog_density = s->cue_density;
-}
 
 static void background(const rt_shader *sh, const float org[3], const float dir[3], float out[3])
 {

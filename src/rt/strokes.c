@@ -3,7 +3,7 @@
  * VMD's dashes), a point a small sphere, text the strokes of molscope's font as cylinders
  * with spheres at their joints, all in world space (text faces the screen). */
 #include "config.h"
-#include "rt/rt_internal.h"
+#include "rt/rt_common.h"
 #include "render/export.h"
 #include "scene/mat4.h"
 

@@ -4,12 +4,10 @@
  * take them in turn. Each list gives one geometry per primitive kind (spheres, cylinders,
  * cones, cap discs, the mesh) in its own coordinates; its lines, points and text become
  * world-space cylinders and spheres (strokes.c); materials become Tachyon's texture terms as
- * the Tachyon exporter writes them, so the two devices agree. */
+ * the Tachyon exporter writes them (common.c), so the two devices agree. */
 #include "config.h"
 #include "rt/rt_internal.h"
-#include "scene/mat4.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,29 +16,8 @@ const rt_prim *const rt_prims[RT_NKINDS] = {&rt_sphere_prim, &rt_cylinder_prim, 
 
 /* ---------------------------------------------------------------- helpers */
 
-float rt_normalize(float v[3])
-{
-    float l = sqrtf(rt_dot(v, v));
-    if (l > 0) {
-        float inv = 1.0f / l;
-        v[0] *= inv;
-        v[1] *= inv;
-        v[2] *= inv;
-    }
-    return l;
-}
 
-void rt_xf_point(const float m[12], const float p[3], float out[3])
-{
-    float x = p[0], y = p[1], z = p[2];
-    for (int r = 0; r < 3; r++) out[r] = m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3];
-}
 
-void rt_m3_vec(const float m[9], const float v[3], float out[3])
-{
-    float x = v[0], y = v[1], z = v[2];
-    for (int r = 0; r < 3; r++) out[r] = m[3 * r] * x + m[3 * r + 1] * y + m[3 * r + 2] * z;
-}
 
 void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err)
 {
@@ -67,47 +44,15 @@ static ms_displaylist *new_list(rt_world *w, ms_error *err)
     return dl;
 }
 
-/* Tachyon's texture terms for a list, as render/tachyon.c writes them (unlit lists: ambient
- * 1, no diffuse, no mirror; the highlight stays, as in VMD's files). */
-static void material_terms(const ms_material *m, int lit, rt_material *t)
-{
-    t->ambient = lit ? m->ambient : 1.0f;
-    t->diffuse = lit ? m->diffuse : 0.0f;
-    t->mirror = lit ? m->mirror : 0.0f;
-    t->phong = m->specular;
-    t->phongexp = m->shininess;
-    t->opacity = m->opacity;
-    t->outline = m->outline;
-    t->outlinewidth = m->outlinewidth;
-    t->r3d = m->transmode != 0;
-}
 
-/* xf, its inverse and its normal matrix; -1 when xf is singular (nothing to see). */
-static int item_matrices(rt_item *ri, const float x[16])
+
+int rt_item_matrices(rt_item *ri, const float x[16])
 {
-    double a[3][3], inv[3][3];
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++) a[r][c] = x[4 * r + c];
-    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-    if (!(fabs(det) > 1e-30) || !isfinite(det)) return -1;
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++) {
-            int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-            inv[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
-        }
-    for (int r = 0; r < 3; r++) {
-        double t = 0;
-        for (int c = 0; c < 3; c++) {
-            ri->xf[4 * r + c] = (float)a[r][c];
-            ri->inv[4 * r + c] = (float)inv[r][c];
-            ri->nm[3 * r + c] = (float)inv[c][r];
-            t -= inv[r][c] * x[4 * c + 3];
-        }
-        ri->xf[4 * r + 3] = x[4 * r + 3];
-        ri->inv[4 * r + 3] = (float)t;
-    }
+    rt_xform t;
+    if (rt_xform_make(&t, x)) return -1;
+    memcpy(ri->xf, t.xf, sizeof t.xf);
+    memcpy(ri->inv, t.inv, sizeof t.inv);
+    memcpy(ri->nm, t.nm, sizeof t.nm);
     return 0;
 }
 
@@ -199,21 +144,6 @@ static int no_scene(rt_world *w, ms_error *err)
 
 /* ---------------------------------------------------------------- the world */
 
-/* The secondary-ray offset: two millionths of the scene's size (its largest coordinate), at
- * least 1e-5: well above float rounding at a hit, far below any feature. */
-static float world_eps(const ms_scene *s)
-{
-    float big = fabsf(s->cam.eye[0]) + fabsf(s->cam.eye[1]) + fabsf(s->cam.eye[2]);
-    for (size_t i = 0; i < s->nitems; i++) {
-        float lo[3], hi[3], a[3], b[3];
-        if (!ms_dl_bounds(s->items[i].dl, lo, hi)) continue;
-        ms_mat4_point(s->items[i].xform, lo, a);
-        ms_mat4_point(s->items[i].xform, hi, b);
-        for (int k = 0; k < 3; k++)
-            if (isfinite(a[k]) && isfinite(b[k])) big = fmaxf(big, fmaxf(fabsf(a[k]), fabsf(b[k])));
-    }
-    return fmaxf(1e-5f, big * 2e-6f);
-}
 
 /* A display list to trace: its transform and texture terms. */
 typedef struct source {
@@ -234,7 +164,7 @@ static source *sources_of(rt_world *w, const ms_scene *s, size_t *n, ms_error *e
         const ms_scene_item *it = &s->items[i];
         source *o = &src[(*n)++];
         o->dl = it->dl, o->xform = it->xform;
-        material_terms(&it->mat, it->dl->lit, &o->mat);
+        rt_material_terms(&it->mat, it->dl->lit, &o->mat);
         if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
         ms_displaylist *extra = new_list(w, err);
         if (!extra) return NULL;
@@ -244,7 +174,7 @@ static source *sources_of(rt_world *w, const ms_scene *s, size_t *n, ms_error *e
         }
         o = &src[(*n)++];
         o->dl = extra, o->xform = identity;
-        material_terms(&it->mat, 0, &o->mat);
+        rt_material_terms(&it->mat, 0, &o->mat);
     }
     return src;
 }
@@ -332,7 +262,7 @@ static int add_instance(rt_world *w, const source *src, size_t n, size_t first, 
 {
     rt_item *ri = &w->items[w->nitems];
     memset(ri, 0, sizeof *ri);
-    if (item_matrices(ri, src[first].xform)) return 0;      /* singular: nothing to see */
+    if (rt_item_matrices(ri, src[first].xform)) return 0;      /* singular: nothing to see */
     ri->geoms = w->geoms + w->ngeoms;
     RTCScene sub = rtcNewScene(w->dev);
     if (!sub) return no_scene(w, err);
@@ -374,7 +304,7 @@ int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
     memset(w, 0, sizeof *w);
     w->dev = rt_device(err);
     if (!w->dev) return -1;
-    w->eps = world_eps(s);
+    w->eps = rt_world_eps(s);
     size_t nsrc, ngroups;
     source *src = sources_of(w, s, &nsrc, err);
     if (!src) goto fail;

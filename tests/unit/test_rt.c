@@ -5,7 +5,11 @@
  * degree crevice (half the sky) and on an open plane (all of it), a shadow where the light
  * direction puts it and a shadow of glass, fog at the cue distances, mirror reflection, cylinder caps, cone
  * silhouettes, interpolated mesh colours, and the errors (absurd samples and sizes, a scene
- * too large for the memory allowed, an unwritable file). Skipped without Embree. */
+ * too large for the memory allowed, an unwritable file). Skipped without Embree.
+ *
+ * Compiled a second time with MS_TEST_OCLRT as test_oclrt: the same scenes and the same
+ * expected values through the OpenCL tracer (oclrt/oclrt.h), with no fallback to
+ * TachyonInternal, so that each check is of the OpenCL kernels; skipped without OpenCL. */
 #include "config.h"
 #include "ms_test.h"
 #include "image/image.h"
@@ -21,6 +25,28 @@
 #include <unistd.h>
 
 static ms_materials *mats;
+
+#ifdef MS_TEST_OCLRT
+#include <dirent.h>
+
+#include "oclrt/oclrt.h"
+#define TRACER "TachyonLOpenCLInternal"
+static int ocl_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt_stats *st,
+                      ms_error *err)
+{
+    return ms_oclrt_render(s, o, img, st, NULL, NULL, err) ? -1 : 0;
+}
+static int ocl_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
+                     ms_error *err)
+{
+    int fell_back = 0, rc = ms_oclrt_write(s, o, path, st, &fell_back, err);
+    return fell_back ? -1 : rc;
+}
+#define ms_rt_render ocl_render
+#define ms_rt_write ocl_write
+#else
+#define TRACER "TachyonInternal"
+#endif
 
 /* VMD's camera, no lights, black background, w x h. */
 static void scene_new(ms_scene *s, int w, int h, int ortho)
@@ -213,6 +239,41 @@ static void test_transparency(void)
         ms_image_free(&img);
         ms_scene_free(&s);
     }
+    ms_dl_free(&front);
+    ms_dl_free(&back);
+}
+
+/* The ray depth: the same spheres as test_transparency (ambient only, opacity 0.5). With one
+ * level the transmitted ray sees the (black) background: a A; with two, the back face of the
+ * glass and then the background: a A + (1-a) a A; with three, the blue sphere as well. */
+static void test_depth(void)
+{
+    t_suite = "ray depth";
+    ms_displaylist front, back;
+    ms_dl_init(&front);
+    ms_dl_init(&back);
+    float c1[3] = {0, 0, 1}, c2[3] = {0, 0, -1};
+    ms_dl_sphere(&front, c1, 0.3f, (ms_rgba8){255, 0, 0, 255}, 12);
+    ms_dl_sphere(&back, c2, 0.5f, (ms_rgba8){0, 0, 255, 255}, 12);
+    ms_scene s;
+    scene_new(&s, 21, 21, 1);
+    place(&s, &front, 1, 0, 0, 40, 0.5f);
+    place(&s, &back, 1, 0, 0, 40, 1.0f);
+    static const float red[3] = {0.5f, 0.75f, 0.75f}, blue[3] = {0, 0, 0.25f};
+    for (int d = 1; d <= 3; d++) {
+        ms_rt_options o;
+        ms_rt_options_default(&o);
+        o.aasamples = 0;
+        o.max_depth = d;
+        ms_image img;
+        ms_error err = {{0}};
+        if (ms_rt_render(&s, &o, &img, NULL, &err)) return t_ok(0, "render: %s", err.msg), (void)0;
+        const uint8_t *p = px(&img, 10, 10);
+        t_ok(near8(p, v8(red[d - 1]), 0, v8(blue[d - 1]), 1), "depth %d: centre %d %d %d, expected %d 0 %d", d,
+             p[0], p[1], p[2], v8(red[d - 1]), v8(blue[d - 1]));
+        ms_image_free(&img);
+    }
+    ms_scene_free(&s);
     ms_dl_free(&front);
     ms_dl_free(&back);
 }
@@ -609,7 +670,7 @@ static void test_passes(void)
         fclose(lf);
         lf = fopen(log, "r");
         char line[256];
-        while (lf && fgets(line, sizeof line, lf)) lines += !strncmp(line, "TachyonInternal: pass ", 22);
+        while (lf && fgets(line, sizeof line, lf)) lines += !strncmp(line, TRACER ": pass ", strlen(TRACER ": pass "));
         if (lf) fclose(lf);
     }
     if (saved >= 0) close(saved);
@@ -775,17 +836,198 @@ static void test_errors(void)
     ms_dl_free(&dl);
 }
 
+#ifdef MS_TEST_OCLRT
+/* ---------------------------------------------------------------- OpenCL only */
+
+typedef struct seen {
+    int calls, last;
+    int centre[64];
+} seen;
+
+static int on_pass(void *user, int passes, const ms_image *img)
+{
+    seen *s = user;
+    if (s->calls < 64) s->centre[s->calls] = img->rgb[3 * (16 * 32 + 16)];
+    s->calls++;
+    s->last = passes;
+    return passes >= 5;
+}
+
+/* The pass callback sees each pass's average; a nonzero return stops the render. */
+static void test_callback(void)
+{
+    t_suite = "pass callback";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float c[3] = {0, 0, 0};
+    ms_dl_sphere(&dl, c, 0.5f, (ms_rgba8){255, 255, 255, 255}, 12);
+    ms_scene s;
+    scene_new(&s, 32, 32, 0);
+    light(&s, 0, 0, 0, 1);
+    place(&s, &dl, 0.1f, 0.65f, 0.5f, 40, 1);
+    ms_rt_options o;
+    ms_rt_options_default(&o);
+    o.aasamples = 20;
+    ms_image img;
+    ms_rt_stats st;
+    ms_error err = {{0}};
+    seen sn = {0, 0, {0}};
+    int rc = ms_oclrt_render(&s, &o, &img, &st, on_pass, &sn, &err);
+    /* the sphere's centre faces the light: 0.1 + 0.65 + 0.5 saturates at every pass */
+    t_ok(rc == 0 && sn.calls == 5 && sn.last == 5 && st.passes == 5 && sn.centre[0] == 255 && sn.centre[4] == 255,
+         "called after passes 1 to 5, stopped by its return (%d calls, %d passes, centre %d)", sn.calls, st.passes,
+         sn.centre[0]);
+    if (!rc) ms_image_free(&img);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+
+/* An injected allocation failure or build failure: ms_oclrt_render reports a device problem,
+ * ms_oclrt_write falls back to TachyonInternal and still writes the image. */
+static void test_fallback(void)
+{
+    t_suite = "fallback";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float c[3] = {0, 0, 0};
+    ms_dl_sphere(&dl, c, 0.5f, (ms_rgba8){255, 255, 255, 255}, 12);
+    ms_scene s;
+    scene_new(&s, 16, 16, 0);
+    place(&s, &dl, 1, 0, 0, 40, 1);
+    ms_rt_options o;
+    ms_rt_options_default(&o);
+    o.aasamples = 0;
+    static const int modes[2] = {MS_OCLRT_FAIL_ALLOC, MS_OCLRT_FAIL_BUILD};
+    static const char *const want[2] = {"CL_MEM_OBJECT_ALLOCATION_FAILURE", "do not build"};
+    for (int k = 0; k < 2; k++) {
+        ms_image img;
+        ms_error err = {{0}};
+        char path[512];
+        snprintf(path, sizeof path, "%s/oclrt_fallback.ppm", getenv("MS_TEST_OUT") ? getenv("MS_TEST_OUT") : "/tmp");
+        ms_oclrt_fail = modes[k];
+        int rc = ms_oclrt_render(&s, &o, &img, NULL, NULL, NULL, &err);
+        t_ok(rc == MS_OCLRT_EDEVICE && strstr(err.msg, want[k]), "%s: a device failure (%s)",
+             k ? "injected build failure" : "injected allocation failure", err.msg);
+        int fell_back = 0;
+        remove(path);
+        rc = ms_oclrt_write(&s, &o, path, NULL, &fell_back, &err);
+        ms_oclrt_fail = MS_OCLRT_FAIL_NONE;
+        FILE *f = fopen(path, "rb");
+        unsigned char pix[3] = {0, 0, 0};
+        int ok = f && fseek(f, -(long)(3 * (8 * 16 + 8)), SEEK_END) == 0 && fread(pix, 1, 3, f) == 3;
+        if (f) fclose(f);
+        remove(path);
+        t_ok(rc == 0 && fell_back && ok && pix[0] == 255, "%s: TachyonInternal wrote the image (centre %d)",
+             k ? "injected build failure" : "injected allocation failure", pix[0]);
+    }
+    ms_image img;
+    ms_error err = {{0}};
+    int rc = ms_oclrt_render(&s, &o, &img, NULL, NULL, NULL, &err);
+    t_ok(rc == 0, "the next render runs on OpenCL again (%s)", rc ? err.msg : "ok");
+    if (!rc) ms_image_free(&img);
+    /* the built program was cached where MOLSCOPE_OPENCL_CACHE says (run-tests sets it) */
+    const char *cache = getenv("MOLSCOPE_OPENCL_CACHE");
+    if (cache && *cache) {
+        DIR *d = opendir(cache);
+        int bins = 0;
+        for (struct dirent *e; d && (e = readdir(d));)
+            bins += !strncmp(e->d_name, "oclrt-", 6) && strstr(e->d_name, ".bin") && !strstr(e->d_name, ".tmp");
+        if (d) closedir(d);
+        t_ok(bins >= 1, "the program binary is cached in MOLSCOPE_OPENCL_CACHE (%d files)", bins);
+    }
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+
+/* Our SAH builder against Embree's rtcBuildBVH: a lattice of 8000 spheres over a quad, with
+ * cylinders, shadows and AO; the closest hits do not depend on the tree, so the images agree
+ * but for hits tied in distance. */
+static void test_own_bvh(void)
+{
+    t_suite = "own BVH builder";
+    ms_displaylist dl, plane;
+    ms_dl_init(&dl);
+    ms_dl_init(&plane);
+    for (int i = 0; i < 8000; i++) {
+        float c[3] = {-1.5f + 0.15f * (float)(i % 20), -1.5f + 0.15f * (float)(i / 20 % 20), -0.15f * (float)(i / 400)};
+        ms_dl_sphere(&dl, c, 0.06f, (ms_rgba8){(uint8_t)(i * 7), 200, (uint8_t)(i * 13), 255}, 12);
+        float d[3] = {c[0] + 0.1f, c[1], c[2]};
+        if (i % 3 == 0) ms_dl_cylinder(&dl, c, d, 0.02f, (ms_rgba8){255, 255, 255, 255}, MS_CAP_BASE, 12);
+    }
+    float pl[12] = {-3, -3, -3.2f, 3, -3, -3.2f, 3, 3, -3.2f, -3, 3, -3.2f};
+    quad(&plane, pl, (ms_rgba8){128, 128, 128, 255});
+    ms_scene s;
+    scene_new(&s, 96, 96, 0);
+    s.shadows = s.ao = 1;
+    light(&s, 0, 1, 1, 1);
+    place(&s, &dl, 0.2f, 0.6f, 0.4f, 30, 1);
+    place(&s, &plane, 0.2f, 0.6f, 0, 30, 1);
+    ms_rt_options o;
+    ms_rt_options_default(&o);
+    o.aasamples = 1;
+    o.aosamples = 4;
+    ms_image img[2];
+    ms_error err = {{0}};
+    int rc = 0;
+    for (int k = 0; k < 2; k++) {
+        ms_oclrt_own_bvh = k;
+        rc |= ms_oclrt_render(&s, &o, &img[k], NULL, NULL, NULL, &err);
+    }
+    ms_oclrt_own_bvh = 0;
+    if (rc) {
+        t_ok(0, "render: %s", err.msg);
+    } else {
+        size_t n = 3 * 96 * 96, big = 0, lit = 0;
+        for (size_t i = 0; i < n; i++) {
+            big += abs(img[0].rgb[i] - img[1].rgb[i]) > 1;
+            lit += img[0].rgb[i] > 0;
+        }
+        t_ok(big <= n / 1000 && lit > n / 2, "the same image as with rtcBuildBVH (%zu of %zu values differ by more than 1)",
+             big, n);
+        ms_image_free(&img[0]);
+        ms_image_free(&img[1]);
+    }
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+    ms_dl_free(&plane);
+}
+#endif
+
 int main(void)
 {
+#ifndef MS_TEST_OCLRT
     if (!ms_rt_available()) {
-        t_skip("TachyonInternal", "molscope was built without Embree");
+        t_skip(TRACER, "molscope was built without Embree");
         return 0;
     }
+#else
+    if (!ms_oclrt_available()) {
+        t_skip(TRACER, "molscope was built without OpenCL");
+        return 0;
+    }
+    {
+        ms_scene s;
+        ms_image img;
+        ms_rt_options o;
+        ms_error err = {{0}};
+        scene_new(&s, 4, 4, 0);
+        ms_rt_options_default(&o);
+        int rc = ms_oclrt_render(&s, &o, &img, NULL, NULL, NULL, &err);
+        ms_scene_free(&s);
+        if (rc == MS_OCLRT_EDEVICE) {
+            t_skip(TRACER, err.msg);
+            return 0;
+        }
+        if (!rc) ms_image_free(&img);
+        printf("# OpenCL device: %s\n", ms_oclrt_device_name());
+    }
+#endif
     ms_error err;
     mats = ms_materials_new(&err);
     test_sphere_shading();
     test_outline();
     test_transparency();
+    test_depth();
     test_ao();
     test_shadow();
     test_shadow_glass();
@@ -799,7 +1041,31 @@ int main(void)
     test_passes();
     test_session();
     test_degenerate();
+#ifdef MS_TEST_OCLRT
+    test_callback();
+    /* the memory plan, the fallback and rtcBuildBVH are Embree's */
+    if (!ms_rt_available()) {
+        t_skip("memory limits, fallback, rtcBuildBVH", "molscope was built without Embree");
+        ms_materials_free(mats);
+        return t_done();
+    }
     test_errors();
+    test_fallback();
+    test_own_bvh();
+    /* the analytic scenes again, on the tree of our own builder */
+    printf("# with molscope's own BVH builder\n");
+    ms_oclrt_own_bvh = 1;
+    test_sphere_shading();
+    test_transparency();
+    test_shadow_glass();
+    test_cylinder_caps();
+    test_cone();
+    test_mesh_colors();
+    test_degenerate();
+    ms_oclrt_own_bvh = 0;
+#else
+    test_errors();
+#endif
     ms_materials_free(mats);
     return t_done();
 }

@@ -1,0 +1,307 @@
+/* flatten.c: the scene as the OpenCL kernels read it. Each placed display list (and the
+ * world-space list of its lines, points and text, rt/strokes.c) gives one geometry per
+ * primitive kind with TachyonInternal's texture terms (rt/world.c); its primitives are
+ * moved to world space here (positions by the transform, radii by its scale: VMD's
+ * transforms are rotations, translations and uniform scales), while mesh normals stay the
+ * list's quantized bytes and the kernel turns them with the list's normal matrix. Closed
+ * cylinder ends and cone bases become discs, as rt/world.c makes them. */
+#include "config.h"
+#include "oclrt/oclrt_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct source {
+    const ms_displaylist *dl;
+    const float *xform;
+    rt_material mat;
+} source;
+
+static int any_alpha(const ms_rgba8 *c, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (c[i].a < 255) return 1;
+    return 0;
+}
+
+static size_t caps_of(const ms_displaylist *dl)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < dl->cylinders.n; i++)
+        n += !!(dl->cylinders.caps[i] & MS_CAP_BASE) + !!(dl->cylinders.caps[i] & MS_CAP_APEX);
+    for (size_t i = 0; i < dl->cones.n; i++) n += dl->cones.rbase[i] > 0;
+    return n;
+}
+
+static int caps_alpha(const ms_displaylist *dl)
+{
+    for (size_t i = 0; i < dl->cylinders.n; i++)
+        if ((dl->cylinders.caps[i] & (MS_CAP_BASE | MS_CAP_APEX)) && dl->cylinders.color[i].a < 255) return 1;
+    for (size_t i = 0; i < dl->cones.n; i++)
+        if (dl->cones.rbase[i] > 0 && dl->cones.color[i].a < 255) return 1;
+    return 0;
+}
+
+/* The scene's lists and the stroke lists made for them. */
+static source *sources_of(orc_world *w, const ms_scene *s, size_t *n, ms_error *err)
+{
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    source *src = ms_alloc_array(2 * s->nitems + 1, sizeof *src);
+    w->lists = ms_calloc_array(s->nitems + 1, sizeof *w->lists);
+    if (!src || !w->lists) goto nomem;
+    *n = 0;
+    for (size_t i = 0; i < s->nitems; i++) {
+        const ms_scene_item *it = &s->items[i];
+        source *o = &src[(*n)++];
+        o->dl = it->dl, o->xform = it->xform;
+        rt_material_terms(&it->mat, it->dl->lit, &o->mat);
+        if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
+        ms_displaylist *extra = malloc(sizeof *extra);
+        if (!extra) goto nomem;
+        ms_dl_init(extra);
+        w->lists[w->nlists++] = extra;
+        if (rt_strokes(it, extra)) goto nomem;
+        o = &src[(*n)++];
+        o->dl = extra, o->xform = identity;
+        rt_material_terms(&it->mat, 0, &o->mat);
+    }
+    return src;
+nomem:
+    free(src);
+    ms_error_set(err, "out of memory");
+    return NULL;
+}
+
+/* A triangle naming a vertex that does not exist is an error (as rt/mesh.c says it). */
+static int check_mesh(const ms_dl_mesh *m, ms_error *err)
+{
+    for (size_t i = 0; i < 3 * m->ntris; i++)
+        if (m->tri[i] >= m->nverts) {
+            ms_error_set(err, "mesh: triangle %zu names a vertex beyond the %zu vertices", i / 3, m->nverts);
+            return MS_OCLRT_EINPUT;
+        }
+    return 0;
+}
+
+static int alloc_arrays(orc_world *w, size_t nsrc, ms_error *err)
+{
+    size_t nq = w->nq ? w->nq : 1, nt = w->ntri ? w->ntri : 1, nv = w->nverts ? w->nverts : 1;
+    size_t ng = 5 * nsrc + 1;
+    w->qa = ms_alloc_array(nq, 4 * sizeof(float));
+    w->qb = ms_alloc_array(nq, 4 * sizeof(float));
+    w->qm = ms_alloc_array(nq, 2 * sizeof(uint32_t));
+    w->qkind = ms_alloc_array(nq, sizeof(uint32_t));
+    w->tri = ms_alloc_array(nt, 4 * sizeof(uint32_t));
+    w->vxyz = ms_alloc_array(nv, 4 * sizeof(float));
+    w->vnorm = ms_calloc_array(nv, 4);
+    w->vcol = ms_alloc_array(nv, sizeof(ms_rgba8));
+    w->gmat0 = ms_alloc_array(ng, 4 * sizeof(float));
+    w->gmat1 = ms_alloc_array(ng, 4 * sizeof(float));
+    w->gflag = ms_calloc_array(ng, 4 * sizeof(int32_t));
+    w->item = ms_calloc_array(nsrc + 1, 12 * sizeof(float));
+    if (w->qa && w->qb && w->qm && w->qkind && w->tri && w->vxyz && w->vnorm && w->vcol &&
+        w->gmat0 && w->gmat1 && w->gflag && w->item)
+        return 0;
+    ms_error_set(err, "out of memory for the scene's %zu primitives", w->nq + w->ntri);
+    return -1;
+}
+
+/* ---------------------------------------------------------------- one list */
+
+typedef struct placer {
+    orc_world *w;
+    rt_xform ri;
+    float scale;                /* the transform's (uniform) scale */
+    uint32_t item;
+} placer;
+
+static uint32_t add_geom(placer *pl, const rt_material *m, int alpha)
+{
+    orc_world *w = pl->w;
+    size_t g = w->ngeoms++;
+    float *a = w->gmat0 + 4 * g, *b = w->gmat1 + 4 * g;
+    a[0] = m->ambient, a[1] = m->diffuse, a[2] = m->mirror, a[3] = m->phong;
+    b[0] = m->phongexp, b[1] = m->opacity, b[2] = m->outline, b[3] = m->outlinewidth;
+    int32_t *f = w->gflag + 4 * g;
+    f[0] = m->r3d, f[1] = alpha, f[2] = (int32_t)pl->item, f[3] = 0;
+    return (uint32_t)g;
+}
+
+static void put_quadric(placer *pl, uint32_t kind, uint32_t g, const float a[4], const float b[4],
+                        ms_rgba8 c)
+{
+    orc_world *w = pl->w;
+    size_t i = w->nq++;
+    memcpy(w->qa + 4 * i, a, 4 * sizeof(float));
+    memcpy(w->qb + 4 * i, b, 4 * sizeof(float));
+    w->qm[2 * i] = g;
+    memcpy(&w->qm[2 * i + 1], &c, 4);
+    w->qkind[i] = kind;
+}
+
+/* p moved to world space, with w = r times the scale. */
+static void world_point(const placer *pl, const float p[3], float r, float out[4])
+{
+    rt_xf_point(pl->ri.xf, p, out);
+    out[3] = r * pl->scale;
+}
+
+static void place_spheres(placer *pl, const source *s)
+{
+    const ms_dl_spheres *sp = &s->dl->spheres;
+    if (!sp->n) return;
+    uint32_t g = add_geom(pl, &s->mat, any_alpha(sp->color, sp->n));
+    float none[4] = {0, 0, 0, 0};
+    for (size_t i = 0; i < sp->n; i++) {
+        float a[4];
+        world_point(pl, sp->xyz + 3 * i, sp->radius[i], a);
+        put_quadric(pl, ORC_SPHERE, g, a, none, sp->color[i]);
+    }
+}
+
+static void place_cylinders(placer *pl, const source *s)
+{
+    const ms_dl_cylinders *cy = &s->dl->cylinders;
+    if (!cy->n) return;
+    uint32_t g = add_geom(pl, &s->mat, any_alpha(cy->color, cy->n));
+    for (size_t i = 0; i < cy->n; i++) {
+        float a[4], b[4];
+        world_point(pl, cy->base + 3 * i, cy->radius[i], a);
+        world_point(pl, cy->apex + 3 * i, 0, b);
+        for (int k = 0; k < 3; k++) b[k] -= a[k];
+        b[3] = rt_normalize(b);
+        put_quadric(pl, ORC_CYLINDER, g, a, b, cy->color[i]);
+    }
+}
+
+static void place_cones(placer *pl, const source *s)
+{
+    const ms_dl_cones *co = &s->dl->cones;
+    if (!co->n) return;
+    uint32_t g = add_geom(pl, &s->mat, any_alpha(co->color, co->n));
+    for (size_t i = 0; i < co->n; i++) {
+        float a[4], b[4];
+        world_point(pl, co->base + 3 * i, co->rbase[i], a);
+        world_point(pl, co->apex + 3 * i, co->rapex[i], b);
+        put_quadric(pl, ORC_CONE, g, a, b, co->color[i]);
+    }
+}
+
+/* rt/world.c's make_caps: base ends, apex ends, then cone bases. */
+static void place_caps(placer *pl, const source *s)
+{
+    const ms_displaylist *dl = s->dl;
+    if (!caps_of(dl)) return;
+    uint32_t g = add_geom(pl, &s->mat, caps_alpha(dl));
+    for (int pass = 0; pass < 3; pass++) {
+        int cones = pass == 2;
+        size_t m = cones ? dl->cones.n : dl->cylinders.n;
+        for (size_t i = 0; i < m; i++) {
+            const float *a = (cones ? dl->cones.base : dl->cylinders.base) + 3 * i;
+            const float *b = (cones ? dl->cones.apex : dl->cylinders.apex) + 3 * i;
+            int want = cones ? dl->cones.rbase[i] > 0
+                             : (dl->cylinders.caps[i] & (pass ? MS_CAP_APEX : MS_CAP_BASE));
+            if (!want) continue;
+            float wa[4], wb[4], c[4], n[4];
+            world_point(pl, a, 0, wa);
+            world_point(pl, b, 0, wb);
+            world_point(pl, pass == 1 ? b : a, cones ? dl->cones.rbase[i] : dl->cylinders.radius[i], c);
+            for (int k = 0; k < 3; k++) n[k] = wb[k] - wa[k];
+            n[3] = 0;
+            put_quadric(pl, ORC_RING, g, c, n, cones ? dl->cones.color[i] : dl->cylinders.color[i]);
+        }
+    }
+}
+
+static void place_mesh(placer *pl, const source *s)
+{
+    const ms_dl_mesh *m = &s->dl->mesh;
+    orc_world *w = pl->w;
+    if (!m->nverts || !m->ntris) return;
+    uint32_t g = add_geom(pl, &s->mat, any_alpha(m->color, m->nverts));
+    size_t v0 = w->nverts;
+    for (size_t i = 0; i < m->nverts; i++) {
+        float *p = w->vxyz + 4 * (v0 + i);
+        world_point(pl, m->xyz + 3 * i, 0, p);
+        memcpy(w->vnorm + 4 * (v0 + i), m->normal + 3 * i, 3);
+        w->vcol[v0 + i] = m->color[i];
+    }
+    w->nverts += m->nverts;
+    for (size_t i = 0; i < m->ntris; i++) {
+        uint32_t *t = w->tri + 4 * (w->ntri + i);
+        for (int k = 0; k < 3; k++) t[k] = (uint32_t)(v0 + m->tri[3 * i + k]);
+        t[3] = g;
+    }
+    w->ntri += m->ntris;
+}
+
+/* A list's item (normal matrix; -1 when its transform is singular) and its primitives. */
+static void place_source(orc_world *w, const source *s)
+{
+    placer pl;
+    memset(&pl, 0, sizeof pl);
+    pl.w = w, pl.scale = 1.0f, pl.item = (uint32_t)w->nitems;
+    if (rt_xform_make(&pl.ri, s->xform)) return;
+    const float *x = pl.ri.xf;
+    float det = x[0] * (x[5] * x[10] - x[6] * x[9]) - x[1] * (x[4] * x[10] - x[6] * x[8]) +
+                x[2] * (x[4] * x[9] - x[5] * x[8]);
+    pl.scale = cbrtf(fabsf(det));
+    float *it = w->item + 12 * w->nitems++;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) it[4 * r + c] = pl.ri.nm[3 * r + c];
+    it[3] = det < 0 ? -1.0f : 1.0f;
+    place_spheres(&pl, s);
+    place_cylinders(&pl, s);
+    place_cones(&pl, s);
+    place_caps(&pl, s);
+    place_mesh(&pl, s);
+}
+
+int orc_world_build(orc_world *w, const ms_scene *s, ms_error *err)
+{
+    memset(w, 0, sizeof *w);
+    size_t nsrc = 0, nq = 0, ntri = 0, nv = 0;
+    source *src = sources_of(w, s, &nsrc, err);
+    if (!src) goto fail;
+    for (size_t i = 0; i < nsrc; i++) {
+        const ms_displaylist *dl = src[i].dl;
+        if (check_mesh(&dl->mesh, err)) {
+            free(src);
+            orc_world_free(w);
+            return MS_OCLRT_EINPUT;
+        }
+        nq += dl->spheres.n + dl->cylinders.n + dl->cones.n + caps_of(dl);
+        ntri += dl->mesh.ntris, nv += dl->mesh.nverts;
+    }
+    if (nq > ORC_INDEX_MASK || ntri > ORC_INDEX_MASK || nv > 0xffffffffu) {
+        ms_error_set(err, "more than 2^29 primitives of one kind");
+        free(src);
+        orc_world_free(w);
+        return MS_OCLRT_EINPUT;
+    }
+    w->nq = nq, w->ntri = ntri, w->nverts = nv;
+    if (alloc_arrays(w, nsrc, err)) goto fail;
+    w->nq = w->ntri = w->nverts = 0;
+    for (size_t i = 0; i < nsrc; i++) place_source(w, &src[i]);
+    w->eps = rt_world_eps(s);
+    free(src);
+    return 0;
+fail:
+    free(src);
+    orc_world_free(w);
+    return -1;
+}
+
+void orc_world_free(orc_world *w)
+{
+    void *all[] = {w->qa, w->qb, w->qm, w->qkind, w->tri, w->vxyz, w->vnorm, w->vcol, w->gmat0,
+                   w->gmat1, w->gflag, w->item, w->lo0, w->hi0, w->lo1, w->hi1, w->child, w->leaf};
+    for (size_t i = 0; i < sizeof all / sizeof *all; i++) free(all[i]);
+    for (size_t i = 0; i < w->nlists; i++) {
+        ms_dl_free(w->lists[i]);
+        free(w->lists[i]);
+    }
+    free(w->lists);
+    memset(w, 0, sizeof *w);
+}

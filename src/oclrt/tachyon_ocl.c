@@ -1,0 +1,92 @@
+/* tachyon_ocl.c: the `TachyonLOpenCLInternal` render device (and `TachyonLOptiXInternal`,
+ * VMD's name for its GPU tracer, so that VMD scripts run): oclrt.h's tracer with the
+ * device's `render aasamples` and `render aosamples` (VMD's defaults, 12 and 12) and
+ * TachyonInternal's pass limit, time budget and progress lines, falling back to
+ * TachyonInternal with a one-line message when OpenCL cannot render. Without OpenCL at
+ * build time every render falls back. */
+#include "config.h"
+#include "oclrt/oclrt.h"
+#include "render/render.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int ms_oclrt_fail = MS_OCLRT_FAIL_NONE;
+int ms_oclrt_own_bvh;
+
+#ifndef MS_HAVE_OPENCL
+int ms_oclrt_available(void)
+{
+    return 0;
+}
+
+int ms_oclrt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt_stats *st,
+                    ms_oclrt_pass_fn cb, void *user, ms_error *err)
+{
+    memset(img, 0, sizeof *img);
+    if (st) memset(st, 0, sizeof *st);
+    ms_error_set(err, "molscope was built without OpenCL");
+    return MS_OCLRT_EDEVICE;
+}
+
+const char *ms_oclrt_device_name(void)
+{
+    return "";
+}
+#else
+int ms_oclrt_available(void)
+{
+    return 1;
+}
+#endif
+
+int ms_oclrt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
+                   int *fell_back, ms_error *err)
+{
+    ms_image_format fmt = ms_image_format_of(path);
+    if (fmt == MS_IMG_UNKNOWN) fmt = MS_IMG_TGA;      /* VMD writes TGA for other names */
+    if (fell_back) *fell_back = 0;
+    char *tmp;
+    FILE *f = ms_render_open_tmp(path, &tmp, err);    /* an unwritable path fails before tracing */
+    if (!f) return -1;
+    ms_image img;
+    int rc = ms_oclrt_render(s, o, &img, st, NULL, NULL, err);
+    if (rc == MS_OCLRT_EDEVICE) {
+        fprintf(stderr, "TachyonLOpenCLInternal: %s; rendering with TachyonInternal\n", err->msg);
+        if (fell_back) *fell_back = 1;
+        rc = ms_rt_render(s, o, &img, st, err);
+    }
+    int ok = rc == 0;
+    if (ok) {
+        if (ms_image_write_stream(&img, fmt, f, err)) {
+            ms_error_prefix(err, "%s", path);
+            ok = 0;
+        }
+        ms_image_free(&img);
+    }
+    return ms_render_commit(f, tmp, path, ok, err);
+}
+
+static int write_ocl(const ms_scene *s, const char *path, ms_error *err)
+{
+    ms_rt_options o;
+    ms_rt_options_default(&o);
+    o.aasamples = s->aa_samples;
+    o.aosamples = s->ao_samples;
+    if (ms_rt_options_from_env(&o, err)) return -1;
+    return ms_oclrt_write(s, &o, path, NULL, NULL, err);
+}
+
+const ms_render_device ms_render_tachyon_ocl = {
+    .name = "TachyonLOpenCLInternal",
+    .description = "Tachyon-style ray tracer built in, on OpenCL (GPU or PoCL): images .png .tga .ppm .bmp",
+    .default_cmd = "display %s",
+    .has_aa = 1, .aasamples = 12, .aosamples = 12,
+    .write = write_ocl};
+
+const ms_render_device ms_render_tachyon_optix = {
+    .name = "TachyonLOptiXInternal",
+    .description = "VMD's name for its GPU ray tracer: molscope's TachyonLOpenCLInternal",
+    .default_cmd = "display %s",
+    .has_aa = 1, .aasamples = 12, .aosamples = 12,
+    .write = write_ocl};

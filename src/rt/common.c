@@ -1,0 +1,153 @@
+/* common.c: the parts of TachyonInternal the OpenCL tracer (src/oclrt) uses too, free of
+ * Embree: small vector helpers, transforms, Tachyon's texture terms of a material, the
+ * secondary-ray offset, the shader settings of a scene and the option checks. */
+#include "config.h"
+#include "rt/rt_common.h"
+#include "scene/mat4.h"
+
+#include <math.h>
+#include <string.h>
+
+float rt_normalize(float v[3])
+{
+    float l = sqrtf(rt_dot(v, v));
+    if (l > 0) {
+        float inv = 1.0f / l;
+        v[0] *= inv;
+        v[1] *= inv;
+        v[2] *= inv;
+    }
+    return l;
+}
+
+void rt_xf_point(const float m[12], const float p[3], float out[3])
+{
+    float x = p[0], y = p[1], z = p[2];
+    for (int r = 0; r < 3; r++) out[r] = m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3];
+}
+
+void rt_m3_vec(const float m[9], const float v[3], float out[3])
+{
+    float x = v[0], y = v[1], z = v[2];
+    for (int r = 0; r < 3; r++) out[r] = m[3 * r] * x + m[3 * r + 1] * y + m[3 * r + 2] * z;
+}
+
+/* Tachyon's texture terms for a list, as render/tachyon.c writes them (unlit lists: ambient
+ * 1, no diffuse, no mirror; the highlight stays, as in VMD's files). */
+void rt_material_terms(const ms_material *m, int lit, rt_material *t)
+{
+    t->ambient = lit ? m->ambient : 1.0f;
+    t->diffuse = lit ? m->diffuse : 0.0f;
+    t->mirror = lit ? m->mirror : 0.0f;
+    t->phong = m->specular;
+    t->phongexp = m->shininess;
+    t->opacity = m->opacity;
+    t->outline = m->outline;
+    t->outlinewidth = m->outlinewidth;
+    t->r3d = m->transmode != 0;
+}
+
+/* xf, its inverse and its normal matrix; -1 when xf is singular (nothing to see). */
+int rt_xform_make(rt_xform *out, const float x[16])
+{
+    double a[3][3], inv[3][3];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) a[r][c] = x[4 * r + c];
+    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    if (!(fabs(det) > 1e-30) || !isfinite(det)) return -1;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+            inv[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
+        }
+    for (int r = 0; r < 3; r++) {
+        double t = 0;
+        for (int c = 0; c < 3; c++) {
+            out->xf[4 * r + c] = (float)a[r][c];
+            out->inv[4 * r + c] = (float)inv[r][c];
+            out->nm[3 * r + c] = (float)inv[c][r];
+            t -= inv[r][c] * x[4 * c + 3];
+        }
+        out->xf[4 * r + 3] = x[4 * r + 3];
+        out->inv[4 * r + 3] = (float)t;
+    }
+    return 0;
+}
+
+/* The secondary-ray offset: two millionths of the scene's size (its largest coordinate), at
+ * least 1e-5: well above float rounding at a hit, far below any feature. */
+float rt_world_eps(const ms_scene *s)
+{
+    float big = fabsf(s->cam.eye[0]) + fabsf(s->cam.eye[1]) + fabsf(s->cam.eye[2]);
+    for (size_t i = 0; i < s->nitems; i++) {
+        float lo[3], hi[3], a[3], b[3];
+        if (!ms_dl_bounds(s->items[i].dl, lo, hi)) continue;
+        ms_mat4_point(s->items[i].xform, lo, a);
+        ms_mat4_point(s->items[i].xform, hi, b);
+        for (int k = 0; k < 3; k++)
+            if (isfinite(a[k]) && isfinite(b[k])) big = fmaxf(big, fmaxf(fabsf(a[k]), fabsf(b[k])));
+    }
+    return fmaxf(1e-5f, big * 2e-6f);
+}
+
+/* The Tachyon gradient the exporter writes: top and bottom values of the sky sphere (ray
+ * direction) or the orthographic sky plane (ray origin) along +y. */
+static void background_init(rt_shader *sh, const ms_scene *s)
+{
+    memcpy(sh->bg, s->background, sizeof sh->bg);
+    memcpy(sh->bg_top, s->bg_top, sizeof sh->bg_top);
+    memcpy(sh->bg_bot, s->bg_bottom, sizeof sh->bg_bot);
+    sh->bg_mode = RT_BG_SOLID;
+    if (!s->bg_gradient) return;
+    int ortho = s->cam.projection == MS_PROJ_ORTHOGRAPHIC;
+    float mag = ortho ? s->cam.height / 4.0f
+                      : fminf(1.0f, (s->cam.height / 2.0f) / (s->cam.eye[2] - s->cam.distance));
+    sh->bg_mode = ortho ? RT_BG_SKY_PLANE : RT_BG_SKY_SPHERE;
+    sh->grad_top = mag;
+    sh->grad_bot = -mag;
+}
+
+void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, int aosamples)
+{
+    memset(sh, 0, sizeof *sh);
+    sh->w = w;
+    rt_camera_init(&sh->cam, s);
+    for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
+        const ms_light *l = &s->lights[i];
+        float d[3] = {l->pos[0], l->pos[1], l->pos[2]};
+        if (!l->on || rt_normalize(d) == 0.0f) continue;
+        memcpy(sh->ldir[sh->nlights], d, sizeof d);
+        memcpy(sh->lcol[sh->nlights], l->color, sizeof d);
+        sh->nlights++;
+    }
+    sh->full = s->shadows || s->ao;
+    sh->light_scale = s->ao ? s->ao_direct : 1.0f;
+    sh->ao_samples = s->ao ? aosamples : 0;
+    for (int k = 0; k < 3; k++) sh->ao_col[k] = s->ao_ambient;
+    background_init(sh, s);
+    sh->fog = s->depthcue;
+    sh->cuemode = s->cuemode;
+    sh->fog_start = s->cuemode == MS_CUE_LINEAR ? s->cue_start : 0.0f;
+    sh->fog_end = s->cue_end;
+    sh->fog_density = s->cue_density;
+}
+
+int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)
+{
+    if (o->aasamples < 0 || o->aasamples > MS_RT_MAX_AASAMPLES) {
+        ms_error_set(err, "aasamples %d: expected 0 to %d", o->aasamples, MS_RT_MAX_AASAMPLES);
+        return -1;
+    }
+    if (o->aosamples < 0 || o->aosamples > MS_RT_MAX_AOSAMPLES) {
+        ms_error_set(err, "aosamples %d: expected 0 to %d", o->aosamples, MS_RT_MAX_AOSAMPLES);
+        return -1;
+    }
+    if (s->width < 1 || s->height < 1 || s->width > MS_IMAGE_MAX_SIDE || s->height > MS_IMAGE_MAX_SIDE) {
+        ms_error_set(err, "image size %dx%d: expected 1 to %d pixels a side", s->width, s->height,
+                     MS_IMAGE_MAX_SIDE);
+        return -1;
+    }
+    return 0;
+}

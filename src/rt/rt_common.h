@@ -1,0 +1,103 @@
+/* rt_common.h: what TachyonInternal shares with the OpenCL tracer (src/oclrt), free of
+ * Embree so that both build without the other: Tachyon's texture terms, transforms, the
+ * camera, the shader settings, strokes as cylinders and spheres, the option checks and the
+ * small vector helpers (common.c, camera.c, strokes.c). */
+#ifndef MS_RT_COMMON_H
+#define MS_RT_COMMON_H
+
+#include "rt/rt.h"
+#include "scene/displaylist.h"
+#include "scene/material.h"
+#include "scene/scene.h"
+
+/* Tachyon's smallest contribution worth computing (1/512). */
+#define RT_MINCONTRIB 0.001953125f
+
+/* The Tachyon texture terms of a display list, as render/tachyon.c writes them. */
+typedef struct rt_material {
+    float ambient, diffuse, mirror;   /* mirror: Tachyon's "Specular" (reflection) */
+    float phong, phongexp;            /* Blinn-Phong highlight: VMD's specular, shininess */
+    float opacity;                    /* multiplied by each primitive's alpha */
+    float outline, outlinewidth;
+    int r3d;                          /* angle-modulated (Raster3D) transparency */
+} rt_material;
+
+/* Tachyon's texture terms of a material as render/tachyon.c writes them (lit: the list is
+ * shaded; unlit lists are ambient only). */
+void rt_material_terms(const ms_material *m, int lit, rt_material *t);
+
+/* A placed list's transform: list to world (3x4 row-major), world to list, and the normal
+ * matrix (inverse transpose of the 3x3). */
+typedef struct rt_xform {
+    float xf[12], inv[12], nm[9];
+} rt_xform;
+/* The transform of a 4x4 row-major matrix; -1 when it is singular (nothing to see). */
+int rt_xform_make(rt_xform *t, const float x[16]);
+/* The secondary-ray offset of a scene, from its size. */
+float rt_world_eps(const ms_scene *s);
+/* The lines, points and text of a placed list as world-space cylinders and spheres appended
+ * to out (strokes.c). 0, or -1 when memory runs out. */
+int rt_strokes(const ms_scene_item *it, ms_displaylist *out);
+/* The limits of the samples and the image size: 0, or -1 with err saying which is wrong. */
+int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err);
+
+/* ---------------------------------------------------------------- camera (camera.c) */
+
+typedef struct rt_camera {
+    int ortho, width, height;
+    float eye[3], dir[3], up[3], right[3];
+    float half_w, half_h;       /* perspective: at unit distance; orthographic: world units */
+    int dof;
+    float focal, lens_radius;
+} rt_camera;
+
+void rt_camera_init(rt_camera *c, const ms_scene *s);
+/* The ray through image point (px, py) (pixels from the top left corner); lens: a point of
+ * the unit disc for depth of field, or NULL for the pinhole ray. dir is unit length. */
+void rt_camera_ray(const rt_camera *c, float px, float py, const float lens[2], float org[3],
+                   float dir[3]);
+
+/* ---------------------------------------------------------------- shader settings */
+
+typedef enum rt_bg_mode { RT_BG_SOLID, RT_BG_SKY_SPHERE, RT_BG_SKY_PLANE } rt_bg_mode;
+
+typedef struct rt_shader {
+    const struct rt_world *w;   /* TachyonInternal's world (NULL for the OpenCL tracer) */
+    rt_camera cam;
+    int nlights;
+    float ldir[MS_SCENE_LIGHTS][3], lcol[MS_SCENE_LIGHTS][3];
+    float light_scale;          /* AO's aodirect, else 1 */
+    int full;                   /* Tachyon's Full shader: shadows (and AO) */
+    int ao_samples;
+    float ao_col[3];
+    rt_bg_mode bg_mode;
+    float bg[3], bg_top[3], bg_bot[3], grad_top, grad_bot;
+    int fog;
+    ms_cuemode cuemode;
+    float fog_start, fog_end, fog_density;
+} rt_shader;
+
+/* The settings of shade.c's shading for a scene (common.c). */
+void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, int aosamples);
+
+/* ---------------------------------------------------------------- small vectors */
+
+static inline float rt_dot(const float a[3], const float b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+static inline void rt_cross(const float a[3], const float b[3], float out[3])
+{
+    float x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2],
+          z = a[0] * b[1] - a[1] * b[0];
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+}
+/* Normalise in place; a zero vector stays zero. Returns the old length. */
+float rt_normalize(float v[3]);
+/* out = m (3x4 row-major) applied to point p, or (3x3) to vector v. */
+void rt_xf_point(const float m[12], const float p[3], float out[3]);
+void rt_m3_vec(const float m[9], const float v[3], float out[3]);
+
+#endif
