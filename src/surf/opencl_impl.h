@@ -4,9 +4,7 @@
 #ifndef MS_QSURF_OPENCL_IMPL_H
 #define MS_QSURF_OPENCL_IMPL_H
 
-#define CL_TARGET_OPENCL_VERSION 120
-#include <CL/cl.h>
-
+#include "cl/cl.h"
 #include "surf/qsurf_impl.h"
 
 /* Levels of the prefix sum: each level holds the totals of 4 x (scan work-group size)
@@ -16,16 +14,12 @@
 enum { K_DENSITY, K_COUNT, K_SCAN, K_SCAN_ADD, K_VERTICES, K_TRIANGLES, K_COUNT_OF };
 
 struct ms_qsurf_cl {
-    cl_device_id device;
-    cl_device_type type;
+    ms_cl_device dev;        /* the device, its type, memory and name */
     cl_context ctx;
     cl_command_queue queue;
     cl_program program;
     cl_kernel k[K_COUNT_OF];
     size_t scan_local;       /* work-group size of qs_scan */
-    cl_ulong globalmem, maxalloc;
-    int named;               /* chosen by MOLSCOPE_OPENCL_DEVICE */
-    char name[256];
     /* The surface being computed: atom table, cube tables, the slab's density and colour
      * planes, first vertices of planes z0..z1, the counts and their prefix-sum levels, and
      * the slab's mesh (grown as needed). */
@@ -38,7 +32,6 @@ struct ms_qsurf_cl {
     int fail_stage;          /* fault injection: the stage of this slab that fails, or -1 */
 };
 
-int ms_qsurf_cl_fail(ms_error *err, const char *what, cl_int e);
 /* A buffer; nothing when *e already holds an error. */
 cl_mem ms_qsurf_cl_buffer(ms_qsurf_cl *cl, cl_mem_flags flags, size_t bytes, const void *host,
                           cl_int *e);

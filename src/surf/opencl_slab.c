@@ -87,13 +87,13 @@ static int density(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, const ms_qsurf_
     cl_int e = CL_SUCCESS;
     int cz = keep_planes(cl, s, &e);
     cl->held_ze = cl->held_zb - 1;
-    if (e != CL_SUCCESS) return ms_qsurf_cl_fail(err, "keeping the shared planes", e);
+    if (e != CL_SUCCESS) return ms_cl_fail(err, "keeping the shared planes", e);
     if (injected(cl, MS_QSURF_CL_FAIL_DENSITY, "the density kernel", CL_OUT_OF_RESOURCES, err))
         return -1;
     if (cz <= s->ze && (e = density_kernel(cl, ag, s, nz, cz)) != CL_SUCCESS)
-        return ms_qsurf_cl_fail(err, "the density kernel", e);
+        return ms_cl_fail(err, "the density kernel", e);
     if ((e = clFinish(cl->queue)) != CL_SUCCESS)
-        return ms_qsurf_cl_fail(err, "running the density kernel", e);
+        return ms_cl_fail(err, "running the density kernel", e);
     cl->held_zb = s->zb, cl->held_ze = s->ze;
     return 0;
 }
@@ -182,7 +182,7 @@ static int grow_mesh(ms_qsurf_cl *cl, size_t nv, size_t nt, ms_error *err)
         cl->index = ms_qsurf_cl_buffer(cl, CL_MEM_WRITE_ONLY, cap * 3 * sizeof(cl_uint), NULL, &e);
         if (e == CL_SUCCESS) cl->tcap = cap;
     }
-    return e == CL_SUCCESS ? 0 : ms_qsurf_cl_fail(err, "allocating the mesh buffers", e);
+    return e == CL_SUCCESS ? 0 : ms_cl_fail(err, "allocating the mesh buffers", e);
 }
 
 static cl_int vertices(ms_qsurf_cl *cl, const ms_qsurf_extract *mc, mc_shape *sh, cl_uint vfirst)
@@ -227,12 +227,12 @@ static int read_mesh(ms_qsurf_cl *cl, ms_qsurf_mesh *m, size_t nv, size_t nt, ms
     cl_int e = read_buffer(cl, cl->pos, nv * 3 * sizeof(float), m->pos + 3 * v0);
     if (e == CL_SUCCESS) e = read_buffer(cl, cl->normal, nv * 3, m->normal + 3 * v0);
     if (e == CL_SUCCESS) e = read_buffer(cl, cl->color, nv * 4, m->color + 4 * v0);
-    int rc = e == CL_SUCCESS ? 0 : ms_qsurf_cl_fail(err, "reading the mesh back", e);
+    int rc = e == CL_SUCCESS ? 0 : ms_cl_fail(err, "reading the mesh back", e);
     if (rc == 0 && injected(cl, MS_QSURF_CL_FAIL_READ, "reading the triangles back",
                             CL_OUT_OF_RESOURCES, err))
         rc = -1;
     if (rc == 0 && (e = read_buffer(cl, cl->index, nt * 3 * sizeof(cl_uint), m->index + 3 * t0)))
-        rc = ms_qsurf_cl_fail(err, "reading the triangles back", e);
+        rc = ms_cl_fail(err, "reading the triangles back", e);
     if (rc < 0) m->nv = v0, m->nt = t0;      /* the arrays stay valid, a little larger */
     return rc;
 }
@@ -248,7 +248,7 @@ static int extract(ms_qsurf_cl *cl, const ms_qsurf_slab *s, ms_qsurf_extract *mc
     size_t items = (size_t)sh.span.s[2] * mc->n[1] * (size_t)(z1 - z0 + 1);
     cl_int e = count(cl, &sh);
     if (e == CL_SUCCESS) e = scan(cl, items, total);
-    if (e != CL_SUCCESS) return ms_qsurf_cl_fail(err, "counting the slab's triangles", e);
+    if (e != CL_SUCCESS) return ms_cl_fail(err, "counting the slab's triangles", e);
     if (m->nv + total[0] > UINT32_MAX || m->nt + total[1] > UINT32_MAX) {
         ms_error_set(err, "the surface has more than %u vertices or triangles", UINT32_MAX);
         return -1;
@@ -256,13 +256,13 @@ static int extract(ms_qsurf_cl *cl, const ms_qsurf_slab *s, ms_qsurf_extract *mc
     if (grow_mesh(cl, total[0], total[1], err) < 0) return -1;
     e = vertices(cl, mc, &sh, (cl_uint)m->nv);
     if (e == CL_SUCCESS) e = triangles(cl, &sh);
-    if (e != CL_SUCCESS) return ms_qsurf_cl_fail(err, "the marching cubes kernels", e);
+    if (e != CL_SUCCESS) return ms_cl_fail(err, "the marching cubes kernels", e);
     if (read_mesh(cl, m, total[0], total[1], err) < 0) return -1;
     /* The first vertices of plane z1 are those of the next slab's plane z0. */
     size_t plane = (size_t)mc->n[0] * mc->n[1] * sizeof(cl_uint);
     e = clEnqueueCopyBuffer(cl->queue, cl->vbase, cl->vbase, (size_t)(z1 - z0) * plane, 0, plane,
                             0, NULL, NULL);
-    return e == CL_SUCCESS ? 0 : ms_qsurf_cl_fail(err, "keeping the top plane", e);
+    return e == CL_SUCCESS ? 0 : ms_cl_fail(err, "keeping the top plane", e);
 }
 
 int ms_qsurf_cl_slab(ms_qsurf_cl *cl, const ms_qsurf_atomgrid *ag, const ms_qsurf_slab *s,
