@@ -69,7 +69,7 @@ static void make_params(const ms_scene *s, const ms_rt_options *o, const orc_wor
 static cl_mem buffer(ocl_frame *f, cl_mem_flags flags, size_t bytes, const void *host, cl_int *rc)
 {
     if (*rc != CL_SUCCESS) return NULL;
-    if (ms_oclrt_fail == MS_OCLRT_FAIL_ALLOC || bytes > f->e->maxalloc) {
+    if (ms_oclrt_fail == MS_OCLRT_FAIL_ALLOC || bytes > f->e->dev.maxalloc) {
         *rc = CL_MEM_OBJECT_ALLOCATION_FAILURE;
         return NULL;
     }
@@ -96,11 +96,11 @@ static int upload(ocl_frame *f, const orc_world *w, const float *P, ms_error *er
         {rw, f->npix * 16, NULL}};
     double total = 0;
     for (int i = 0; i < B_COUNT; i++) total += (double)b[i].bytes;
-    cl_int rc = total > 0.9 * (double)f->e->globalmem ? CL_MEM_OBJECT_ALLOCATION_FAILURE : CL_SUCCESS;
+    cl_int rc = total > 0.9 * (double)f->e->dev.globalmem ? CL_MEM_OBJECT_ALLOCATION_FAILURE : CL_SUCCESS;
     for (int i = 0; i < B_COUNT; i++) f->buf[i] = buffer(f, b[i].flags, b[i].bytes, b[i].host, &rc);
     if (rc != CL_SUCCESS) {
         ms_error_set(err, "OpenCL: %.0f MB of scene and image buffers do not fit on %s (%d %s)",
-                     total / 1e6, f->e->name, (int)rc,
+                     total / 1e6, f->e->dev.name, (int)rc,
                      rc == CL_MEM_OBJECT_ALLOCATION_FAILURE ? "CL_MEM_OBJECT_ALLOCATION_FAILURE" :
                      rc == CL_OUT_OF_RESOURCES ? "CL_OUT_OF_RESOURCES" : "error");
         return -1;
@@ -136,9 +136,9 @@ static int launch_init(ocl_frame *f, ms_error *err)
     rc |= clSetKernelArg(k, 1, sizeof(cl_mem), &f->buf[B_RNG]);
     rc |= clSetKernelArg(k, 2, sizeof(cl_mem), &f->buf[B_RAYS]);
     rc |= clSetKernelArg(k, 3, sizeof npix, &npix);
-    if (rc != CL_SUCCESS) return orc_fail(err, "clSetKernelArg", rc);
+    if (rc != CL_SUCCESS) return ms_cl_fail(err, "clSetKernelArg", rc);
     rc = clEnqueueNDRangeKernel(f->e->queue, k, 1, NULL, &f->global, NULL, 0, NULL, NULL);
-    return rc == CL_SUCCESS ? 0 : orc_fail(err, "the first launch", rc);
+    return rc == CL_SUCCESS ? 0 : ms_cl_fail(err, "the first launch", rc);
 }
 
 static int launch_pass(ocl_frame *f, int pass, ms_error *err)
@@ -147,17 +147,17 @@ static int launch_pass(ocl_frame *f, int pass, ms_error *err)
     cl_int rc = CL_SUCCESS;
     for (int i = 0; i < B_COUNT; i++) rc |= clSetKernelArg(k, (cl_uint)i, sizeof(cl_mem), &f->buf[i]);
     rc |= clSetKernelArg(k, B_COUNT, sizeof pass, &pass);
-    if (rc != CL_SUCCESS) return orc_fail(err, "clSetKernelArg", rc);
+    if (rc != CL_SUCCESS) return ms_cl_fail(err, "clSetKernelArg", rc);
     rc = clEnqueueNDRangeKernel(f->e->queue, k, 1, NULL, &f->global, NULL, 0, NULL, NULL);
     if (rc == CL_SUCCESS) rc = clFinish(f->e->queue);
-    return rc == CL_SUCCESS ? 0 : orc_fail(err, "a pass", rc);
+    return rc == CL_SUCCESS ? 0 : ms_cl_fail(err, "a pass", rc);
 }
 
 static int read_accum(ocl_frame *f, ms_error *err)
 {
     cl_int rc = clEnqueueReadBuffer(f->e->queue, f->buf[B_ACCUM], CL_TRUE, 0, f->npix * 12, f->accum,
                                     0, NULL, NULL);
-    return rc == CL_SUCCESS ? 0 : orc_fail(err, "reading the image", rc);
+    return rc == CL_SUCCESS ? 0 : ms_cl_fail(err, "reading the image", rc);
 }
 
 static int read_rays(ocl_frame *f, ms_rt_stats *st, ms_error *err)
@@ -173,7 +173,7 @@ static int read_rays(ocl_frame *f, ms_rt_stats *st, ms_error *err)
     for (size_t i = 0; rc == CL_SUCCESS && i < f->npix; i++)
         for (int k = 0; k < MS_RT_NRAYKINDS; k++) st->rays[k] += r[4 * i + k];
     free(r);
-    return rc == CL_SUCCESS ? 0 : orc_fail(err, "reading the ray counts", rc);
+    return rc == CL_SUCCESS ? 0 : ms_cl_fail(err, "reading the ray counts", rc);
 }
 
 /* rt/frame.c's to_image: the average, clamped and truncated to 8 bits. */

@@ -5,10 +5,9 @@
 #ifndef MS_OCLRT_IMPL_H
 #define MS_OCLRT_IMPL_H
 
-#define CL_TARGET_OPENCL_VERSION 120
-#include <CL/cl.h>
 #include <stdint.h>
 
+#include "cl/cl.h"
 #include "oclrt/oclrt.h"
 #include "oclrt/params.h"
 #include "rt/rt_common.h"
@@ -82,20 +81,16 @@ int orc_bvh_build(orc_world *w, ms_error *err);
 /* ---------------------------------------------------------------- the engine (device.c) */
 
 typedef struct orc_engine {
-    cl_device_id device;
+    ms_cl_device dev;           /* the device, its memory and name */
     cl_context ctx;
     cl_command_queue queue;
     cl_program program;
     cl_kernel init, pass;
-    cl_ulong globalmem, maxalloc;
-    char name[256];
 } orc_engine;
 
 /* The engine, started on first use (the device chosen, the kernels built or read from the
  * cache), held until orc_engine_release. NULL with err set when OpenCL cannot render. */
 orc_engine *orc_engine_acquire(ms_error *err);
 void orc_engine_release(orc_engine *e);
-/* An OpenCL failure as a message: "OpenCL: what failed (code name)"; returns -1. */
-int orc_fail(ms_error *err, const char *what, cl_int e);
 
 #endif
