@@ -182,6 +182,25 @@ int ms_render_commit(FILE *f, char *tmp, const char *path, int ok, ms_error *err
     return failed ? -1 : 0;
 }
 
+int ms_render_write_image(const char *path, ms_render_image_fn make, void *user, ms_error *err)
+{
+    ms_image_format fmt = ms_image_format_of(path);
+    if (fmt == MS_IMG_UNKNOWN) fmt = MS_IMG_TGA;
+    char *tmp;
+    FILE *f = ms_render_open_tmp(path, &tmp, err);
+    if (!f) return -1;
+    ms_image img;
+    int ok = make(user, &img, err) == 0;
+    if (ok) {
+        if (ms_image_write_stream(&img, fmt, f, err)) {
+            ms_error_prefix(err, "%s", path);
+            ok = 0;
+        }
+        ms_image_free(&img);
+    }
+    return ms_render_commit(f, tmp, path, ok, err);
+}
+
 /* ---------------------------------------------------------------- render */
 
 char *ms_render_expand_cmd(const char *cmd, const char *path, int w, int h)

@@ -13,6 +13,7 @@
 #include <stdio.h>
 
 #include "app/app.h"
+#include "image/image.h"
 #include "scene/scene.h"
 
 typedef struct ms_render_device {
@@ -77,5 +78,11 @@ char *ms_render_expand_cmd(const char *cmd, const char *path, int w, int h);
  * ok, else remove it (returns 0, or -1 with err naming the file and the reason). */
 FILE *ms_render_open_tmp(const char *path, char **tmp, ms_error *err);
 int ms_render_commit(FILE *f, char *tmp, const char *path, int ok, ms_error *err);
+/* For image devices: write the image make renders to path, in the format its name says (TGA
+ * for other names, as VMD writes), through a temporary file opened before make runs, so that
+ * an unwritable path fails before the work. make fills img and returns 0, or sets err and
+ * returns non-zero. 0, or -1 with err set and no file left behind. */
+typedef int (*ms_render_image_fn)(void *user, ms_image *img, ms_error *err);
+int ms_render_write_image(const char *path, ms_render_image_fn make, void *user, ms_error *err);
 
 #endif
