@@ -40,31 +40,30 @@ int ms_oclrt_available(void)
 }
 #endif
 
+typedef struct ocl_job {
+    const ms_scene *s;
+    const ms_rt_options *o;
+    ms_rt_stats *st;
+    int *fell_back;
+} ocl_job;
+
+/* The image on OpenCL, else (with a line saying why) on TachyonInternal. */
+static int render_job(void *user, ms_image *img, ms_error *err)
+{
+    ocl_job *j = user;
+    int rc = ms_oclrt_render(j->s, j->o, img, j->st, NULL, NULL, err);
+    if (rc != MS_OCLRT_EDEVICE) return rc;
+    fprintf(stderr, "TachyonLOpenCLInternal: %s; rendering with TachyonInternal\n", err->msg);
+    if (j->fell_back) *j->fell_back = 1;
+    return ms_rt_render(j->s, j->o, img, j->st, err);
+}
+
 int ms_oclrt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
                    int *fell_back, ms_error *err)
 {
-    ms_image_format fmt = ms_image_format_of(path);
-    if (fmt == MS_IMG_UNKNOWN) fmt = MS_IMG_TGA;      /* VMD writes TGA for other names */
     if (fell_back) *fell_back = 0;
-    char *tmp;
-    FILE *f = ms_render_open_tmp(path, &tmp, err);    /* an unwritable path fails before tracing */
-    if (!f) return -1;
-    ms_image img;
-    int rc = ms_oclrt_render(s, o, &img, st, NULL, NULL, err);
-    if (rc == MS_OCLRT_EDEVICE) {
-        fprintf(stderr, "TachyonLOpenCLInternal: %s; rendering with TachyonInternal\n", err->msg);
-        if (fell_back) *fell_back = 1;
-        rc = ms_rt_render(s, o, &img, st, err);
-    }
-    int ok = rc == 0;
-    if (ok) {
-        if (ms_image_write_stream(&img, fmt, f, err)) {
-            ms_error_prefix(err, "%s", path);
-            ok = 0;
-        }
-        ms_image_free(&img);
-    }
-    return ms_render_commit(f, tmp, path, ok, err);
+    ocl_job j = {s, o, st, fell_back};
+    return ms_render_write_image(path, render_job, &j, err);
 }
 
 static int write_ocl(const ms_scene *s, const char *path, ms_error *err)

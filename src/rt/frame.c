@@ -196,24 +196,23 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     return rc;
 }
 
+typedef struct rt_write_job {
+    const ms_scene *s;
+    const ms_rt_options *o;
+    ms_rt_stats *st;
+} rt_write_job;
+
+static int render_job(void *user, ms_image *img, ms_error *err)
+{
+    const rt_write_job *j = user;
+    return ms_rt_render(j->s, j->o, img, j->st, err);
+}
+
 int ms_rt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
                 ms_error *err)
 {
-    ms_image_format fmt = ms_image_format_of(path);
-    if (fmt == MS_IMG_UNKNOWN) fmt = MS_IMG_TGA;      /* VMD writes TGA for other names */
-    char *tmp;
-    FILE *f = ms_render_open_tmp(path, &tmp, err);    /* an unwritable path fails before tracing */
-    if (!f) return -1;
-    ms_image img;
-    int ok = ms_rt_render(s, o, &img, st, err) == 0;
-    if (ok) {
-        if (ms_image_write_stream(&img, fmt, f, err)) {
-            ms_error_prefix(err, "%s", path);
-            ok = 0;
-        }
-        ms_image_free(&img);
-    }
-    return ms_render_commit(f, tmp, path, ok, err);
+    rt_write_job j = {s, o, st};
+    return ms_render_write_image(path, render_job, &j, err);
 }
 
 /* ---------------------------------------------------------------- sessions */
