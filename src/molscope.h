@@ -19,6 +19,8 @@
  *   movie/      movies: frame files and resuming, frames handed out across ranks, the
  *               ffmpeg encoder fed in frame order, progress (the command: ../tcl/movie.tcl)
  *   surf/       QuickSurf: Gaussian density maps, marching cubes, the surface engine
+ *   cl/         what the OpenCL users (surf/, oclrt/) share: errors, device choice, the
+ *               per-user cache folders, programs built or read from the binary cache
  *   gl/         offscreen OpenGL (OSMesa, EGL): the display device and `render snapshot`
  *   rt/         TachyonInternal: the photorealistic CPU ray tracer on Embree
  *   live/       the live view in a browser: frames rendered at idle, a small web server
