@@ -10,6 +10,7 @@
 #include "fileio/load.h"
 #include "surf/qsurf_impl.h"
 
+#include <dirent.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -483,6 +484,17 @@ static void test_1tii_opencl(const sys *s)
     }
     t_ok(st.nslabs == 1 && st.opencl == 1, "1tii on OpenCL: one slab on the device");
     compare_device("on OpenCL", &ref, &m);
+    /* the built kernels were cached where MOLSCOPE_OPENCL_CACHE says (run-tests sets it) */
+    const char *cache = getenv("MOLSCOPE_OPENCL_CACHE");
+    if (cache && *cache) {
+        DIR *d = opendir(cache);
+        int bins = 0;
+        for (struct dirent *e; d && (e = readdir(d));)
+            bins += !strncmp(e->d_name, "qsurf-", 6) && strstr(e->d_name, ".bin") &&
+                    !strstr(e->d_name, ".tmp");
+        if (d) closedir(d);
+        t_ok(bins >= 1, "QuickSurf's kernels are cached in MOLSCOPE_OPENCL_CACHE (%d files)", bins);
+    }
     /* Forced slabs of 8 layers, all on the device: seamless. */
     ms_qsurf_params p;
     ms_error err = {{0}};
