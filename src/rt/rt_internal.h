@@ -59,6 +59,9 @@ typedef struct rt_geom {
     const uint32_t *tri;
     size_t nverts, vcap;        /* mesh vertices, and room in xyz (Embree reads past the end) */
     const float *aux;           /* per-primitive data a primitive file made (cylinder axes) */
+    const ms_rgba8 *color2;     /* cylinders joined from two halves: the colour from the axial
+                                 * distance join[i] on (NULL: no cylinder was joined) */
+    const float *join;
 } rt_geom;
 
 /* The lists placed by one transform (a molecule's representations share its transform): an
