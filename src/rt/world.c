@@ -210,18 +210,15 @@ static int kind_translucent(const ms_displaylist *dl, const rt_material *mat, rt
     }
 }
 
-/* Whether an instance (a group's opaque or transparent part) holds user geometries:
- * cylinders, cones or their cap discs. */
-static int has_user_kinds(const source *src, size_t n, size_t first, int trans)
+/* Whether a source's opaque or transparent part holds user geometries: cylinders, cones or
+ * their cap discs. Its spheres then join them as a user geometry (they meet: Licorice's
+ * spheres cap its bonds), while another list's spheres (VDW beside Licorice) stay Embree's
+ * own: on the benchmark that traced 9% faster than all spheres in the user tree. */
+static int has_user_kinds(const source *src, int trans)
 {
-    for (size_t i = first; i < n; i++) {
-        const ms_displaylist *dl = src[i].dl;
-        if (src[i].group != src[first].group) continue;
-        if ((dl->cylinders.n && kind_translucent(dl, &src[i].mat, RT_CYLINDER) == trans) ||
-            (dl->cones.n && kind_translucent(dl, &src[i].mat, RT_CONE) == trans))
-            return 1;
-    }
-    return 0;
+    const ms_displaylist *dl = src->dl;
+    return (dl->cylinders.n && kind_translucent(dl, &src->mat, RT_CYLINDER) == trans) ||
+           (dl->cones.n && kind_translucent(dl, &src->mat, RT_CONE) == trans);
 }
 
 /* The geometry of a source's kind into scene sub, when its transparency is trans; user:
@@ -269,10 +266,10 @@ static int add_instance(rt_world *w, const source *src, size_t n, size_t first, 
     /* the transparent part is walked only by rays the opaque part let through: a quick build
      * traced as fast there (measured on a 1M-triangle surface: 0.3 s of CPU saved) */
     rtcSetSceneBuildQuality(sub, trans ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
-    int user = has_user_kinds(src, n, first, trans);
     for (size_t i = first; i < n; i++)
         for (int k = 0; k < RT_NKINDS && src[i].group == src[first].group; k++)
-            if (add_geom(w, sub, &src[i], (rt_kind)k, trans, user, ri, err)) goto fail;
+            if (add_geom(w, sub, &src[i], (rt_kind)k, trans, has_user_kinds(&src[i], trans), ri, err))
+                goto fail;
     rtcCommitScene(sub);
     if (rt_device_check(w->dev, "Embree build", err)) goto fail;
     if (ri->ngeoms) {
