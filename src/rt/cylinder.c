@@ -209,13 +209,148 @@ static int join_halves(rt_world *w, rt_geom *g, ms_error *err)
     return 0;
 }
 
+/* ---------------------------------------------------------------- spheres on the ends */
+
+static size_t point_slot(const float *p, size_t mask)
+{
+    uint32_t u[3];
+    memcpy(u, p, sizeof u);
+    uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (int k = 0; k < 3; k++) {
+        h = (h ^ u[k]) * 0xff51afd7ed558ccdull;
+        h ^= h >> 32;
+    }
+    return (size_t)h & mask;
+}
+
+/* A sphere of the list centred exactly at p, not yet taken, that may join cylinder i (its
+ * alpha the cylinder's, so the primitive has one opacity); UINT32_MAX when none. */
+static uint32_t free_sphere(const rt_geom *g, const uint32_t *tab, size_t mask, const float *p,
+                            size_t i)
+{
+    const ms_dl_spheres *sp = g->spheres;
+    for (size_t s = point_slot(p, mask); tab[s] != NO_MATE; s = (s + 1) & mask) {
+        uint32_t j = tab[s];
+        if (!g->taken[j] && !memcmp(sp->xyz + 3 * (size_t)j, p, 3 * sizeof(float)) &&
+            sp->color[j].a == g->color[i].a)
+            return j;
+    }
+    return NO_MATE;
+}
+
+/* Give each cylinder the spheres of the list centred on its ends (Licorice's atoms), each
+ * sphere to one cylinder: ends[] and endcol[], and taken[] for the sphere geometry to leave
+ * them out. */
+static int take_spheres(rt_world *w, rt_geom *g, ms_error *err)
+{
+    const ms_dl_spheres *sp = g->spheres;
+    size_t cap = 1;
+    while (cap < 2 * sp->n) cap *= 2;
+    uint32_t *tab = malloc(cap * sizeof *tab);
+    float *ends = rt_world_alloc(w, 8 * g->n, sizeof(float), err);
+    ms_rgba8 *col = rt_world_alloc(w, 2 * g->n, sizeof(ms_rgba8), err);
+    g->taken = rt_world_alloc(w, sp->n, 1, err);
+    if (!tab || !ends || !col || !g->taken) {
+        free(tab);
+        if (!tab) ms_error_set(err, "cylinders: out of memory");
+        return -1;
+    }
+    memset(tab, 0xff, cap * sizeof *tab);
+    memset(g->taken, 0, sp->n);
+    for (size_t j = 0; j < sp->n; j++) {
+        if (!(sp->radius[j] > 0.0f)) continue;
+        size_t s = point_slot(sp->xyz + 3 * j, cap - 1);
+        while (tab[s] != NO_MATE) s = (s + 1) & (cap - 1);
+        tab[s] = (uint32_t)j;
+    }
+    for (size_t i = 0; i < g->n; i++)
+        for (int e = 0; e < 2; e++) {
+            const float *p = (e ? g->b : g->a) + 3 * i;
+            float *o = ends + 8 * i + 4 * e;
+            uint32_t j = free_sphere(g, tab, cap - 1, p, i);
+            memcpy(o, p, 3 * sizeof(float));
+            o[3] = 0.0f;
+            col[2 * i + e] = g->color[i];
+            if (j == NO_MATE) continue;
+            g->taken[j] = 1;
+            o[3] = sp->radius[j];
+            col[2 * i + e] = sp->color[j];
+        }
+    free(tab);
+    g->ends = ends;
+    g->endcol = col;
+    return 0;
+}
+
+static void capsule_bounds(const struct RTCBoundsFunctionArguments *args)
+{
+    const rt_geom *g = args->geometryUserPtr;
+    struct RTCBounds *o = args->bounds_o;
+    cylinder_bounds(args);
+    for (int e = 0; e < 2; e++) {
+        const float *c = g->ends + 8 * (size_t)args->primID + 4 * e;
+        float r = c[3];
+        if (!(r > 0.0f) || !isfinite(r) || !isfinite(c[0] + c[1] + c[2])) continue;
+        o->lower_x = fminf(o->lower_x, c[0] - r), o->upper_x = fmaxf(o->upper_x, c[0] + r);
+        o->lower_y = fminf(o->lower_y, c[1] - r), o->upper_y = fmaxf(o->upper_y, c[1] + r);
+        o->lower_z = fminf(o->lower_z, c[2] - r), o->upper_z = fmaxf(o->upper_z, c[2] + r);
+    }
+}
+
+/* The crossings of the cylinder and of its end spheres: how many, and the nearest with its
+ * part (0 the tube, 1 the base sphere, 2 the far sphere). */
+static int capsule_test(const rt_geom *g, unsigned prim, const rt_uray *r, float *near, int *part)
+{
+    float t[2];
+    int n = cylinder_test(g, prim, r, t), total = n;
+    *near = n ? t[0] : INFINITY;
+    *part = 0;
+    for (int e = 0; e < 2; e++) {
+        const float *c = g->ends + 8 * (size_t)prim + 4 * e;
+        if (!(c[3] > 0.0f)) continue;
+        n = rt_sphere_hits(c, c[3], r, t);
+        total += n;
+        if (n && t[0] < *near) *near = t[0], *part = e + 1;
+    }
+    return total;
+}
+
+static void capsule_intersect(const struct RTCIntersectFunctionNArguments *args)
+{
+    const rt_geom *g = args->geometryUserPtr;
+    for (unsigned i = 0; i < args->N; i++) {
+        rt_uray r;
+        float t;
+        int part;
+        if (!args->valid[i]) continue;
+        rt_user_ray((const float *)args->rayhit, args->N, i, &r);
+        if (capsule_test(g, args->primID, &r, &t, &part)) rt_user_hit_part(args, i, t, (float)part);
+    }
+}
+
+static void capsule_occluded(const struct RTCOccludedFunctionNArguments *args)
+{
+    const rt_geom *g = args->geometryUserPtr;
+    for (unsigned i = 0; i < args->N; i++) {
+        rt_uray r;
+        float t;
+        int part;
+        if (!args->valid[i]) continue;
+        rt_user_ray((const float *)args->ray, args->N, i, &r);
+        int n = capsule_test(g, args->primID, &r, &t, &part);
+        if (n) rt_user_block(args, i, n, &r);
+    }
+}
+
 static RTCGeometry cylinder_geometry(rt_world *w, rt_geom *g, ms_error *err)
 {
     if (join_halves(w, g, err)) return NULL;
+    if (g->spheres && g->spheres->n && take_spheres(w, g, err)) return NULL;
     axes x = {g, rt_world_alloc(w, 4 * g->n, sizeof(float), err)};
     if (!x.aux) return NULL;
     ms_parallel_for(g->n, 65536, axes_range, &x);
     g->aux = x.aux;
+    if (g->ends) return rt_user_geometry(w, g, capsule_bounds, capsule_intersect, capsule_occluded, err);
     return rt_user_geometry(w, g, cylinder_bounds, cylinder_intersect, cylinder_occluded, err);
 }
 
@@ -223,6 +358,13 @@ static RTCGeometry cylinder_geometry(rt_world *w, rt_geom *g, ms_error *err)
 static void cylinder_surface(const rt_geom *g, const struct RTCHit *h, const float p[3], float n[3],
                              float ng[3], ms_rgba8 *c)
 {
+    if (g->ends && h->u > 0.0f) {         /* an end sphere */
+        int e = h->u > 1.5f;
+        const float *ctr = g->ends + 8 * (size_t)h->primID + 4 * e;
+        for (int k = 0; k < 3; k++) n[k] = ng[k] = p[k] - ctr[k];
+        *c = g->endcol[2 * (size_t)h->primID + (size_t)e];
+        return;
+    }
     const float *A = g->a + 3 * (size_t)h->primID, *B = g->b + 3 * (size_t)h->primID;
     float ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, q[3] = {p[0] - A[0], p[1] - A[1], p[2] - A[2]};
     rt_normalize(ax);
