@@ -91,6 +91,7 @@ typedef struct rt_world {
     size_t ngeoms;
     int has_trans;              /* some geometry is transparent */
     int split;                  /* shadow rays test opaque, then transparent instances */
+    double samples;             /* camera rays to trace (0: unknown) */
     float eps;                  /* secondary ray offset, from the scene's size */
     void **owned;               /* arrays made for the build (caps, converted lines) */
     size_t nowned, capowned;
@@ -98,8 +99,10 @@ typedef struct rt_world {
     size_t nlists, caplists;
 } rt_world;
 
-/* Build the world of a scene (Embree scenes committed). 0, or -1 with err set and w freed. */
-int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err);
+/* Build the world of a scene (Embree scenes committed) for about samples camera rays (pixels
+ * times passes; 0: unknown, as for a session, which may trace many passes). 0, or -1 with err
+ * set and w freed. */
+int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err);
 /* The matrices of an item from a 4x4 row-major transform; -1 when singular. */
 int rt_item_matrices(rt_item *ri, const float x[16]);
 void rt_world_free(rt_world *w);

@@ -266,6 +266,11 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
     rtcSetGeometryUserData(geom, g);
     if (trans && ((kind == RT_SPHERE && !user) || kind == RT_MESH))
         rtcSetGeometryOccludedFilterFunction(geom, rt_transparent_filter);
+    /* A transparent mesh's tree by Morton codes rather than SAH: on the benchmark's 1M
+     * triangles 0.3 s of CPU less to build, 0.14 s more to trace a pass of 1024 x 1024; so
+     * when the camera rays are fewer than twice its triangles (a one-pass render) */
+    if (trans && kind == RT_MESH && w->samples > 0 && w->samples < 2.0 * (double)g->n)
+        rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_LOW);
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(sub, geom, (unsigned)ri->ngeoms++);
     rtcReleaseGeometry(geom);
@@ -323,9 +328,10 @@ static int add_group(rt_world *w, const source *src, size_t n, size_t group, ms_
     return add_instance(w, src, n, first, 0, err) || add_instance(w, src, n, first, 1, err) ? -1 : 0;
 }
 
-int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err)
+int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err)
 {
     memset(w, 0, sizeof *w);
+    w->samples = samples;
     w->dev = rt_device(err);
     if (!w->dev) return -1;
     w->eps = rt_world_eps(s);
