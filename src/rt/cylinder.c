@@ -223,6 +223,14 @@ static size_t point_slot(const float *p, size_t mask)
     return (size_t)h & mask;
 }
 
+/* Whether cylinder i is a tube at all (a length and a radius): only then may it take spheres. */
+static int tube_ok(const rt_geom *g, size_t i)
+{
+    const float *a = g->a + 3 * i, *b = g->b + 3 * i;
+    float w[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, l2 = rt_dot(w, w);
+    return g->ra[i] > 0.0f && isfinite(g->ra[i]) && l2 > 0.0f && isfinite(l2);
+}
+
 /* A sphere of the list centred exactly at p, not yet taken, that may join cylinder i (its
  * alpha the cylinder's, so the primitive has one opacity); UINT32_MAX when none. */
 static uint32_t free_sphere(const rt_geom *g, const uint32_t *tab, size_t mask, const float *p,
@@ -267,7 +275,7 @@ static int take_spheres(rt_world *w, rt_geom *g, ms_error *err)
         for (int e = 0; e < 2; e++) {
             const float *p = (e ? g->b : g->a) + 3 * i;
             float *o = ends + 8 * i + 4 * e;
-            uint32_t j = free_sphere(g, tab, cap - 1, p, i);
+            uint32_t j = tube_ok(g, i) ? free_sphere(g, tab, cap - 1, p, i) : NO_MATE;
             memcpy(o, p, 3 * sizeof(float));
             o[3] = 0.0f;
             col[2 * i + e] = g->color[i];
