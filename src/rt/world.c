@@ -2,7 +2,8 @@
  * transform (a molecule's lists share one); each group becomes two Embree scenes, its opaque
  * and its transparent geometries, instanced with the transform and masked so shadow rays can
  * take them in turn. Each list gives one geometry per primitive kind (spheres, cylinders,
- * cones, cap discs, the mesh) in its own coordinates; its lines, points and text become
+ * cones, cap discs, the mesh) in its own coordinates, its cylinders made first since they
+ * take the spheres on their ends (cylinder.c); its lines, points and text become
  * world-space cylinders and spheres (strokes.c); materials become Tachyon's texture terms as
  * the Tachyon exporter writes them (common.c), so the two devices agree. */
 #include "config.h"
