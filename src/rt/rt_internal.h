@@ -59,6 +59,16 @@ typedef struct rt_geom {
     const uint32_t *tri;
     size_t nverts, vcap;        /* mesh vertices, and room in xyz (Embree reads past the end) */
     const float *aux;           /* per-primitive data a primitive file made (cylinder axes) */
+    const ms_rgba8 *color2;     /* cylinders joined from two halves: the colour from the axial
+                                 * distance join[i] on (NULL: no cylinder was joined) */
+    const float *join;
+    /* Cylinders: the list's spheres centred on their ends are tested with them, as one
+     * primitive (cylinder.c): 8 floats a cylinder (centre and radius of the sphere at the
+     * base, then at the far end; radius 0: none) and 2 colours; NULL when none. */
+    const float *ends;
+    const ms_rgba8 *endcol;
+    const ms_dl_spheres *spheres;  /* the spheres the cylinders may take (world.c sets it) */
+    uint8_t *taken;             /* per sphere: 1 when a cylinder took it (cylinder.c sets it) */
 } rt_geom;
 
 /* The lists placed by one transform (a molecule's representations share its transform): an
@@ -81,6 +91,7 @@ typedef struct rt_world {
     size_t ngeoms;
     int has_trans;              /* some geometry is transparent */
     int split;                  /* shadow rays test opaque, then transparent instances */
+    double samples;             /* camera rays to trace (0: unknown) */
     float eps;                  /* secondary ray offset, from the scene's size */
     void **owned;               /* arrays made for the build (caps, converted lines) */
     size_t nowned, capowned;
@@ -88,8 +99,10 @@ typedef struct rt_world {
     size_t nlists, caplists;
 } rt_world;
 
-/* Build the world of a scene (Embree scenes committed). 0, or -1 with err set and w freed. */
-int rt_world_build(rt_world *w, const ms_scene *s, ms_error *err);
+/* Build the world of a scene (Embree scenes committed) for about samples camera rays (pixels
+ * times passes; 0: unknown, as for a session, which may trace many passes). 0, or -1 with err
+ * set and w freed. */
+int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err);
 /* The matrices of an item from a 4x4 row-major transform; -1 when singular. */
 int rt_item_matrices(rt_item *ri, const float x[16]);
 void rt_world_free(rt_world *w);
@@ -156,11 +169,17 @@ static inline void rt_user_ray(const float *ray, unsigned N, unsigned i, rt_uray
     r->id = ((const unsigned *)ray)[10 * N + i];
 }
 void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t);
-/* An occlusion call's hits: an opaque one blocks the ray, transparent ones filter it. */
+/* The same, with which part of a composite primitive was hit in the hit's u. */
+void rt_user_hit_part(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t,
+                      float part);
+/* An occlusion call's hits (nhits crossings): an opaque one blocks the ray, transparent ones
+ * filter it, (1 - opacity) a crossing. */
 void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i, int nhits,
                    const rt_uray *r);
 /* Roots t0 <= t1 of a t^2 + 2 b t + c = 0 (a != 0), computed stably; 0 when none. */
 int rt_quadratic(float a, float b, float c, float *t0, float *t1);
+/* A sphere's crossings in (tnear, tfar), nearest first (sphere.c). */
+int rt_sphere_hits(const float c[3], float rad, const rt_uray *r, float t[2]);
 /* Empty bounds (Embree leaves such a primitive out). */
 void rt_bounds_empty(struct RTCBounds *b);
 

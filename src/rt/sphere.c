@@ -45,10 +45,9 @@ static void sphere_bounds(const struct RTCBoundsFunctionArguments *args)
 }
 
 /* Both crossings of the sphere in (tnear, tfar), nearest first (Tachyon counts both). */
-static int sphere_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[2])
+int rt_sphere_hits(const float c[3], float rad, const rt_uray *r, float t[2])
 {
-    const float *c = g->a + 3 * (size_t)prim;
-    float rad = g->ra[prim], oc[3] = {c[0] - r->o[0], c[1] - r->o[1], c[2] - r->o[2]};
+    float oc[3] = {c[0] - r->o[0], c[1] - r->o[1], c[2] - r->o[2]};
     float inv = 1.0f / rt_dot(r->d, r->d), tc = rt_dot(oc, r->d) * inv, q[3];
     for (int k = 0; k < 3; k++) q[k] = oc[k] - tc * r->d[k];
     float l2 = rt_dot(q, q);
@@ -58,6 +57,11 @@ static int sphere_test(const rt_geom *g, unsigned prim, const rt_uray *r, float 
     if (tc - td > r->tnear && tc - td < r->tfar) t[n++] = tc - td;
     if (tc + td > r->tnear && tc + td < r->tfar) t[n++] = tc + td;
     return n;
+}
+
+static int sphere_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[2])
+{
+    return rt_sphere_hits(g->a + 3 * (size_t)prim, g->ra[prim], r, t);
 }
 
 static void sphere_intersect(const struct RTCIntersectFunctionNArguments *args)

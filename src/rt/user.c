@@ -12,6 +12,12 @@ enum { R_OX, R_OY, R_OZ, R_TNEAR, R_DX, R_DY, R_DZ, R_TIME, R_TFAR, R_MASK, R_ID
 
 void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t)
 {
+    rt_user_hit_part(args, i, t, 0.0f);
+}
+
+void rt_user_hit_part(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t,
+                      float part)
+{
     unsigned N = args->N;
     float *f = (float *)args->rayhit;
     unsigned *u = (unsigned *)args->rayhit;
@@ -19,7 +25,7 @@ void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, 
     f[H_NGX * N + i] = 0.0f;      /* the shading code finds the normal from the hit point */
     f[H_NGY * N + i] = 0.0f;
     f[H_NGZ * N + i] = 1.0f;
-    f[H_U * N + i] = 0.0f;
+    f[H_U * N + i] = part;
     f[H_V * N + i] = 0.0f;
     u[H_PRIM * N + i] = args->primID;
     u[H_GEOM * N + i] = args->geomID;
@@ -34,7 +40,7 @@ void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i,
         float op = rt_geom_opacity(g, args->primID, 0.0f, 0.0f);
         if (op < 1.0f) {
             float *f = &((rt_ctx *)args->context)->filter[r->id];
-            *f *= nhits == 2 ? (1.0f - op) * (1.0f - op) : 1.0f - op;
+            for (int k = 0; k < nhits; k++) *f *= 1.0f - op;
             return;
         }
     }

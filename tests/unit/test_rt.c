@@ -511,6 +511,48 @@ static void test_cylinder_caps(void)
     }
 }
 
+/* Half-bond cylinders (as Licorice draws them), flat colours, orthographic (11.7 pixels a
+ * unit): a red half from x = -1 and a blue half from x = 1 meeting at the origin, listed apart
+ * (the tracer joins them into one tube through its table), and between them a green and a
+ * white half meeting at (0, 0.8) at an angle (never joined). Each half keeps its colour. Wider
+ * spheres on the bond's ends (the tracer tests them with the tube) keep theirs, yellow and
+ * cyan, as does a magenta sphere on no cylinder at (0, -0.85). */
+static void test_half_bonds(void)
+{
+    t_suite = "half-bond cylinders";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float o[3] = {0, 0, 0}, l[3] = {-1, 0, 0}, r[3] = {1, 0, 0};
+    float k[3] = {0, 0.8f, 0}, kl[3] = {-1, 0.8f, 0}, kr[3] = {1, 1.1f, 0};
+    ms_dl_cylinder(&dl, l, o, 0.15f, (ms_rgba8){255, 0, 0, 255}, 0, 12);
+    ms_dl_cylinder(&dl, kl, k, 0.15f, (ms_rgba8){0, 255, 0, 255}, 0, 12);
+    ms_dl_cylinder(&dl, kr, k, 0.15f, (ms_rgba8){255, 255, 255, 255}, 0, 12);
+    ms_dl_cylinder(&dl, r, o, 0.15f, (ms_rgba8){0, 0, 255, 255}, 0, 12);
+    float m[3] = {0, -0.85f, 0};
+    ms_dl_sphere(&dl, m, 0.2f, (ms_rgba8){255, 0, 255, 255}, 12);
+    ms_dl_sphere(&dl, r, 0.3f, (ms_rgba8){0, 255, 255, 255}, 12);
+    ms_dl_sphere(&dl, l, 0.3f, (ms_rgba8){255, 255, 0, 255}, 12);
+    ms_scene s;
+    ms_image img;
+    scene_new(&s, 31, 31, 1);
+    place(&s, &dl, 1, 0, 0, 40, 1);
+    if (render(&s, 0, 0, &img)) return t_ok(0, "render"), (void)0;
+    int red = 1, blue = 1;
+    for (int x = 9; x <= 13; x++) red &= near8(px(&img, x, 15), 255, 0, 0, 0);
+    for (int x = 18; x <= 22; x++) blue &= near8(px(&img, x, 15), 0, 0, 255, 0);
+    t_ok(red && blue, "one bond: red left of the joint, blue right of it");
+    const uint8_t *y = px(&img, 5, 13), *c = px(&img, 26, 13), *mg = px(&img, 15, 25);
+    t_ok(near8(y, 255, 255, 0, 0) && near8(c, 0, 255, 255, 0) && near8(mg, 255, 0, 255, 0),
+         "spheres: on the ends yellow (%d %d %d) and cyan (%d %d %d), alone magenta (%d %d %d)",
+         y[0], y[1], y[2], c[0], c[1], c[2], mg[0], mg[1], mg[2]);
+    const uint8_t *g = px(&img, 9, 6), *w = px(&img, 21, 4);
+    t_ok(near8(g, 0, 255, 0, 0) && near8(w, 255, 255, 255, 0), "a bent pair: green (%d %d %d), white (%d %d %d)",
+         g[0], g[1], g[2], w[0], w[1], w[2]);
+    ms_image_free(&img);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+
 /* A cone from base radius 0.6 at x = -1 to a point at x = 1, seen from the side: its height
  * at x is 0.6 (1 - x) / 2. */
 static void test_cone(void)
@@ -1034,6 +1076,7 @@ int main(void)
     test_fog();
     test_mirror();
     test_cylinder_caps();
+    test_half_bonds();
     test_cone();
     test_mesh_colors();
     test_gradient();
