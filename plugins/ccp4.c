@@ -13,7 +13,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #define CCP4_PI 3.14159265358979323846
 
@@ -169,20 +168,17 @@ static void *ccp4_open_read(const char *path, long *natoms, ms_perr *err)
 {
     ccp4_reader *r = calloc(1, sizeof *r);
     unsigned char h[1024];
-    struct stat sb;
     if (!r) {
         ms_perr_set(err, "out of memory");
         return NULL;
     }
-    if (!(r->fp = fopen(path, "rb")) || fstat(fileno(r->fp), &sb) != 0) {
-        ms_perr_set(err, "%s", strerror(errno));
-        goto fail;
-    }
+    long long size;
+    if (!(r->fp = ms_open_sized(path, &size, err))) goto fail;
     if (fread(h, 1, sizeof h, r->fp) != sizeof h) {
         ms_perr_set(err, "header: the file ends before 1024 bytes");
         goto fail;
     }
-    if (parse_header(r, h, (long long)sb.st_size, err) != MS_PLUGIN_OK) goto fail;
+    if (parse_header(r, h, size, err) != MS_PLUGIN_OK) goto fail;
     *natoms = 0;
     return r;
 fail:

@@ -9,7 +9,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 typedef struct nb_reader {
     FILE *fp;
@@ -32,21 +31,17 @@ static void nb_close_read(void *h)
 static void *nb_open_read(const char *path, long *natoms, ms_perr *err)
 {
     nb_reader *r = calloc(1, sizeof *r);
-    struct stat sb;
     uint32_t n;
     if (!r) {
         ms_perr_set(err, "out of memory");
         return NULL;
     }
-    if (!(r->fp = fopen(path, "rb")) || fstat(fileno(r->fp), &sb) != 0) {
-        ms_perr_set(err, "%s", strerror(errno));
-        goto fail;
-    }
+    long long size;
+    if (!(r->fp = ms_open_sized(path, &size, err))) goto fail;
     if (fread(&n, 4, 1, r->fp) != 1) {
         ms_perr_set(err, "not a NAMD binary file: shorter than 4 bytes");
         goto fail;
     }
-    long long size = (long long)sb.st_size;
     if (n >= 1 && 4 + 24LL * n == size) r->swap = 0;
     else if (bswap32(n) >= 1 && 4 + 24LL * bswap32(n) == size) r->swap = 1, n = bswap32(n);
     else {

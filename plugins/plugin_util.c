@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define LINES_BUF (1u << 20)
 #define LINES_MAX_LINE (64u << 20)
@@ -375,6 +376,19 @@ void ms_grid_xfast_to_zfast(const float *src, float *dst, const long n[3])
 }
 
 /* ---------------------------------------------------------------- output */
+
+FILE *ms_open_sized(const char *path, long long *size, ms_perr *err)
+{
+    struct stat sb;
+    FILE *fp = fopen(path, "rb");
+    if (!fp || fstat(fileno(fp), &sb) != 0) {
+        ms_perr_set(err, "%s", strerror(errno));
+        if (fp) fclose(fp);
+        return NULL;
+    }
+    *size = (long long)sb.st_size;
+    return fp;
+}
 
 int ms_out_open(ms_out *o, const char *path, ms_perr *err)
 {

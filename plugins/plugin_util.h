@@ -78,6 +78,12 @@ void ms_grid_zfast_to_xfast(const float *src, float *dst, const long n[3]);
 /* The reverse, for writers. */
 void ms_grid_xfast_to_zfast(const float *src, float *dst, const long n[3]);
 
+/* ---------------------------------------------------------------- binary input */
+
+/* A binary file opened for reading, with its size in bytes; NULL with err set (the
+ * system's reason) when it cannot be opened or its size read. */
+FILE *ms_open_sized(const char *path, long long *size, ms_perr *err);
+
 /* ---------------------------------------------------------------- output */
 
 /* fprintf that remembers failure; check with ms_out_close. */

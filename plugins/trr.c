@@ -14,7 +14,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #define TRR_MAGIC 1993
 
@@ -107,17 +106,12 @@ static void trr_close_read(void *h)
 static void *trr_open_read(const char *path, long *natoms, ms_perr *err)
 {
     trr_reader *r = calloc(1, sizeof *r);
-    struct stat sb;
     trr_head h;
     if (!r) {
         ms_perr_set(err, "out of memory");
         return NULL;
     }
-    if (!(r->fp = fopen(path, "rb")) || fstat(fileno(r->fp), &sb) != 0) {
-        ms_perr_set(err, "%s", strerror(errno));
-        goto fail;
-    }
-    r->size = (long long)sb.st_size;
+    if (!(r->fp = ms_open_sized(path, &r->size, err))) goto fail;
     int rc = read_head(r, &h, err);
     if (rc == MS_PLUGIN_EOF) ms_perr_set(err, "not a TRR file: empty");
     if (rc != MS_PLUGIN_OK) goto fail;

@@ -38,7 +38,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #define XTC_MAGIC 1995
@@ -676,16 +675,11 @@ static void *xtc_open_read(const char *path, long *natoms, ms_perr *err)
 {
     xtc_reader *r = calloc(1, sizeof *r);
     unsigned char h[16];
-    struct stat sb;
     if (!r) {
         ms_perr_set(err, "out of memory");
         return NULL;
     }
-    if (!(r->fp = fopen(path, "rb")) || fstat(fileno(r->fp), &sb) != 0) {
-        ms_perr_set(err, "%s", strerror(errno));
-        goto fail;
-    }
-    r->size = (long long)sb.st_size;
+    if (!(r->fp = ms_open_sized(path, &r->size, err))) goto fail;
     if (read_exact(r->fp, h, 16) != 1) {
         ms_perr_set(err, "not an XTC file: shorter than a frame header");
         goto fail;
