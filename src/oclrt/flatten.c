@@ -12,11 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct source {
-    const ms_displaylist *dl;
-    const float *xform;
-    rt_material mat;
-} source;
+typedef rt_source source;
 
 static int any_alpha(const ms_rgba8 *c, size_t n)
 {
@@ -46,31 +42,15 @@ static int caps_alpha(const ms_displaylist *dl)
 /* The scene's lists and the stroke lists made for them. */
 static source *sources_of(orc_world *w, const ms_scene *s, size_t *n, ms_error *err)
 {
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     source *src = ms_alloc_array(2 * s->nitems + 1, sizeof *src);
-    w->lists = ms_calloc_array(s->nitems + 1, sizeof *w->lists);
-    if (!src || !w->lists) goto nomem;
-    *n = 0;
-    for (size_t i = 0; i < s->nitems; i++) {
-        const ms_scene_item *it = &s->items[i];
-        source *o = &src[(*n)++];
-        o->dl = it->dl, o->xform = it->xform;
-        rt_material_terms(&it->mat, it->dl->lit, &o->mat);
-        if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
-        ms_displaylist *extra = malloc(sizeof *extra);
-        if (!extra) goto nomem;
-        ms_dl_init(extra);
-        w->lists[w->nlists++] = extra;
-        if (rt_strokes(it, extra)) goto nomem;
-        o = &src[(*n)++];
-        o->dl = extra, o->xform = identity;
-        rt_material_terms(&it->mat, 0, &o->mat);
+    long got = src ? rt_sources(s, src, &w->lists, &w->nlists, &w->caplists) : -1;
+    if (got < 0) {
+        free(src);
+        ms_error_set(err, "out of memory");
+        return NULL;
     }
+    *n = (size_t)got;
     return src;
-nomem:
-    free(src);
-    ms_error_set(err, "out of memory");
-    return NULL;
 }
 
 /* A triangle naming a vertex that does not exist is an error (as rt/mesh.c says it). */

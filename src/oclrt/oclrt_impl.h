@@ -45,7 +45,7 @@ typedef struct orc_world {
     uint32_t *leaf;
     float eps;
     ms_displaylist **lists;     /* the stroke lists made for the build */
-    size_t nlists;
+    size_t nlists, caplists;
 } orc_world;
 
 /* The tree the builders make (bvh.c: Embree's rtcBuildBVH; sah.c: our own binned SAH

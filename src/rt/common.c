@@ -4,8 +4,10 @@
 #include "config.h"
 #include "rt/rt_common.h"
 #include "scene/mat4.h"
+#include "base/base.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 float rt_normalize(float v[3])
@@ -150,4 +152,37 @@ int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)
         return -1;
     }
     return 0;
+}
+
+/* A new empty list appended to *lists; NULL when memory runs out. */
+static ms_displaylist *stroke_list(ms_displaylist ***lists, size_t *nlists, size_t *cap)
+{
+    ms_displaylist *dl = malloc(sizeof *dl);
+    if (!dl || ms_grow((void **)lists, cap, *nlists + 1, sizeof **lists)) {
+        free(dl);
+        return NULL;
+    }
+    ms_dl_init(dl);
+    (*lists)[(*nlists)++] = dl;
+    return dl;
+}
+
+long rt_sources(const ms_scene *s, rt_source *src, ms_displaylist ***lists, size_t *nlists,
+                size_t *cap)
+{
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    long n = 0;
+    for (size_t i = 0; i < s->nitems; i++) {
+        const ms_scene_item *it = &s->items[i];
+        rt_source *o = &src[n++];
+        o->dl = it->dl, o->xform = it->xform, o->group = 0;
+        rt_material_terms(&it->mat, it->dl->lit, &o->mat);
+        if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
+        ms_displaylist *extra = stroke_list(lists, nlists, cap);
+        if (!extra || rt_strokes(it, extra)) return -1;
+        o = &src[n++];
+        o->dl = extra, o->xform = identity, o->group = 0;
+        rt_material_terms(&it->mat, 0, &o->mat);
+    }
+    return n;
 }

@@ -38,6 +38,20 @@ float rt_world_eps(const ms_scene *s);
 /* The lines, points and text of a placed list as world-space cylinders and spheres appended
  * to out (strokes.c). 0, or -1 when memory runs out. */
 int rt_strokes(const ms_scene_item *it, ms_displaylist *out);
+/* One list to trace: a scene item's list with its transform and texture terms, or the
+ * world-space list made of an item's lines, points and text (identity transform). group is
+ * the caller's. */
+typedef struct rt_source {
+    const ms_displaylist *dl;
+    const float *xform;
+    rt_material mat;
+    size_t group;
+} rt_source;
+/* The sources of a scene into src (room for 2 * s->nitems); the stroke lists made for them
+ * are appended to *lists (grown by ms_grow: *nlists, *cap), which the caller frees with
+ * ms_dl_free and free. The number of sources, or -1 when memory runs out. */
+long rt_sources(const ms_scene *s, rt_source *src, ms_displaylist ***lists, size_t *nlists,
+                size_t *cap);
 /* The limits of the samples and the image size: 0, or -1 with err saying which is wrong. */
 int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err);
 

@@ -32,19 +32,6 @@ void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err)
     return p;
 }
 
-static ms_displaylist *new_list(rt_world *w, ms_error *err)
-{
-    ms_displaylist *dl = malloc(sizeof *dl);
-    if (!dl || ms_grow((void **)&w->lists, &w->caplists, w->nlists + 1, sizeof *w->lists)) {
-        free(dl);
-        ms_error_set(err, "out of memory");
-        return NULL;
-    }
-    ms_dl_init(dl);
-    w->lists[w->nlists++] = dl;
-    return dl;
-}
-
 
 
 int rt_item_matrices(rt_item *ri, const float x[16])
@@ -147,36 +134,19 @@ static int no_scene(rt_world *w, ms_error *err)
 
 
 /* A display list to trace: its transform and texture terms. */
-typedef struct source {
-    const ms_displaylist *dl;
-    const float *xform;
-    rt_material mat;
-    size_t group;
-} source;
+typedef rt_source source;
 
 /* The scene's lists, and the world-space lists of their lines, points and text. */
 static source *sources_of(rt_world *w, const ms_scene *s, size_t *n, ms_error *err)
 {
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     source *src = rt_world_alloc(w, 2 * s->nitems, sizeof *src, err);
     if (!src) return NULL;
-    *n = 0;
-    for (size_t i = 0; i < s->nitems; i++) {
-        const ms_scene_item *it = &s->items[i];
-        source *o = &src[(*n)++];
-        o->dl = it->dl, o->xform = it->xform;
-        rt_material_terms(&it->mat, it->dl->lit, &o->mat);
-        if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
-        ms_displaylist *extra = new_list(w, err);
-        if (!extra) return NULL;
-        if (rt_strokes(it, extra)) {
-            ms_error_set(err, "out of memory");
-            return NULL;
-        }
-        o = &src[(*n)++];
-        o->dl = extra, o->xform = identity;
-        rt_material_terms(&it->mat, 0, &o->mat);
+    long got = rt_sources(s, src, &w->lists, &w->nlists, &w->caplists);
+    if (got < 0) {
+        ms_error_set(err, "out of memory");
+        return NULL;
     }
+    *n = (size_t)got;
     return src;
 }
 
