@@ -13,9 +13,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "builtin/builtin.h"
-
-static ms_registry reg;
+#include "ms_testload.h"
 
 static int near(double a, double b, double tol) { return fabs(a - b) <= tol; }
 static int rel_near(double a, double b, double tol) { return fabs(a - b) <= tol * fabs(b); }
@@ -26,19 +24,6 @@ static double rnd(void)
     static uint64_t s = 88172645463325252ull;
     s ^= s << 13, s ^= s >> 7, s ^= s << 17;
     return (double)(s >> 11) / 9007199254740992.0;
-}
-
-static ms_molecule *load(const char *name)
-{
-    char path[1024];
-    ms_error err = {{0}};
-    snprintf(path, sizeof path, "%s/%s", t_data(), name);
-    ms_load_opts o;
-    ms_load_opts_default(&o);
-    o.waitfor = -1;
-    ms_molecule *m = ms_load_new(&reg, path, &o, &err);
-    if (!m) t_ok(0, "load %s: %s", name, err.msg);
-    return m;
 }
 
 /* A molecule of n blank atoms (named "X", mass 1, radius 1) with one frame at xyz. */

@@ -12,22 +12,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "builtin/builtin.h"
-
-static ms_registry reg;
-
-static ms_molecule *load(const char *name)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", t_data(), name);
-    ms_load_opts o;
-    ms_load_opts_default(&o);
-    o.waitfor = -1;
-    ms_error err = {{0}};
-    ms_molecule *m = ms_load_new(&reg, path, &o, &err);
-    if (!m) t_ok(0, "load %s: %s", name, err.msg);
-    return m;
-}
+#include "ms_testload.h"
 
 /* Number of atoms a selection picks, or -1 on error (the error is reported). */
 static long count(ms_molecule *m, const char *text)
