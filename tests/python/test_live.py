@@ -189,18 +189,32 @@ def browser():
     try:
         from selenium import webdriver
         from selenium.webdriver.chrome.service import Service
+        from selenium.webdriver.common import utils
     except ImportError:
         return None, "python3-selenium is not installed"
+
+    class LoopbackService(Service):
+        """chromedriver reached at 127.0.0.1, not "localhost": a machine with no /etc/hosts
+        (a fresh minbase Debian) cannot resolve that name, and selenium would give up."""
+        @property
+        def service_url(self):
+            return "http://127.0.0.1:%d" % self.port
+
+        def is_connectable(self):
+            return utils.is_connectable(self.port, "127.0.0.1")
+
     o = webdriver.ChromeOptions()
     o.binary_location = chromium
     profile = tempfile.mkdtemp(prefix="chrome.", dir=OUT)
     for a in ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic",
               "--disable-background-networking", "--disable-component-update",
               "--disable-sync", "--no-first-run", "--disable-dev-shm-usage",
+              # chromedriver talks to chromium through a pipe, not a "localhost" port
+              "--remote-debugging-pipe",
               "--user-data-dir=" + profile, "--window-size=700,700"]:
         o.add_argument(a)
     try:
-        return webdriver.Chrome(service=Service(driver), options=o), None
+        return webdriver.Chrome(service=LoopbackService(driver), options=o), None
     except Exception as e:  # noqa: BLE001 - any start failure is a reason to skip
         return None, "chromium did not start: %s" % str(e).splitlines()[0]
 
