@@ -1,5 +1,5 @@
 # tcl: the Tcl library shipped with molscope.
-tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl
+dist_tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl
 
 # The page of the live view (display live, doc/live.md).
 livepagedir = $(tcllibdir)/live

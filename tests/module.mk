@@ -11,7 +11,7 @@ include tests/unit/module.mk
 include tests/tools/module.mk
 include tests/fuzz/module.mk
 
-EXTRA_DIST += tests/run-tests tests/tcl tests/shell tests/data tests/python tests/fuzz/corpus
+EXTRA_DIST += tests/run-tests tests/fresh-install tests/tcl tests/shell tests/data tests/python tests/fuzz/corpus
 
 # The test programs are linked in a second step, after `all` has rebuilt the core library
 # (listing both as prerequisites let a parallel make relink them against the old one).
