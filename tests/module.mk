@@ -22,3 +22,9 @@ check-local: check-build
 	$(top_srcdir)/tests/run-tests $(abs_top_builddir)
 
 .PHONY: check-build
+
+# What the test run leaves: its scratch folder and its log.
+clean-local: clean-local-tests
+clean-local-tests:
+	-rm -rf tests/out tests/test-suite.log
+.PHONY: clean-local-tests
