@@ -10,7 +10,7 @@
  * usage: bench_rt data-folder copies size out-folder spp...   (bench_rt.sh runs it)
  * Switches for experiments (environment): BENCH_RT_NOEXPORT (no .dat), BENCH_RT_NOSHELL,
  * BENCH_RT_OPAQUESHELL, BENCH_RT_STACKS=n (a shell of 4 n^2 triangles; default 500),
- * BENCH_RT_NOAO, BENCH_RT_TRACERS="rt ocl" (which tracers render each sample count, in that
+ * BENCH_RT_NOAO, BENCH_RT_NOSHADOWS, BENCH_RT_TRACERS="rt ocl" (which tracers render each sample count, in that
  * order: rt TachyonInternal, ocl TachyonLOpenCLInternal; default "rt"), BENCH_RT_OWNBVH (the
  * OpenCL tracer's BVH from its own SAH builder instead of rtcBuildBVH). */
 #include "config.h"
@@ -194,6 +194,7 @@ int main(int argc, char **argv)
     if (!getenv("BENCH_RT_VDWONLY")) ms_scene_add(&sc, &lic, xform, mats, &err);
     if (!getenv("BENCH_RT_NOSHELL") && !getenv("BENCH_RT_VDWONLY")) ms_scene_add(&sc, &shell, xform, mats, &err);
     if (getenv("BENCH_RT_NOAO")) sc.ao = 0;
+    if (getenv("BENCH_RT_NOSHADOWS")) sc.shadows = 0;
     if (getenv("BENCH_RT_OPAQUESHELL")) sc.items[sc.nitems - 1].mat.opacity = 1;
     printf("scene: %zu atoms (1tii x %d): %zu VDW spheres, %zu Licorice spheres + %zu cylinders, "
            "%zu transparent triangles; %dx%d, %d threads\n", s.n, copies, vdw.spheres.n,
