@@ -1,5 +1,5 @@
-/* app.c: creating the application, locating its Tcl library and plugins, background frame
- * loading, VMD's trace variables, and quit/exit. */
+/* app.c: creating the application, locating its Tcl library and plugins, VMD's trace
+ * variables, and quit/exit (background frame loading is in loading.c). */
 #include "config.h"
 #include "app/app.h"
 #include "commands/commands.h"
@@ -62,8 +62,6 @@ static void find_plugins(ms_app *app)
     }
 }
 
-static void idle_load(ClientData cd);
-
 ms_app *ms_app_new(const char *argv0)
 {
     ms_app *app = calloc(1, sizeof *app);
@@ -93,7 +91,7 @@ ms_app *ms_app_new(const char *argv0)
 void ms_app_free(ms_app *app)
 {
     if (!app) return;
-    if (app->idle_scheduled) Tcl_CancelIdleCall(idle_load, app);
+    ms_app_stop_loading(app);
     for (size_t i = 0; i < app->mols.n; i++) ms_loader_cancel(app->mols.mols[i]);
     if (app->interp) {
         ms_live_stop(app);                /* before the display lists it may hold go */
@@ -119,54 +117,6 @@ int ms_app_source_init(ms_app *app)
         return TCL_ERROR;
     }
     return Tcl_EvalFile(app->interp, path);
-}
-
-/* ---------------------------------------------------------------- background loading */
-
-static void pump_one(ms_app *app, ms_molecule *m, long max)
-{
-    ms_error err = {{0}};
-    char *done = NULL;
-    size_t before = m->nframes;
-    int rc = ms_loader_pump(m, max, &done, &err);
-    if (rc < 0)
-        fprintf(stderr, "molscope: molecule %d: %s%s%s (kept %zu frames)\n", m->id,
-                done ? done : "", done ? ": " : "", err.msg, m->nframes);
-    if (m->nframes != before) {
-        ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, m, NULL);
-        ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
-    }
-    if (done && rc == 0) ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, m, done);
-    free(done);
-}
-
-/* Read pending frames while Tcl is idle, about 50 ms of work per turn so an interactive
- * session stays responsive (VMD reads one frame per redraw). */
-static void idle_load(ClientData cd)
-{
-    ms_app *app = cd;
-    app->idle_scheduled = 0;
-    double until = ms_now() + 0.05;
-    int more = 0;
-    for (size_t i = 0; i < app->mols.n; i++) {
-        ms_molecule *m = app->mols.mols[i];
-        while (m->pending && ms_now() < until) pump_one(app, m, 1);
-        more |= m->pending != NULL;
-    }
-    if (more) ms_app_schedule_loading(app);
-}
-
-void ms_app_schedule_loading(ms_app *app)
-{
-    if (app->idle_scheduled) return;
-    app->idle_scheduled = 1;
-    Tcl_DoWhenIdle(idle_load, app);
-}
-
-void ms_app_finish_loading(ms_app *app)
-{
-    for (size_t i = 0; i < app->mols.n; i++)
-        if (app->mols.mols[i]->pending) pump_one(app, app->mols.mols[i], -1);
 }
 
 /* ---------------------------------------------------------------- trace variables */
@@ -235,6 +185,7 @@ void ms_app_register(ms_app *app)
 {
     Tcl_CreateObjCommand(app->interp, "quit", cmd_quit, app, NULL);
     Tcl_CreateObjCommand(app->interp, "exit", cmd_quit, app, NULL);
+    ms_app_register_loading(app);
     ms_molset_listen(&app->mols, on_mol_event, app);
 }
 

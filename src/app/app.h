@@ -41,12 +41,20 @@ void ms_app_free(ms_app *app);
 /* Source the Tcl library's init script. Returns TCL_OK or TCL_ERROR. */
 int ms_app_source_init(ms_app *app);
 
-/* Queue background reading of pending frames (VMD's waitfor) when Tcl is idle. */
+/* Background frame loading (loading.c). Queue reading of pending frames (VMD's waitfor)
+ * when Tcl is idle; cancel that queued reading (the loads stay pending). */
 void ms_app_schedule_loading(ms_app *app);
-/* Read every pending frame of every molecule now. */
+void ms_app_stop_loading(ms_app *app);
+/* Read every pending frame of every molecule now. A damaged file keeps the frames read
+ * before the damage and is reported through the background error handler. */
 void ms_app_finish_loading(ms_app *app);
+/* The same for one molecule: 0, or -1 when a trace callback deleted it meanwhile. */
+int ms_app_finish_molecule(ms_app *app, ms_molecule *m);
+/* Make Tcl's update and vwait read every pending frame first. */
+void ms_app_register_loading(ms_app *app);
 
-/* Register the app's own commands (quit/exit) and the trace-variable listener. */
+/* Register the app's own commands (quit/exit, update/vwait) and the trace-variable
+ * listener. */
 void ms_app_register(ms_app *app);
 
 /* Evaluate a script as a top-level command (batch: an error prints the message and stack

@@ -1,6 +1,6 @@
 # src/app: the program: command line, startup, shell.
 src_libmscore_la_SOURCES += \
-	src/app/app.h src/app/app.c \
+	src/app/app.h src/app/app.c src/app/loading.c \
 	src/app/options.h src/app/options.c \
 	src/app/shell.h src/app/shell.c
 

@@ -2,7 +2,8 @@
  * history through tclreadline when it is installed, loaded at run time; a plain prompt
  * otherwise); batch otherwise, where an error prints the message with its stack trace and
  * ends the program with status 1. Tcl events (background frame loading, servers) run while
- * the shell waits for input.
+ * the shell waits for input; while a command runs, standard input is not watched, so a
+ * command that runs the event loop itself (update, vwait) sees only the other events.
  *
  * Under MPI only rank 0 has standard input: it reads each line and broadcasts it, and every
  * rank evaluates it, so `mpirun -np 4 molscope < script.tcl` runs the script on every rank.
@@ -104,9 +105,15 @@ static void on_stdin(ClientData cd, int mask)
     }
     int len;
     const char *s = Tcl_GetStringFromObj(line, &len);
+    /* No reading while the line runs: a command that runs the event loop (update, vwait)
+     * must not have the next lines evaluated inside it, nor spin on a readable end of file
+     * (where Tcl's idle work, background loading among it, would never run). */
+    Tcl_DeleteChannelHandler(in, on_stdin, sh);
     if (shell_line(sh, s, len)) sh->done = 1;
     Tcl_DecrRefCount(line);
-    if (!sh->done) prompt(sh);
+    if (sh->done) return;
+    Tcl_CreateChannelHandler(in, TCL_READABLE, on_stdin, sh);
+    prompt(sh);
 }
 
 /* The loop through tclreadline: returns 0 when tclreadline is not available. */
@@ -205,7 +212,7 @@ int ms_shell_run(ms_app *app)
     Tcl_CreateChannelHandler(in, TCL_READABLE, on_stdin, &sh);
     prompt(&sh);
     while (!sh.done && !app->quit_requested) Tcl_DoOneEvent(TCL_ALL_EVENTS);
-    Tcl_DeleteChannelHandler(in, on_stdin, &sh);
+    Tcl_DeleteChannelHandler(in, on_stdin, &sh);   /* harmless when already gone */
     if (app->quit_requested) sh.status = app->quit_status;
     if (sh.pending) Tcl_DecrRefCount(sh.pending);
     if (app->interactive && !app->quit_requested) putchar('\n');

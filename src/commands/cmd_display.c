@@ -275,6 +275,7 @@ static int disp_resetview(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
 static int disp_update(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     if (objc == 2) {
+        ms_app_finish_loading(app);   /* the frames still being read arrive now */
         ms_view_rock_step(app);   /* a redraw advances rocking, as VMD's display loop does */
         return TCL_OK;
     }

@@ -385,6 +385,11 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         Tcl_SetObjResult(interp, Tcl_NewIntObj(m->id));
         return TCL_OK;
     }
+    /* Files load in order: the frames still pending from an earlier file come first (a
+     * damage found there is that file's, reported as a background error). */
+    if (into->pending && ms_app_finish_molecule(app, into))
+        return ms_cmd_error(interp, "%s: %s: the molecule was deleted while its earlier "
+                            "file was being read", cmd, path);
     size_t atoms_before = into->atoms.n, frames_before = into->nframes;
     size_t volumes_before = into->nvolumes;
     if (bcast ? ms_par_load_add(&app->plugins, into, path, o, &err)

@@ -23,6 +23,7 @@ typedef struct ms_loader {
     int with_vel;
     ms_asm_plan *plan;        /* frames are read into scratch and expanded (assemblies) */
     float *scratch_pos, *scratch_vel;
+    long nread;               /* frames of this file added to the molecule so far */
 } ms_loader;
 
 void ms_load_opts_default(ms_load_opts *o)
@@ -449,7 +450,10 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         ms_frame *f = NULL;
         int keep = wants_frame(idx, ld->first, ld->last, ld->step);
         if (keep) {
-            if (!(f = ms_mol_add_frame(m, ld->with_vel, err))) return -1;
+            if (!(f = ms_mol_add_frame(m, ld->with_vel, err))) {
+                ms_error_prefix(err, "frame %ld", idx);
+                return -1;
+            }
             out.pos = ld->plan ? ld->scratch_pos : f->pos;
             out.vel = ld->plan ? ld->scratch_vel : f->vel;
         }
@@ -471,6 +475,7 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         f->time = out.has_time ? out.time : 0.0;
         if (f->vel && !out.has_vel) memset(f->vel, 0, m->atoms.n * 3 * sizeof(float));
         kept++;
+        ld->nread++;
     }
     return 1;
 }
@@ -931,6 +936,11 @@ int ms_loader_pump(ms_molecule *m, long max_frames, char **path_done, ms_error *
     if (!ld) return 0;
     int rc = loader_read(m, ld, max_frames, err);
     if (rc == 1) return 1;
+    if (rc < 0) {
+        size_t len = strlen(err->msg);
+        snprintf(err->msg + len, sizeof err->msg - len, "; the %ld frame%s read before it %s kept",
+                 ld->nread, ld->nread == 1 ? "" : "s", ld->nread == 1 ? "is" : "are");
+    }
     *path_done = ld->path;
     ld->path = NULL;
     loader_free(ld);

@@ -1,7 +1,8 @@
 /* load.h: reading files into molecules through plugins, the way `mol new` and `mol addfile`
  * do: transactional (a failed load leaves nothing behind), frame ranges (first, last, step),
  * and VMD's `waitfor`: the frames beyond it are read later, a batch at a time, by
- * ms_loader_pump (molscope calls it when Tcl is idle and on `display update`). */
+ * ms_loader_pump (molscope calls it when Tcl is idle, and to the end on `update`, `vwait`
+ * and `display update`). */
 #ifndef MS_LOAD_H
 #define MS_LOAD_H
 
@@ -50,9 +51,10 @@ int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms
 void ms_load_adopt(ms_molecule *dst, ms_molecule *src);
 
 /* Read up to max_frames pending frames (all when max_frames < 0). Returns 1 when frames are
- * still pending, 0 when the file is done, -1 on a read error (frames read so far are kept,
- * the rest dropped; err says why). *path_done is set to the file's path when it finished
- * (owned by the caller: free it). */
+ * still pending, 0 when the file is done, -1 on a read error: the frames read before the
+ * damage are kept, the rest of the file is not read, and err names the frame, the problem
+ * and how many frames of the file are kept. *path_done is set to the file's path when it
+ * finished, also after an error (owned by the caller: free it). */
 int ms_loader_pump(ms_molecule *m, long max_frames, char **path_done, ms_error *err);
 /* Stop reading pending frames and close the file. */
 void ms_loader_cancel(ms_molecule *m);

@@ -10,10 +10,14 @@
  *   GET  /image.png?token=T    the current image
  *   POST /view?token=T         form fields rx ry rz scale tx ty tz (live.h bounds)
  *
- * Every request without the token gets 403, whatever its path. The server's state is the
- * interpreter's associated data, so it stops when the interpreter is deleted at exit. */
+ * Every request without the token gets 403, whatever its path, as soon as its headers are
+ * read, and its connection is closed. Connections that have not shown the token are
+ * watched by guard.c (at most a few seconds each, and a few dozen at a time), so that no
+ * local user without the token can hold the server's connections. The server's state is
+ * the interpreter's associated data, so it stops when the interpreter is deleted at exit. */
 #include "config.h"
 #include "live/live.h"
+#include "live/guard.h"
 
 #include <arpa/inet.h>
 #include <microhttpd.h>
@@ -59,6 +63,7 @@ typedef struct live_server {
     size_t page_len;
     ms_live_frames frames;
     req_ctx *waiting;                /* suspended long polls */
+    ms_live_guard guard;             /* connections that have not shown the token */
 } live_server;
 
 static live_server *server_of(ms_app *app)
@@ -74,18 +79,26 @@ int ms_live_available(char *why, size_t size)
 
 /* ---------------------------------------------------------------- replies */
 
-static enum MHD_Result reply(struct MHD_Connection *c, unsigned status, const char *type,
-                             const void *data, size_t len)
+/* Queue a response; with close set the connection is closed once it is sent. */
+static enum MHD_Result reply_on(struct MHD_Connection *c, unsigned status, const char *type,
+                                const void *data, size_t len, int close)
 {
     struct MHD_Response *r =
         MHD_create_response_from_buffer(len, (void *)data, MHD_RESPMEM_MUST_COPY);
     if (!r) return MHD_NO;
+    if (close) MHD_add_response_header(r, MHD_HTTP_HEADER_CONNECTION, "close");
     MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, type);
     MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
     MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
     enum MHD_Result rc = MHD_queue_response(c, status, r);
     MHD_destroy_response(r);
     return rc;
+}
+
+static enum MHD_Result reply(struct MHD_Connection *c, unsigned status, const char *type,
+                             const void *data, size_t len)
+{
+    return reply_on(c, status, type, data, len, 0);
 }
 
 static enum MHD_Result reply_text(struct MHD_Connection *c, unsigned status, const char *text)
@@ -247,8 +260,13 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
     live_server *sv = cls;
     int get = !strcmp(method, MHD_HTTP_METHOD_GET) || !strcmp(method, MHD_HTTP_METHOD_HEAD);
     int post = !strcmp(method, MHD_HTTP_METHOD_POST);
-    if (!*con_cls && !token_ok(sv, c))
-        return reply_text(c, MHD_HTTP_FORBIDDEN, "forbidden: this page needs its token\n");
+    if (!*con_cls) {
+        static const char no[] = "forbidden: this page needs its token\n";
+        if (!token_ok(sv, c))
+            return reply_on(c, MHD_HTTP_FORBIDDEN, "text/plain; charset=utf-8", no,
+                            sizeof no - 1, 1);
+        ms_live_guard_trust(&sv->guard, c);
+    }
     if (post && !strcmp(url, "/view")) return on_view(sv, c, data, size, con_cls);
     if (!get)
         return reply_text(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET, and POST /view\n");
@@ -284,9 +302,11 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls,
 static void pump(live_server *sv)
 {
     resume_due(sv, 0);
+    long due = ms_live_guard_expire(&sv->guard);
     MHD_run(sv->d);
     MHD_UNSIGNED_LONG_LONG ms = MAX_WAIT_MS;
     if (MHD_get_timeout(sv->d, &ms) != MHD_YES || ms > MAX_WAIT_MS) ms = MAX_WAIT_MS;
+    if (due >= 0 && (MHD_UNSIGNED_LONG_LONG)due < ms) ms = (MHD_UNSIGNED_LONG_LONG)due;
     if (sv->timer) Tcl_DeleteTimerHandler(sv->timer);
     sv->timer = Tcl_CreateTimerHandler((int)ms, on_timer, sv);
 }
@@ -368,8 +388,9 @@ static int start_daemon(live_server *sv, int port, const char *addr, ms_error *e
     }
     sv->d = MHD_start_daemon(MHD_USE_EPOLL | MHD_ALLOW_SUSPEND_RESUME, 0, NULL, NULL, on_request, sv,
                              MHD_OPTION_SOCK_ADDR, (struct sockaddr *)&sa,
-                             MHD_OPTION_CONNECTION_LIMIT, (unsigned)64,
-                             MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)30,
+                             MHD_OPTION_CONNECTION_LIMIT, (unsigned)MS_LIVE_MAX_CONNECTIONS,
+                             MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)MS_LIVE_UNTRUSTED_S,
+                             MHD_OPTION_NOTIFY_CONNECTION, ms_live_guard_notify, &sv->guard,
                              MHD_OPTION_NOTIFY_COMPLETED, on_completed, sv, MHD_OPTION_END);
     if (!sv->d) {
         ms_error_set(err, "cannot listen on %s port %d (in use, or not an address of this machine)",

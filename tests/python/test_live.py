@@ -3,7 +3,11 @@ the background, fed commands on its standard input and answering on its standard
 the HTTP checks use urllib, the page is opened by a real browser (Debian's chromium driven
 by chromedriver through python3-selenium; those checks are skipped when either is missing).
 
-  - a request without the token, or with a wrong one, gets 403, whatever the path
+  - a request without the token, or with a wrong one, gets 403, whatever the path, at
+    once, and its connection is closed
+  - connections without the token (200 idle, partial request lines, garbage) held open do
+    not lock the page out, and are closed within a few seconds; so are garbage requests;
+    a connection that gave the token keeps a long poll and keep-alive past that time
   - a view change carrying Tcl code, an unknown field or an out-of-range number is refused
     with 400 and changes nothing (the rotate matrix stays the identity, molscope lives on)
   - in a GL session the page shows the image (naturalWidth is the display width, most
@@ -15,6 +19,7 @@ by chromedriver through python3-selenium; those checks are skipped when either i
   - `quit` (and `display live off`) close the server: the port refuses connections
   - under mpirun, rank 0 serves and the other ranks say they do not
 """
+from http.client import HTTPConnection
 import json
 import os
 import queue
@@ -176,6 +181,200 @@ def check_refusals(s, base, token):
     R.report(after == before and is_identity(after), "refused changes change nothing",
              "%s -> %s" % (before, after))
     R.report(s.p.poll() is None and s.cmd("expr 1+1") == "2", "molscope still answers")
+
+
+# ---------------------------------------------------------------- connections without the token
+
+def connect(port):
+    return socket.create_connection(("127.0.0.1", port), timeout=10)
+
+
+def until_closed(c, limit):
+    """What the server sends on c until it closes it, and after how long (None: still open
+    after limit seconds)."""
+    t0, data = time.time(), b""
+    c.settimeout(0.2)
+    while time.time() - t0 < limit:
+        try:
+            chunk = c.recv(4096)
+        except socket.timeout:
+            continue
+        except OSError:
+            return data, time.time() - t0
+        if not chunk:
+            return data, time.time() - t0
+        data += chunk
+    return data, None
+
+
+def timed(fn):
+    t0 = time.time()
+    try:
+        v = fn()
+    except OSError as e:          # refused, reset, timed out: no status
+        v = (None, str(e))
+    return v, time.time() - t0
+
+
+def check_flood(base, token):
+    """Any local user can connect without the token: 200 idle connections, 20 that stop in
+    the middle of a request line and 20 that send garbage, all held open, must not lock the
+    page out; requests without the token are refused at once and closed; what sends no
+    complete request is closed within a few seconds."""
+    port = int(base.rsplit(":", 1)[1])
+    held = []
+    try:
+        t0 = time.time()
+        for _ in range(200):
+            held.append(connect(port))
+        opened = time.time() - t0
+        for i in range(20):
+            c = connect(port)
+            c.sendall(b"GET /image.png?tok")
+            held.append(c)
+        for i in range(20):
+            c = connect(port)
+            c.sendall(b"\x16\x03\x01\x02\x00\x01\x00\x01\xfc\x03\x03" + bytes(range(64)))
+            held.append(c)
+        print("INFO: live: 240 connections without the token opened in %.3f s "
+              "(200 idle in %.3f s)" % (time.time() - t0, opened))
+        times, codes = [], []
+        for _ in range(10):
+            for path in ["/", "/image.png"]:
+                (st, _), dt = timed(lambda: http("%s%s?token=%s" % (base, path, token)))
+                codes.append(st)
+                times.append(dt)
+        times.sort()
+        print("INFO: live: with them held, 20 requests with the token: median %.1f ms, "
+              "max %.1f ms" % (1000 * times[len(times) // 2], 1000 * times[-1]))
+        R.report(codes == [200] * 20 and times[-1] < 2.0,
+                 "with 240 connections without the token held, the page and the image are "
+                 "served", "statuses %s, slowest %.2f s" % (sorted(set(map(str, codes))), times[-1]))
+
+        # A client that keeps opening connections as fast as it can meanwhile.
+        stop, opened_n = [], [0]
+
+        def flood():
+            mine = []
+            while not stop and opened_n[0] < 20000:
+                try:
+                    mine.append(connect(port))
+                    opened_n[0] += 1
+                except OSError:
+                    pass
+                if len(mine) > 300:
+                    mine.pop(0).close()
+            for c in mine:
+                c.close()
+        f = threading.Thread(target=flood, daemon=True)
+        f.start()
+        time.sleep(0.3)
+        times, codes = [], []
+        for _ in range(10):
+            (st, _), dt = timed(lambda: http("%s/image.png?token=%s" % (base, token)))
+            codes.append(st)
+            times.append(dt)
+        stop.append(1)
+        f.join(20)
+        times.sort()
+        print("INFO: live: while another client opened %d connections, 10 image requests with "
+              "the token: median %.1f ms, max %.1f ms" %
+              (opened_n[0], 1000 * times[len(times) // 2], 1000 * times[-1]))
+        R.report(codes == [200] * 10 and times[-1] < 2.0,
+                 "while a client without the token keeps opening connections, the image is "
+                 "served", "statuses %s, slowest %.2f s" % (sorted(set(map(str, codes))), times[-1]))
+
+        def refused_at_once():
+            c = connect(port)
+            try:
+                c.sendall(b"GET /image.png HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+                return until_closed(c, 10)
+            finally:
+                c.close()
+        (data, closed), dt = timed(refused_at_once)
+        R.report(isinstance(data, bytes) and data.startswith(b"HTTP/1.1 403") and
+                 closed is not None and dt < 1.0,
+                 "a full request without the token: 403 at once, then closed",
+                 "%r closed after %s (%.2f s)" % (data[:40], closed, dt))
+
+        # Incomplete or garbage requests: answered or closed within a few seconds.
+        results = {}
+
+        def probe(name, payload):
+            c = connect(port)
+            try:
+                c.sendall(payload)
+                results[name] = until_closed(c, 15)
+            finally:
+                c.close()
+        probes = {"garbage without an end of line": b"\x00\xffgarbage" * 8,
+                  "garbage lines": b"NOT HTTP AT ALL\r\n\r\n",
+                  "a request line and no headers' end": b"GET / HTTP/1.1\r\nHost: x\r\n",
+                  "nothing at all": b""}
+        threads = [threading.Thread(target=probe, args=kv, daemon=True) for kv in probes.items()]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join(20)
+        print("INFO: live: closed after (s): " + ", ".join(
+            "%s %s" % (n, None if results.get(n, (0, None))[1] is None else
+                       "%.2f" % results[n][1]) for n in probes))
+        for name in probes:
+            data, closed = results.get(name, (b"", None))
+            R.report(closed is not None and closed < 7.0,
+                     "%s: answered or closed within a few seconds" % name,
+                     "%r, closed after %s" % (data[:40], closed))
+        gone = 0
+        for c in held:
+            c.settimeout(0.01)
+            try:
+                gone += c.recv(4096) == b""
+            except (socket.timeout, BlockingIOError):
+                pass
+            except OSError:
+                gone += 1
+        R.report(gone == len(held), "the server has closed every connection without the token",
+                 "%d of %d closed" % (gone, len(held)))
+        st, _ = http("%s/state?token=%s" % (base, token))
+        R.report(st == 200, "and still serves the page's requests", str(st))
+    finally:
+        for c in held:
+            c.close()
+
+
+def check_keepalive(s, base, token):
+    """A connection that gave the token keeps the longer time-out: a long poll waits past the
+    few seconds allowed to requests without it, and an idle keep-alive connection with the
+    token is still usable after them."""
+    st0 = wait_for(lambda: settled(base, token), timeout=30, step=0.1)
+    if st0 is None:
+        R.report(False, "the passes finish before the keep-alive checks", str(state(base, token)))
+        return
+    host, port = base[len("http://"):].rsplit(":", 1)
+    conn = HTTPConnection(host, int(port), timeout=10)
+    try:
+        conn.request("GET", "/state?token=" + token)
+        r = conn.getresponse()
+        r.read()
+        first = r.status
+        t, res = long_poll(base, token, st0["serial"])
+        time.sleep(7)
+        R.report(t.is_alive(), "a long poll with the token still waits after 7 s", str(res))
+        conn.request("GET", "/state?token=" + token)
+        r = conn.getresponse()
+        r.read()
+        R.report(first == 200 and r.status == 200,
+                 "a keep-alive connection with the token is still served after 7 s idle",
+                 "%s %s" % (first, r.status))
+        s.cmd("rotate x by 5")
+        t.join(10)
+        R.report(res.get("status") == 200 and res["state"]["serial"] > st0["serial"],
+                 "and the long poll is answered by the next change", str(res))
+    except OSError as e:
+        R.report(False, "a keep-alive connection with the token is still served after 7 s idle",
+                 str(e))
+    finally:
+        conn.close()
 
 
 # ---------------------------------------------------------------- the browser
@@ -353,6 +552,7 @@ def gl_session():
         check_refusals(s, base, token)
         check_browser(s, url)
         check_long_poll(s, base, token)
+        check_keepalive(s, base, token)
         st1 = wait_for(lambda: settled(base, token), timeout=30, step=0.1)
         t, res = long_poll(base, token, st1["serial"] if st1 else 0)
         time.sleep(0.3)
@@ -385,6 +585,7 @@ def text_session():
                  "text session: the pass count grows while nothing moves", "%s -> %s" % (a, b))
         st, png = http("%s/image.png?token=%s" % (base, token))
         R.report(st == 200 and png[:8] == b"\x89PNG\r\n\x1a\n", "the image is a PNG", str(st))
+        check_flood(base, token)
         s.cmd("set sel [atomselect top all]")
         for cmd in ["rotate y by 10", "$sel moveby {0.5 0 0}", "mol modstyle 0 top VDW",
                     "color Display Background white", "animate goto 0",
