@@ -176,7 +176,11 @@ typedef struct ms_plugin {
     void (*close_read)(void *h);
 
     /* Writing. write_structure comes first when the format holds a structure; frames
-     * follow; close_write flushes and reports any error (a full disk). */
+     * follow; close_write flushes and reports any error (a full disk). The host opens the
+     * output itself (a temporary file it renames into place, or a device or FIFO written
+     * in place) and passes open_write the name "/dev/fd/N" of its descriptor: a plugin may
+     * open that name (on Linux it reaches the same file) or, better, duplicate descriptor
+     * N, as plugin_util's ms_out_open does. */
     void *(*open_write)(const char *path, long natoms, ms_perr *err);
     int (*write_structure)(void *h, const ms_struct_view *view, ms_perr *err);
     int (*write_frame)(void *h, const ms_struct_view *view, const ms_frame_in *frame,

@@ -3,10 +3,13 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define LINES_BUF (1u << 20)
 #define LINES_MAX_LINE (64u << 20)
@@ -390,10 +393,27 @@ FILE *ms_open_sized(const char *path, long long *size, ms_perr *err)
     return fp;
 }
 
+/* The host hands a writer "/dev/fd/N" for the output it opened (ms_plugin.h): the
+ * descriptor is duplicated, so the writer writes exactly what the host opened, with its
+ * offset and flags. Any other name is opened (created or truncated) as it is. */
+static FILE *open_output(const char *path)
+{
+    const char *num = path + 8;
+    if (strncmp(path, "/dev/fd/", 8) == 0 && *num >= '0' && *num <= '9') {
+        char *end;
+        long n = strtol(num, &end, 10);
+        int fd = *end == '\0' && n <= INT_MAX ? fcntl((int)n, F_DUPFD_CLOEXEC, 0) : -1;
+        FILE *fp = fd >= 0 ? fdopen(fd, "wb") : NULL;
+        if (fp) return fp;
+        if (fd >= 0) close(fd);
+    }
+    return fopen(path, "wb");
+}
+
 int ms_out_open(ms_out *o, const char *path, ms_perr *err)
 {
     o->failed = 0;
-    o->fp = fopen(path, "wb");
+    o->fp = open_output(path);
     if (!o->fp) return ms_perr_set(err, "%s", strerror(errno));
     return MS_PLUGIN_OK;
 }

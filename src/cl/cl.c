@@ -2,6 +2,7 @@
  * device choice, the cache folders and the program build with its binary cache. */
 #include "config.h"
 #include "cl/cl.h"
+#include "base/safewrite.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -161,20 +162,17 @@ static unsigned char *read_file(const char *path, size_t *n)
     return buf;
 }
 
-/* Keep the program's binary (to a temporary name renamed at the end). */
+/* Keep the program's binary (through base/safewrite: the cache file is replaced whole or
+ * not at all). The cache is a convenience: a failure is silent. */
 static void save_binary(cl_program prog, const char *path)
 {
     size_t n = 0;
     if (clGetProgramInfo(prog, CL_PROGRAM_BINARY_SIZES, sizeof n, &n, NULL) != CL_SUCCESS || !n)
         return;
     unsigned char *bin = malloc(n);
-    char tmp[1300];
-    snprintf(tmp, sizeof tmp, "%.1200s.%ld.tmp", path, (long)getpid());
     if (bin && clGetProgramInfo(prog, CL_PROGRAM_BINARIES, sizeof bin, &bin, NULL) == CL_SUCCESS) {
-        FILE *f = fopen(tmp, "wb");
-        int ok = f && fwrite(bin, 1, n, f) == n;
-        if (f && fclose(f) != 0) ok = 0;
-        if (!ok || rename(tmp, path) != 0) unlink(tmp);
+        ms_ofile *out = ms_ofile_open(path, NULL);
+        if (out) ms_ofile_finish(out, ms_ofile_write(out, bin, n, NULL) == 0, NULL);
     }
     free(bin);
 }

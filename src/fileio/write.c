@@ -1,9 +1,12 @@
 /* write.c: the structure view a writer plugin reads (restricted to the selected atoms, with
- * bonds renumbered), frame gathering, and the write-to-temporary-then-rename discipline. */
+ * bonds renumbered), frame gathering, and the output: opened by base/safewrite (a file is
+ * replaced whole or not at all, a symlink written through, a device or FIFO written in
+ * place) and handed to the plugin as /dev/fd/N. */
 #include "config.h"
 #include "fileio/write.h"
 #include "fileio/load.h"
 #include "molecule/elements.h"
+#include "base/safewrite.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -119,6 +122,37 @@ static const float *gather(const write_view *w, const float *src, float *buf, si
     return buf;
 }
 
+/* Errors of the output name the file; this module's callers name it already. */
+static void drop_path(ms_error *err, const char *path)
+{
+    size_t n = strlen(path);
+    if (strncmp(err->msg, path, n) == 0 && strncmp(err->msg + n, ": ", 2) == 0)
+        memmove(err->msg, err->msg + n + 2, strlen(err->msg + n + 2) + 1);
+}
+
+/* Open the output for a plugin; NULL with err set (without the path). */
+static ms_ofile *open_output(const char *path, ms_error *err)
+{
+    ms_ofile *out = ms_ofile_open(path, err);
+    if (!out) drop_path(err, path);
+    return out;
+}
+
+/* The plugin's run is over (prc and crc what its writing and closing returned): put the
+ * output in place, or give it up. 0, or -1 with err set. */
+static int finish_output(ms_ofile *out, const char *path, int prc, int crc, const ms_perr *perr,
+                         ms_error *err)
+{
+    if (prc != MS_PLUGIN_OK || crc != MS_PLUGIN_OK) {
+        ms_error_set(err, "%s", perr->msg[0] ? perr->msg : "write error");
+        ms_ofile_abort(out);
+        return -1;
+    }
+    if (ms_ofile_commit(out, err) == 0) return 0;
+    drop_path(err, path);
+    return -1;
+}
+
 long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
                    const ms_write_opts *o, ms_error *err)
 {
@@ -152,18 +186,15 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     w.view.remarks = m->remarks;
     float *buf = NULL;
     long written = 0;
-    char tmp[4200];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid()) >= (int)sizeof tmp) {
-        ms_error_set(err, "file name too long");
-        return -1;
-    }
+    ms_ofile *out = NULL;
     if (view_build_bonds(&w, n, err)) goto fail_view;
     if (o->atoms && !(buf = ms_alloc_array(3 * n, sizeof *buf))) {
         ms_error_set(err, "out of memory");
         goto fail_view;
     }
+    if (!(out = open_output(path, err))) goto fail_view;
     ms_perr perr = {{0}};
-    void *h = p->open_write(tmp, (long)n, &perr);
+    void *h = p->open_write(ms_ofile_fd_name(out), (long)n, &perr);
     if (!h) {
         ms_error_set(err, "%s", perr.msg[0] ? perr.msg : strerror(errno));
         goto fail_view;
@@ -181,21 +212,15 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
         if (rc == MS_PLUGIN_OK) written++;
     }
     int rc_close = p->close_write(h, rc == MS_PLUGIN_OK ? &perr : &(ms_perr){{0}});
-    if (rc != MS_PLUGIN_OK || rc_close != MS_PLUGIN_OK) {
-        ms_error_set(err, "%s", perr.msg[0] ? perr.msg : "write error");
-        unlink(tmp);
-        goto fail_view;
-    }
-    if (rename(tmp, path) != 0) {
-        ms_error_set(err, "%s", strerror(errno));
-        unlink(tmp);
-        goto fail_view;
-    }
+    int failed = finish_output(out, path, rc, rc_close, &perr, err);
+    out = NULL;
+    if (failed) goto fail_view;
     free(buf);
     free(w.bond_start);
     free(w.bond_to);
     return written;
 fail_view:
+    ms_ofile_abort(out);
     free(buf);
     free(w.bond_start);
     free(w.bond_to);
@@ -222,23 +247,16 @@ int ms_write_volume(const ms_registry *r, const ms_volume *v, const char *path,
         meta.origin[d] = v->origin[d];
         for (int e = 0; e < 3; e++) meta.delta[d][e] = v->delta[d][e];
     }
-    char tmp[4200];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid()) >= (int)sizeof tmp) {
-        ms_error_set(err, "file name too long");
-        return -1;
-    }
+    ms_ofile *out = open_output(path, err);
+    if (!out) return -1;
     ms_perr perr = {{0}};
-    void *h = p->open_write(tmp, 0, &perr);
+    void *h = p->open_write(ms_ofile_fd_name(out), 0, &perr);
     if (!h) {
         ms_error_set(err, "%s", perr.msg[0] ? perr.msg : strerror(errno));
+        ms_ofile_abort(out);
         return -1;
     }
     int rc = p->write_volume(h, &meta, v->data, &perr);
     int rc_close = p->close_write(h, rc == MS_PLUGIN_OK ? &perr : &(ms_perr){{0}});
-    if (rc != MS_PLUGIN_OK || rc_close != MS_PLUGIN_OK || rename(tmp, path) != 0) {
-        ms_error_set(err, "%s", perr.msg[0] ? perr.msg : strerror(errno));
-        unlink(tmp);
-        return -1;
-    }
-    return 0;
+    return finish_output(out, path, rc, rc_close, &perr, err);
 }

@@ -1,7 +1,9 @@
-/* image.c: image allocation, format choice by extension, and transactional file writing. */
+/* image.c: image allocation, format choice by extension, and writing a file through
+ * base/safewrite (replaced whole or not at all; devices and FIFOs written in place). */
 #include "config.h"
 #include "image/image.h"
 #include "image/image_codecs.h"
+#include "base/safewrite.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -77,35 +79,13 @@ int ms_image_write(const ms_image *img, const char *path, ms_error *err)
                           ".ppm or .bmp)", path);
         return -1;
     }
-    size_t len = strlen(path);
-    char *tmp = malloc(len + 32);
-    if (!tmp) {
-        ms_error_set(err, "out of memory");
-        return -1;
-    }
-    snprintf(tmp, len + 32, "%s.tmp%ld", path, (long)getpid());
-    FILE *fp = fopen(tmp, "wb");
-    if (!fp) {
-        ms_error_set(err, "%s: %s", path, strerror(errno));
-        free(tmp);
-        return -1;
-    }
-    int rc = ms_image_write_stream(img, f, fp, err);
-    if (fflush(fp) != 0 && rc == 0) {
-        ms_error_set(err, "%s: %s", path, strerror(errno));
-        rc = -1;
-    }
-    if (fclose(fp) != 0 && rc == 0) {
-        ms_error_set(err, "%s: %s", path, strerror(errno));
-        rc = -1;
-    }
-    if (rc == 0 && rename(tmp, path) != 0) {
-        ms_error_set(err, "%s: %s", path, strerror(errno));
-        rc = -1;
-    }
-    if (rc != 0) unlink(tmp);
-    free(tmp);
-    return rc;
+    ms_ofile *out;
+    FILE *fp = ms_ofile_open_stream(path, &out, err);
+    if (!fp) return -1;
+    int ok = ms_image_write_stream(img, f, fp, err) == 0;
+    /* a failed write's reason (a full disk) says more than the codec's message */
+    if (!ok && ms_ofile_check(out, err) == 0) ms_error_prefix(err, "%s", path);
+    return ms_ofile_finish(out, ok, err);
 }
 
 int ms_image_read(const char *path, ms_image *img, ms_error *err)

@@ -1,9 +1,12 @@
 /* encoder.c: the video encoder, an ffmpeg subprocess fed raw RGB frames through a pipe.
  * ffmpeg is GPL software: molscope only runs it as a program (posix_spawn), never links it.
- * It writes to a temporary file renamed over the video when it succeeded; its messages go
- * to a deleted temporary file and the last of them become the error when it fails. */
+ * It writes the video's output opened by base/safewrite: the temporary file beside the
+ * video, renamed over it when ffmpeg succeeded (or a device or FIFO, written in place); its
+ * messages go to a deleted temporary file and the last of them become the error when it
+ * fails. */
 #include "config.h"
 #include "movie/movie.h"
+#include "base/safewrite.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -26,7 +29,7 @@ struct ms_movie_encoder {
     int in;              /* ffmpeg's standard input */
     int log;             /* ffmpeg's standard error */
     size_t frame_bytes;
-    char *tmp, *video;
+    ms_ofile *out;       /* the video's output */
 };
 
 static char *find_on_path(const char *name)
@@ -59,15 +62,13 @@ char *ms_movie_find_ffmpeg(void)
     return p;
 }
 
-char *ms_movie_video_part_path(const char *video)
+/* The extension of video's base name (".mp4"), or NULL when it has none. */
+static const char *video_ext(const char *video)
 {
     const char *slash = strrchr(video, '/');
-    const char *dot = strrchr(slash ? slash + 1 : video, '.');
-    if (!dot || dot == (slash ? slash + 1 : video) || !dot[1]) return NULL;
-    size_t n = strlen(video) + 8;
-    char *p = malloc(n);
-    if (p) snprintf(p, n, "%.*s.part%s", (int)(dot - video), video, dot);
-    return p;
+    const char *base = slash ? slash + 1 : video;
+    const char *dot = strrchr(base, '.');
+    return dot && dot != base && dot[1] ? dot : NULL;
 }
 
 /* The last lines ffmpeg wrote (at most size - 1 bytes, newlines as "; "). */
@@ -146,25 +147,27 @@ ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, 
         ms_error_set(err, "unknown x264 preset '%s'", preset);
         return NULL;
     }
+    const char *ext = video_ext(video);
+    if (!ext) {
+        ms_error_set(err, "%s: the video's name needs an extension that names its format "
+                          "(.mp4, .mkv, .mov ...)", video);
+        return NULL;
+    }
     ms_movie_encoder *e = calloc(1, sizeof *e);
-    if (!e || !(e->video = ms_strdup(video))) {
-        free(e);
+    if (!e) {
         ms_error_set(err, "out of memory");
         return NULL;
     }
     e->in = e->log = -1;
     e->frame_bytes = (size_t)width * (size_t)height * 3;
-    if (!(e->tmp = ms_movie_video_part_path(video))) {
-        ms_error_set(err, "%s: the video's name needs an extension that names its format "
-                          "(.mp4, .mkv, .mov ...)", video);
-        goto fail;
-    }
+    if (!(e->out = ms_ofile_open(video, err))) goto fail;
+    /* ffmpeg opens its output by name: the temporary file, or the device or FIFO itself. */
+    const char *dest = ms_ofile_temp_name(e->out) ? ms_ofile_temp_name(e->out) : video;
     char size[32], rate[32], q[16], pad[64];
     snprintf(size, sizeof size, "%dx%d", width, height);
     snprintf(rate, sizeof rate, "%.6g", fps);
     snprintf(q, sizeof q, "%d", crf);
     snprintf(pad, sizeof pad, "pad=%d:%d", width + (width & 1), height + (height & 1));
-    const char *ext = strrchr(e->tmp, '.');
     int mp4 = !strcasecmp(ext, ".mp4") || !strcasecmp(ext, ".mov") || !strcasecmp(ext, ".m4v");
     const char *argv[40];
     int n = 0;
@@ -181,12 +184,11 @@ ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, 
         argv[n++] = "-movflags";
         argv[n++] = "+faststart";
     }
-    argv[n++] = e->tmp;
+    argv[n++] = dest;
     argv[n] = NULL;
     if (spawn(e, ffmpeg, (char *const *)argv, err) == 0) return e;
 fail:
-    free(e->tmp);
-    free(e->video);
+    ms_ofile_abort(e->out);
     free(e);
     return NULL;
 }
@@ -248,14 +250,10 @@ int ms_movie_encoder_finish(ms_movie_encoder *e, int ok, ms_error *err)
         else
             ms_error_set(err, "ffmpeg was killed by signal %d", WTERMSIG(status));
         rc = -1;
-    } else if (ok && rename(e->tmp, e->video) != 0) {
-        ms_error_set(err, "%s: %s", e->video, strerror(errno));
-        rc = -1;
     }
-    if (!ok || rc) unlink(e->tmp);
+    if (ok && rc == 0) rc = ms_ofile_commit(e->out, err);
+    else ms_ofile_abort(e->out);
     close(e->log);
-    free(e->tmp);
-    free(e->video);
     free(e);
     return rc;
 }

@@ -3,6 +3,7 @@
  * left behind. */
 #include "config.h"
 #include "movie/movie.h"
+#include "base/safewrite.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -14,11 +15,11 @@
 #include <time.h>
 #include <unistd.h>
 
-char *ms_movie_frame_path(const char *basename, long i, int part)
+char *ms_movie_frame_path(const char *basename, long i)
 {
     size_t n = strlen(basename) + 48;
     char *p = malloc(n);
-    if (p) snprintf(p, n, "%s.%05ld%s.png", basename, i, part ? ".part" : "");
+    if (p) snprintf(p, n, "%s.%05ld.png", basename, i);
     return p;
 }
 
@@ -80,26 +81,49 @@ static int split_base(const char *basename, char **dir, char **prefix)
     return -1;
 }
 
-/* Is name "<prefix><digits>.part.png" followed by anything? */
-static int is_stale(const char *name, const char *prefix)
+/* Is name a leftover of frame "<prefix><digits>.png": a temporary file of it (or of a
+ * renderer writing that one), or the "<prefix><digits>.part.png..." of earlier versions? */
+static int is_stale(const char *name, const void *prefix_arg)
 {
+    const char *prefix = prefix_arg;
     size_t n = strlen(prefix);
     if (strncmp(name, prefix, n) != 0) return 0;
     const char *p = name + n;
     if (*p < '0' || *p > '9') return 0;
     while (*p >= '0' && *p <= '9') p++;
-    return !strncmp(p, ".part.png", 9);
+    if (!strncmp(p, ".part.png", 9)) return 1;
+    size_t stem = (size_t)(p - name);
+    char *frame = malloc(stem + 5);
+    if (!frame) return 0;
+    memcpy(frame, name, stem);
+    memcpy(frame + stem, ".png", 5);
+    int yes = ms_ofile_is_temp(name, frame);
+    free(frame);
+    return yes;
 }
 
-long ms_movie_remove_stale(const char *basename)
+/* Is name a leftover of the video whose base name is video_base: a temporary file of it,
+ * or the "<stem>.part<ext>" of earlier versions? */
+static int is_stale_video(const char *name, const void *base_arg)
 {
-    char *dir, *prefix;
-    if (split_base(basename, &dir, &prefix)) return 0;
+    const char *base = base_arg;
+    if (ms_ofile_is_temp(name, base)) return 1;
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base) return 0;
+    size_t stem = (size_t)(dot - base);
+    return !strncmp(name, base, stem) && !strncmp(name + stem, ".part", 5) &&
+           !strcmp(name + stem + 5, dot);
+}
+
+/* Remove the files of folder dir whose names match; how many were removed. */
+static long remove_matching(const char *dir, int (*match)(const char *, const void *),
+                            const void *arg)
+{
     long removed = 0;
     DIR *d = opendir(dir);
     struct dirent *e;
     while (d && (e = readdir(d))) {
-        if (!is_stale(e->d_name, prefix)) continue;
+        if (!match(e->d_name, arg)) continue;
         size_t n = strlen(dir) + strlen(e->d_name) + 2;
         char *p = malloc(n);
         if (!p) break;
@@ -108,8 +132,26 @@ long ms_movie_remove_stale(const char *basename)
         free(p);
     }
     if (d) closedir(d);
+    return removed;
+}
+
+long ms_movie_remove_stale(const char *basename)
+{
+    char *dir, *prefix;
+    if (split_base(basename, &dir, &prefix)) return 0;
+    long removed = remove_matching(dir, is_stale, prefix);
     free(dir);
     free(prefix);
+    return removed;
+}
+
+long ms_movie_remove_stale_video(const char *video)
+{
+    const char *slash = strrchr(video, '/');
+    char *dir = slash ? strndup(video, (size_t)(slash - video) + 1) : ms_strdup(".");
+    if (!dir) return 0;
+    long removed = remove_matching(dir, is_stale_video, slash ? slash + 1 : video);
+    free(dir);
     return removed;
 }
 
@@ -120,7 +162,7 @@ int ms_movie_scan(const char *basename, long n, int width, int height, long **mi
     *nmissing = 0;
     size_t cap = 0;
     for (long i = 0; i < n; i++) {
-        char *p = ms_movie_frame_path(basename, i, 0);
+        char *p = ms_movie_frame_path(basename, i);
         int ok = p && ms_movie_frame_ok(p, width, height);
         free(p);
         if (!p || (!ok && ms_grow((void **)missing, &cap, (size_t)*nmissing + 1,

@@ -37,7 +37,7 @@ struct ms_movie_monitor {
  * it to the encoder. */
 static int feed(ms_movie_monitor *m, long i, ms_error *err)
 {
-    char *path = ms_movie_frame_path(m->basename, i, 0);
+    char *path = ms_movie_frame_path(m->basename, i);
     if (!path) {
         ms_error_set(err, "out of memory");
         return -1;

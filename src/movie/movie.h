@@ -2,17 +2,19 @@
  * (tcl/movie.tcl, the `movie` command) sets the scene for each frame and renders it; this
  * module does the rest:
  *
- *   frames     frame i is <basename>.%05d.png; it is rendered to <basename>.%05d.part.png
- *              and renamed once it is checked to be a complete PNG of the movie's size, so a
- *              file under a final name is always a whole frame (frames.c)
+ *   frames     frame i is <basename>.%05d.png; it is rendered to a temporary file that
+ *              base/safewrite makes beside it and renamed once it is checked to be a complete
+ *              PNG of the movie's size, so a file under a final name is always a whole frame
+ *              (frames.c, run.c)
  *   resuming   before rendering, rank 0 lists the frames that are missing or not a complete
  *              PNG of the right size, removes the temporary files a killed job left, and
  *              only those frames are rendered (frames.c, run.c)
  *   the loop   the missing frames are handed out dynamically by rank 0 (ms_par_for_observed)
  *              and rank 0 learns as each one completes, on any rank (run.c)
  *   encoding   rank 0 pipes the frames, in order and as soon as the next one in order is
- *              done, as raw RGB into an ffmpeg subprocess (libx264, yuv420p) writing
- *              <video stem>.part<ext>, renamed when ffmpeg succeeds after the last frame, so
+ *              done, as raw RGB into an ffmpeg subprocess (libx264, yuv420p) writing the
+ *              temporary file base/safewrite makes beside the video (<stem>.tmp-XXXXXXXX<ext>;
+ *              a device or FIFO is written in place), renamed when ffmpeg succeeds, so
  *              the video exists the moment the last frame is done (encoder.c, monitor.c).
  *              ffmpeg is GPL: it is only ever run as a program, never linked.
  *   progress   rank 0 prints frames done of total, frames per minute and the time left
@@ -32,17 +34,19 @@
 
 /* ---- frame files (frames.c) ---- */
 
-/* The file of frame i: <basename>.%05d.png, or with part set the temporary
- * <basename>.%05d.part.png. malloc'd; NULL when memory runs out. */
-char *ms_movie_frame_path(const char *basename, long i, int part);
+/* The file of frame i: <basename>.%05d.png. malloc'd; NULL when memory runs out. */
+char *ms_movie_frame_path(const char *basename, long i);
 /* Whether path is a complete PNG of width x height: the signature, an IHDR of that size,
  * then chunks whose lengths lead exactly to an IEND chunk at the end of the file (a
  * truncated or overlong file fails; pixel checksums are not read). 1 yes, 0 no. */
 int ms_movie_frame_ok(const char *path, int width, int height);
-/* Remove what a killed job left in the frames' folder: <basename>.<digits>.part.png and
- * the files a renderer was writing for them (<...>.part.png.<anything>). Returns how many
- * were removed. */
+/* Remove what a killed job left in the frames' folder: the temporary files of frames
+ * <basename>.<digits>.png (ms_ofile_is_temp; those of a renderer writing one included) and
+ * the <basename>.<digits>.part.png* of earlier versions. Returns how many were removed. */
 long ms_movie_remove_stale(const char *basename);
+/* Remove what a killed encoder left beside the video: its temporary files, and the
+ * <stem>.part<ext> of earlier versions. Returns how many were removed. */
+long ms_movie_remove_stale_video(const char *video);
 /* The frames among 0..n-1 that are missing or not ms_movie_frame_ok: malloc'd ascending
  * list in *missing (NULL when none), their count in *nmissing. 0, or -1 on no memory. */
 int ms_movie_scan(const char *basename, long n, int width, int height, long **missing,
@@ -59,13 +63,11 @@ typedef struct ms_movie_encoder ms_movie_encoder;
  * that), else ffmpeg on PATH, else the one configure found. malloc'd path, or NULL when it
  * is not there. */
 char *ms_movie_find_ffmpeg(void);
-/* The temporary name of a video while it is encoded: <dir/stem>.part<.ext> for
- * <dir/stem><.ext>. malloc'd; NULL when the name has no extension (or no memory). */
-char *ms_movie_video_part_path(const char *video);
 /* Whether name is one of x264's presets (ultrafast ... veryslow, placebo). */
 int ms_movie_preset_ok(const char *name);
-/* Start ffmpeg encoding width x height RGB frames at fps into a temporary file beside
- * video (<stem>.part<ext>; the container follows video's extension), H.264 with libx264
+/* Start ffmpeg encoding width x height RGB frames at fps into video's output opened by
+ * base/safewrite (a temporary file beside it, or a device or FIFO in place; the container
+ * follows video's extension, which it must have), H.264 with libx264
  * at constant quality crf (0-51, lower is better) and the given x264 preset, yuv420p; an
  * odd width or height is padded by one black pixel. NULL with err on failure. */
 ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, int width,
@@ -74,8 +76,8 @@ ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, 
 /* Append one frame (3 * width * height bytes, top row first). 0, or -1 with err when
  * ffmpeg has gone (its last message is in err). */
 int ms_movie_encoder_put(ms_movie_encoder *e, const uint8_t *rgb, ms_error *err);
-/* End of input: wait for ffmpeg; when it succeeded and ok is set, rename the temporary
- * file to the video; otherwise remove it (ffmpeg is stopped when ok is 0). Frees e.
+/* End of input: wait for ffmpeg; when it succeeded and ok is set, commit the video's
+ * output (the temporary file takes the video's place); otherwise abort it (ffmpeg is stopped when ok is 0). Frees e.
  * 0, or -1 with err (ffmpeg's status and last message; never written when ok is 0, so err
  * may then be NULL). */
 int ms_movie_encoder_finish(ms_movie_encoder *e, int ok, ms_error *err);

@@ -4,14 +4,15 @@
  *      temporary files a killed job left, lists the frames still to render, looks for
  *      ffmpeg and starts it; the others wait (without spinning) and receive the plan;
  *   2. the frames still to render are handed out by ms_par_for_observed; each is rendered
- *      to its temporary name, checked, and renamed; rank 0's monitor learns of each
- *      completion and feeds the encoder in order;
+ *      to a temporary file beside its name (base/safewrite), checked, and renamed; rank
+ *      0's monitor learns of each completion and feeds the encoder in order;
  *   3. rank 0 waits for the encoder (the video is complete when the last frame is, plus
  *      the encoding of what was still queued), removes the frames when asked, and every
  *      rank receives the same outcome and the phase times of every rank. */
 #include "config.h"
 #include "movie/movie.h"
 #include "parallel/parallel.h"
+#include "base/safewrite.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -42,9 +43,7 @@ static int plan_rank0(const ms_movie_opts *o, plan *p, ms_error *err)
     if (ms_movie_check_dir(o->basename, err) || (video && ms_movie_check_dir(o->video, err)))
         return -1;
     ms_movie_remove_stale(o->basename);
-    char *part = video ? ms_movie_video_part_path(o->video) : NULL;
-    if (part) unlink(part); /* what a killed encoder left */
-    free(part);
+    if (video) ms_movie_remove_stale_video(o->video);
     if (ms_movie_scan(o->basename, o->nframes, o->width, o->height, &p->missing,
                       &p->nmissing, err))
         return -1;
@@ -114,24 +113,25 @@ typedef struct loop_ctx {
     long rendered;
 } loop_ctx;
 
+/* Render frame into the temporary file of its output (a frame is read back, so it must
+ * be a file), check it, and put it in place. */
 static int render_frame(loop_ctx *c, long frame, ms_error *err)
 {
-    char *tmp = ms_movie_frame_path(c->o->basename, frame, 1);
-    char *fin = ms_movie_frame_path(c->o->basename, frame, 0);
-    int rc = -1;
-    if (!tmp || !fin) {
+    char *fin = ms_movie_frame_path(c->o->basename, frame);
+    ms_ofile *out = fin ? ms_ofile_open(fin, err) : NULL;
+    const char *tmp = out ? ms_ofile_temp_name(out) : NULL;
+    int ok = 0;
+    if (!fin)
         ms_error_set(err, "out of memory");
-    } else if (c->fn(c->fn_ctx, frame, tmp, err) == 0) {
-        if (!ms_movie_frame_ok(tmp, c->o->width, c->o->height))
+    else if (out && !tmp)
+        ms_error_set(err, "%s: a movie frame must be a file (not a device or a FIFO)", fin);
+    else if (tmp && c->fn(c->fn_ctx, frame, tmp, err) == 0) {
+        ok = ms_movie_frame_ok(tmp, c->o->width, c->o->height);
+        if (!ok)
             ms_error_set(err, "the renderer wrote no complete %dx%d PNG to %s", c->o->width,
                          c->o->height, tmp);
-        else if (rename(tmp, fin) != 0)
-            ms_error_set(err, "%s: %s", fin, strerror(errno));
-        else
-            rc = 0;
     }
-    if (rc && tmp) unlink(tmp);
-    free(tmp);
+    int rc = out ? ms_ofile_finish(out, ok, err) : -1;
     free(fin);
     return rc;
 }
@@ -214,7 +214,7 @@ static int gather(const rank_rec *mine, summary *sum, ms_movie_stats *st, ms_err
 static void remove_frames(const ms_movie_opts *o)
 {
     for (long i = 0; i < o->nframes; i++) {
-        char *p = ms_movie_frame_path(o->basename, i, 0);
+        char *p = ms_movie_frame_path(o->basename, i);
         if (p) unlink(p);
         free(p);
     }

@@ -244,8 +244,8 @@ static void finishes(FILE *f, const ms_scene *s)
 
 static int write_pov(const ms_scene *s, const char *path, ms_error *err)
 {
-    char *tmp;
-    FILE *f = ms_render_open_tmp(path, &tmp, err);
+    ms_ofile *out;
+    FILE *f = ms_ofile_open_stream(path, &out, err);
     if (!f) return -1;
     fprintf(f, "// Molecular graphics exported from molscope %s\n", PACKAGE_VERSION);
     fprintf(f, "// Requires POV-Ray 3.7; try: povray +W%d +H%d -I%s -O%s.tga +X +A +FT\n",
@@ -262,7 +262,7 @@ static int write_pov(const ms_scene *s, const char *path, ms_error *err)
         mesh(&w, w.it->dl);
         thin(&w, w.it->dl);
     }
-    return ms_render_commit(f, tmp, path, 1, err);
+    return ms_ofile_commit(out, err);
 }
 
 const ms_render_device ms_render_pov3 = {

@@ -2,8 +2,9 @@
  * registered by name (Tachyon, POV3 and Wavefront here; snapshot, TachyonInternal and the
  * OpenCL tracer register themselves the same way). A device receives only the Scene.
  *
- * `render <method> <file> ?cmd...?` builds the scene, has the device write the file (to a
- * temporary name renamed at the end, so a failure leaves nothing behind), then runs the
+ * `render <method> <file> ?cmd...?` builds the scene, has the device write the file (through
+ * base/safewrite: a file is replaced whole or not at all, a symlink is written through, a
+ * device or FIFO is written in place), then runs the
  * optional post-render shell command with %s, %w and %h replaced by the file name and the
  * display size. Each device keeps per-application settings: its default post-render command
  * (`render options`, `render default`) and antialiasing / ambient-occlusion samples. */
@@ -13,6 +14,7 @@
 #include <stdio.h>
 
 #include "app/app.h"
+#include "base/safewrite.h"
 #include "image/image.h"
 #include "scene/scene.h"
 
@@ -73,14 +75,9 @@ int ms_render(ms_app *app, const ms_render_device *dev, const char *path, const 
 /* The post-render command with %s, %w, %h replaced (malloc'd; NULL on no memory). */
 char *ms_render_expand_cmd(const char *cmd, const char *path, int w, int h);
 
-/* For devices: open a temporary file beside path (*tmp receives its malloc'd name; NULL with
- * err set on failure), and finish it: close, check for write errors, rename over path when
- * ok, else remove it (returns 0, or -1 with err naming the file and the reason). */
-FILE *ms_render_open_tmp(const char *path, char **tmp, ms_error *err);
-int ms_render_commit(FILE *f, char *tmp, const char *path, int ok, ms_error *err);
 /* For image devices: write the image make renders to path, in the format its name says (TGA
- * for other names, as VMD writes), through a temporary file opened before make runs, so that
- * an unwritable path fails before the work. make fills img and returns 0, or sets err and
+ * for other names, as VMD writes), through base/safewrite, opened before make runs, so that an
+ * unwritable path fails before the work. make fills img and returns 0, or sets err and
  * returns non-zero. 0, or -1 with err set and no file left behind. */
 typedef int (*ms_render_image_fn)(void *user, ms_image *img, ms_error *err);
 int ms_render_write_image(const char *path, ms_render_image_fn make, void *user, ms_error *err);

@@ -390,8 +390,8 @@ static void lights_and_background(FILE *f, const ms_scene *s)
 
 static int write_tachyon(const ms_scene *s, const char *path, ms_error *err)
 {
-    char *tmp;
-    FILE *f = ms_render_open_tmp(path, &tmp, err);
+    ms_ofile *out;
+    FILE *f = ms_ofile_open_stream(path, &out, err);
     if (!f) return -1;
     writer w;
     memset(&w, 0, sizeof w);
@@ -416,7 +416,7 @@ static int write_tachyon(const ms_scene *s, const char *path, ms_error *err)
     free(w.n);
     free(w.c);
     if (w.oom) ms_error_set(err, "%s: out of memory", path);
-    return ms_render_commit(f, tmp, path, !w.oom, err);
+    return ms_ofile_finish(out, !w.oom, err);
 }
 
 /* VMD's image formats for the tachyon command, and tachyon's names and file extensions. */

@@ -251,14 +251,26 @@ static char *mtl_path(const char *path)
     return p;
 }
 
+/* Put the pair in place once both are written and flushed, the .mtl first: a failure
+ * before that leaves both files as they were. 0, or -1 with err set. */
+static int commit_pair(ms_ofile *obj_out, ms_ofile *mtl_out, int ok, ms_error *err)
+{
+    ok = ok && ms_ofile_check(mtl_out, err) == 0 && ms_ofile_check(obj_out, err) == 0;
+    if (ok && ms_ofile_commit(mtl_out, err) == 0) return ms_ofile_commit(obj_out, err);
+    if (!ok) ms_ofile_abort(mtl_out);
+    ms_ofile_abort(obj_out);
+    return -1;
+}
+
 static int write_obj(const ms_scene *s, const char *path, ms_error *err)
 {
-    char *mpath = mtl_path(path), *tmp, *mtmp;
+    char *mpath = mtl_path(path);
     if (!mpath) {
         ms_error_set(err, "%s: out of memory", path);
         return -1;
     }
-    FILE *f = ms_render_open_tmp(path, &tmp, err);
+    ms_ofile *out, *mout = NULL;
+    FILE *f = ms_ofile_open_stream(path, &out, err);
     if (!f) {
         free(mpath);
         return -1;
@@ -277,17 +289,10 @@ static int write_obj(const ms_scene *s, const char *path, ms_error *err)
         mesh(&o, o.it->dl);
         thin(&o, o.it->dl);
     }
-    int rc = -1;
-    FILE *mf = o.oom ? NULL : ms_render_open_tmp(mpath, &mtmp, err);
-    if (mf) {
-        write_mtl(mf, &o);
-        rc = ms_render_commit(mf, mtmp, mpath, 1, err);
-    } else if (o.oom) {
-        ms_error_set(err, "%s: out of memory", path);
-    }
-    int mtl_written = rc == 0;
-    rc = ms_render_commit(f, tmp, path, mtl_written, mtl_written ? err : NULL);
-    if (rc && mtl_written) remove(mpath);   /* no half pair left behind */
+    FILE *mf = o.oom ? NULL : ms_ofile_open_stream(mpath, &mout, err);
+    if (mf) write_mtl(mf, &o);
+    else if (o.oom) ms_error_set(err, "%s: out of memory", path);
+    int rc = commit_pair(out, mout, mf != NULL, err);
     free(o.mtls);
     free(o.slots);
     free(mpath);

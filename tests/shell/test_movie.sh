@@ -49,7 +49,7 @@ mkdir -p one two
 out1=$($M -e movie.tcl -args one one/m.mp4 </dev/null 2>one.err); rc1=$?
 expect_eq "one process: the movie is made" "$rc1:$(printf '%s\n' "$out1" | grep -o 'rendered [0-9]* reused [0-9]*')" \
     "0:rendered 20 reused 0"
-expect_eq "one process: 20 frames, no temporary file" "$(ls one | grep -c '^f\.[0-9]\{5\}\.png$'):$(ls one | grep -c part)" "20:0"
+expect_eq "one process: 20 frames, no temporary file" "$(ls one | grep -c '^f\.[0-9]\{5\}\.png$'):$(ls one | grep -c 'part\|\.tmp')" "20:0"
 if [ $have_mpi = 1 ]; then
     out2=$(mpi 2 $M -e movie.tcl -args two two/m.mp4 </dev/null 2>two.err); rc2=$?
     expect_eq "2 ranks: the movie is made" "$rc2:$(printf '%s\n' "$out2" | grep -o 'rendered [0-9]* reused [0-9]* ranks [0-9]*')" \
@@ -142,7 +142,7 @@ PY
 fi
 expect_eq "run again: the frames equal the uninterrupted movie's" \
     "$(for i in $(seq -f %05g 0 19); do cmp -s one/f.$i.png kill/f.$i.png || echo "$i"; done | wc -l)" 0
-expect_eq "run again: no temporary file is left" "$(ls kill | grep -c part)" 0
+expect_eq "run again: no temporary file is left" "$(ls kill | grep -c 'part\|\.tmp')" 0
 [ $have_ff = 1 ] && expect_eq "run again: the video plays, ffprobe counts 20 frames" "$(nframes kill/m.mp4)" 20
 
 # ---------------------------------------------------------------- temporary names only
@@ -153,8 +153,8 @@ if command -v strace >/dev/null && strace -f -o /dev/null true 2>/dev/null; then
     final='st/f\.[0-9]{5}\.png"'
     expect_eq "strace: no final frame name is ever opened for writing" \
         "$(grep -E "open.*$final.*O_(WRONLY|RDWR|CREAT)" st.log | wc -l)" 0
-    expect_eq "strace: every final frame name is made by one rename of its .part.png" \
-        "$(grep -E "rename.*st/f\.[0-9]{5}\.part\.png\", .*$final" st.log | grep -c '= 0$')" 20
+    expect_eq "strace: every final frame name is made by one rename of its temporary file" \
+        "$(grep -E "rename.*st/f\.[0-9]{5}\.tmp-[A-Za-z0-9]{8}\.png\", .*$final" st.log | grep -c '= 0$')" 20
 else
     skip "strace" "strace is not there or cannot trace here"
 fi

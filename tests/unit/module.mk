@@ -3,10 +3,12 @@ check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_
 	tests/unit/test_volumes tests/unit/test_image tests/unit/test_serialize \
 	tests/unit/test_select tests/unit/test_ss tests/unit/test_measure tests/unit/test_scene \
 	tests/unit/test_rep tests/unit/test_gl tests/unit/test_qsurf tests/unit/test_rt \
-	tests/unit/test_xtc tests/unit/test_live tests/unit/test_oclrt
+	tests/unit/test_xtc tests/unit/test_live tests/unit/test_oclrt tests/unit/test_safewrite
 
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h
 tests_unit_test_base_LDADD = $(TEST_LIBS)
+tests_unit_test_safewrite_SOURCES = tests/unit/test_safewrite.c tests/unit/ms_test.h
+tests_unit_test_safewrite_LDADD = $(TEST_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h
 tests_unit_test_molecule_LDADD = $(TEST_LIBS)
 tests_unit_test_formats_SOURCES = tests/unit/test_formats.c tests/unit/ms_test.h
