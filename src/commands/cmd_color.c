@@ -363,8 +363,9 @@ static const ms_subcmd colorinfo_table[] = {
 
 void ms_cmd_color_register(ms_app *app)
 {
+    static const ms_subcmd by_category = {"<category>", color_item, 0, 0, NULL};
     ms_cmdset_create(app, "color", color_table);
-    ms_cmdset_fallback(app, "color", color_item);
+    ms_cmdset_fallback(app, "color", &by_category);
     ms_cmdset_create(app, "colorinfo", colorinfo_table);
     ms_cmdset_quiet(app, "colorinfo");
 }

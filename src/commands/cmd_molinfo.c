@@ -404,7 +404,8 @@ static const ms_subcmd molinfo_table[] = {
 
 void ms_cmd_molinfo_register(ms_app *app)
 {
+    static const ms_subcmd by_molid = {"<molid>", molinfo_mol, 0, 0, NULL};
     ms_cmdset_create(app, "molinfo", molinfo_table);
-    ms_cmdset_fallback(app, "molinfo", molinfo_mol);
+    ms_cmdset_fallback(app, "molinfo", &by_molid);
     ms_cmdset_quiet(app, "molinfo");
 }

@@ -152,7 +152,8 @@ static const ms_subcmd render_table[] = {
 
 void ms_cmd_render_register(ms_app *app)
 {
+    static const ms_subcmd by_method = {"<method>", r_render, 0, 0, NULL};
     ms_cmdset_create(app, "render", render_table);
-    ms_cmdset_fallback(app, "render", r_render);
+    ms_cmdset_fallback(app, "render", &by_method);
     ms_cmdset_quiet(app, "render");
 }
