@@ -79,9 +79,8 @@ int ms_args_call(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[
                  const ms_subcmd *e, const char *prefix, int fallback)
 {
     ms_args_frame c;
-    int counted = e->usage != NULL;   /* an entry without usage is not on the layer yet */
     if (ms_args_enter(&c, interp, prefix, fallback ? NULL : e->name, e->usage, objc - first,
-                      counted ? e->min : 0, counted ? e->max : MS_ARGS_ANY) != TCL_OK)
+                      e->min, e->max) != TCL_OK)
         return TCL_ERROR;
     int rc = e->fn(app, interp, objc, objv);
     ms_args_leave(&c);

@@ -273,16 +273,6 @@ static void default_reset_view(ms_app *app)
 
 void (*ms_cmd_reset_view)(ms_app *app) = default_reset_view;
 
-int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out)
-{
-    Tcl_WideInt v;
-    if (Tcl_GetWideIntFromObj(NULL, obj, &v) != TCL_OK || v < 0 || v > max)
-        return ms_cmd_error(interp, "%s: expected a whole number from 0 to %ld, got '%s'", what,
-                            max, Tcl_GetString(obj));
-    *out = (long)v;
-    return TCL_OK;
-}
-
 /* ---------------------------------------------------------------- loading */
 
 /* VMD's load options; waitfor is a number or `all`, read after the table. */

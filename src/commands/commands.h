@@ -41,9 +41,6 @@ ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const ch
 int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char *cmd,
                    int **out, int *n);
 
-/* Parse a non-negative count with an upper bound, naming what it is on error. */
-int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out);
-
 /* A selection object (atomselectN) resolved for commands that take one (`animate write ...
  * sel`, `measure`): the selection module installs this; NULL until then. Returns TCL_OK with
  * the molecule id, the resolved frame (-1 when the molecule has none) and malloc'd
