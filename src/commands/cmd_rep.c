@@ -110,12 +110,12 @@ static int m_current(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 /* mol default color|style|representation|selection|material ?value? */
 static int m_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    static const char *const words[] = {"color", "style", "representation", "rep", "selection",
-                                        "material", NULL};
+    /* every word of what_words is taken; a refused one is told the usual four */
+    static const char *const words[] = {"color", "style", "selection", "material", NULL};
     ms_rep_what what = MS_REP_STYLE;
     int k;
-    if (ms_arg_choice(interp, objv[2], words, NULL, &k)) return TCL_ERROR;
-    what_of(words[k], &what);
+    if (what_of(Tcl_GetString(objv[2]), &what))
+        return ms_arg_choice(interp, objv[2], words, NULL, &k);
     if (objc == 3) {
         Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_get_default(app, what), -1));
         return TCL_OK;
