@@ -27,7 +27,9 @@
  *   commands/   the Tcl command bindings (mol, molinfo, animate, vmdinfo, ...)
  *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
  *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
- *   commands/   the Tcl command bindings (mol, molinfo, animate, measure, vecadd ...)
+ *   commands/   the Tcl command bindings (mol, molinfo, animate, measure, vecadd ...), all
+ *               on one argument layer (args.h: subcommand tables, counts, keywords, values,
+ *               option lists, one error style)
  *   app/        the program: command line, startup order, shell
  *   ../plugins  file formats, each a module loaded at run time (ms_plugin.h)
  */

@@ -7,13 +7,15 @@ dist_livepage_DATA = tcl/live/index.html
 
 # The molscope::parallel package: a loadable Tcl extension (libtool module) with its
 # pkgIndex.tcl, in tcl/parallel/ of the Tcl library. It carries its own copy of the MPI
-# layer (src/parallel) so it also works in a plain tclsh; Tcl stubs when available.
+# layer (src/parallel) and of the argument layer (src/commands/args.c) so it also works in
+# a plain tclsh; Tcl stubs when available.
 parallelpkgdir = $(tcllibdir)/parallel
 parallelpkg_LTLIBRARIES = tcl/parallel/parallel.la
 dist_parallelpkg_DATA = tcl/parallel/pkgIndex.tcl
 tcl_parallel_parallel_la_SOURCES = tcl/parallel/parallel.c \
 	src/parallel/parallel.h src/parallel/internal.h \
-	src/parallel/comm.c src/parallel/sched.c src/base/base.c
+	src/parallel/comm.c src/parallel/sched.c src/base/base.c \
+	src/commands/args.h src/commands/args.c
 tcl_parallel_parallel_la_CFLAGS = $(AM_CFLAGS) $(TCL_STUB_CFLAGS)
 tcl_parallel_parallel_la_LDFLAGS = -module -avoid-version -shared
 tcl_parallel_parallel_la_LIBADD = $(TCL_STUB_LIBS) $(MPI_LIBS) $(PTHREAD_LIBS)

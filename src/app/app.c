@@ -166,15 +166,10 @@ static void on_mol_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *
 
 /* quit ?status?: VMD schedules the exit and returns an error on purpose, so a sourcing
  * script stops right there; the shell then exits with the status. */
-static int cmd_quit(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int cmd_quit(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_app *app = cd;
     int status = 0;
-    if (objc > 2) {
-        Tcl_WrongNumArgs(interp, 1, objv, "?status?");
-        return TCL_ERROR;
-    }
-    if (objc == 2 && Tcl_GetIntFromObj(interp, objv[1], &status) != TCL_OK) return TCL_ERROR;
+    if (objc == 2 && ms_arg_int(interp, objv[1], "status", INT_MIN, INT_MAX, &status)) return TCL_ERROR;
     app->quit_requested = 1;
     app->quit_status = status;
     Tcl_SetObjResult(interp, Tcl_NewStringObj("", 0));
@@ -183,8 +178,9 @@ static int cmd_quit(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 
 void ms_app_register(ms_app *app)
 {
-    Tcl_CreateObjCommand(app->interp, "quit", cmd_quit, app, NULL);
-    Tcl_CreateObjCommand(app->interp, "exit", cmd_quit, app, NULL);
+    static const ms_subcmd cmds[] = {{"quit", cmd_quit, 0, 1, "?<status>?"},
+                                     {"exit", cmd_quit, 0, 1, "?<status>?"}};
+    for (size_t i = 0; i < MS_COUNTOF(cmds); i++) ms_cmd_create(app, &cmds[i]);
     ms_app_register_loading(app);
     ms_molset_listen(&app->mols, on_mol_event, app);
 }

@@ -13,11 +13,12 @@
 #include "fileio/write.h"
 
 #include <stdlib.h>
+#include <limits.h>
+#include <stddef.h>
 #include <string.h>
-#include <strings.h>
 
 typedef enum { ANIM_ONCE, ANIM_ROCK, ANIM_LOOP } anim_style;
-static const char *style_names[] = {"Once", "Rock", "Loop"};
+static const char *const style_names[] = {"Once", "Rock", "Loop", NULL};
 
 static struct {
     anim_style style;
@@ -72,18 +73,12 @@ static void anim_play(ms_app *app, int dir)
 
 static int an_goto(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return ms_cmd_error(interp, "animate goto: usage: animate goto start|end|<frame>");
-    const char *w = Tcl_GetString(objv[2]);
-    long target;
-    int end = 0;
-    if (!strcasecmp(w, "start")) target = 0;
-    else if (!strcasecmp(w, "end")) end = 1, target = 0;
-    else {
-        int v;
-        if (Tcl_GetIntFromObj(NULL, objv[2], &v) != TCL_OK)
-            return ms_cmd_error(interp, "animate goto: expected start, end or a frame number, got '%s'", w);
-        target = v;
-    }
+    static const char *const words[] = {"start", "end", NULL};
+    long target = 0;
+    int word;
+    if (ms_arg_long_or(interp, objv[2], "frame", words, INT_MIN, INT_MAX, &word, &target))
+        return TCL_ERROR;
+    int end = word == 1;
     anim_play(app, 0);
     for (size_t i = 0; i < app->mols.n; i++) {
         ms_molecule *m = app->mols.mols[i];
@@ -92,15 +87,35 @@ static int an_goto(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
     return TCL_OK;
 }
 
-static int an_step(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int an_next(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *w = Tcl_GetString(objv[1]);
-    if (objc != 2) return ms_cmd_error(interp, "animate %s: takes no arguments", w);
-    if (!strcasecmp(w, "next")) { anim_play(app, 0); step_active(app, anim.skip); }
-    else if (!strcasecmp(w, "prev")) { anim_play(app, 0); step_active(app, -anim.skip); }
-    else if (!strcasecmp(w, "forward") || !strcasecmp(w, "for")) anim_play(app, 1);
-    else if (!strcasecmp(w, "reverse") || !strcasecmp(w, "rev")) anim_play(app, -1);
-    else anim_play(app, 0);
+    anim_play(app, 0);
+    step_active(app, anim.skip);
+    return TCL_OK;
+}
+
+static int an_prev(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    anim_play(app, 0);
+    step_active(app, -anim.skip);
+    return TCL_OK;
+}
+
+static int an_forward(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    anim_play(app, 1);
+    return TCL_OK;
+}
+
+static int an_reverse(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    anim_play(app, -1);
+    return TCL_OK;
+}
+
+static int an_pause(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    anim_play(app, 0);
     return TCL_OK;
 }
 
@@ -110,14 +125,10 @@ static int an_style(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
         Tcl_SetObjResult(interp, Tcl_NewStringObj(style_names[anim.style], -1));
         return TCL_OK;
     }
-    if (objc != 3) return ms_cmd_error(interp, "animate style: usage: animate style ?once|rock|loop?");
-    const char *w = Tcl_GetString(objv[2]);
-    for (int s = 0; s < 3; s++)
-        if (!strcasecmp(w, style_names[s])) {
-            anim.style = (anim_style)s;
-            return TCL_OK;
-        }
-    return ms_cmd_error(interp, "animate style: unknown style '%s': must be once, rock or loop", w);
+    int s;
+    if (ms_arg_choice(interp, objv[2], style_names, "style", &s)) return TCL_ERROR;
+    anim.style = (anim_style)s;
+    return TCL_OK;
 }
 
 static int an_styles(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
@@ -130,39 +141,21 @@ static int an_styles(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int an_speed(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc == 3) {
-        double v;
-        if (Tcl_GetDoubleFromObj(NULL, objv[2], &v) != TCL_OK || v < 0 || v > 1)
-            return ms_cmd_error(interp, "animate speed: expected a number from 0 to 1, got '%s'",
-                                Tcl_GetString(objv[2]));
-        anim.speed = v;
-    } else if (objc != 2) {
-        return ms_cmd_error(interp, "animate speed: usage: animate speed ?0..1?");
-    }
+    if (objc == 3 && ms_arg_double_range(interp, objv[2], NULL, 0, 1, &anim.speed))
+        return TCL_ERROR;
     Tcl_SetObjResult(interp, Tcl_NewDoubleObj(anim.speed));
     return TCL_OK;
 }
 
 static int an_skip(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc == 3) {
-        int v;
-        if (Tcl_GetIntFromObj(NULL, objv[2], &v) != TCL_OK || v < 1)
-            return ms_cmd_error(interp, "animate skip: expected a positive integer, got '%s'",
-                                Tcl_GetString(objv[2]));
-        anim.skip = v;
-    } else if (objc != 2) {
-        return ms_cmd_error(interp, "animate skip: usage: animate skip ?n?");
-    }
+    if (objc == 3 && ms_arg_int(interp, objv[2], NULL, 1, INT_MAX, &anim.skip)) return TCL_ERROR;
     Tcl_SetObjResult(interp, Tcl_NewIntObj(anim.skip));
     return TCL_OK;
 }
 
 static int an_read(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 4)
-        return ms_cmd_error(interp, "animate read: usage: animate read <type> <file> ?beg b? ?end e? "
-                                    "?skip s? ?waitfor n|all? ?molid?");
     ms_load_opts o;
     ms_load_opts_default(&o);
     Tcl_Obj *molword;
@@ -174,7 +167,8 @@ static int an_read(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
     return ms_cmd_load(app, interp, "animate read", Tcl_GetString(objv[3]), &o, m);
 }
 
-/* Frame range options beg/end/skip (and waitfor, sel where allowed) then an optional molid. */
+/* Frame range options beg/end/skip, waitfor (ignored: writing waits for every frame), sel
+ * where allowed and the word `all`, then an optional molid. */
 typedef struct frame_range {
     long beg, end, skip;
     const char *sel;
@@ -182,46 +176,34 @@ typedef struct frame_range {
     int all;
 } frame_range;
 
-static int parse_range(Tcl_Interp *interp, const char *cmd, int objc, Tcl_Obj *const objv[],
-                       int start, int allow_sel, frame_range *r)
+#define ROFF(f) offsetof(frame_range, f)
+#define RANGE_OPTIONS                                                         \
+    {"all", MS_OPT_FLAG, ROFF(all), 0, 0, 0, NULL},                                       \
+    {"beg", MS_OPT_LONG, ROFF(beg), 0, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},           \
+    {"first", MS_OPT_LONG, ROFF(beg), 0, INT_MAX, MS_OPT_MIN | MS_OPT_MAX | MS_OPT_ALIAS, NULL}, \
+    {"end", MS_OPT_LONG, ROFF(end), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},          \
+    {"last", MS_OPT_LONG, ROFF(end), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX | MS_OPT_ALIAS, NULL}, \
+    {"skip", MS_OPT_LONG, ROFF(skip), 1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},         \
+    {"step", MS_OPT_LONG, ROFF(skip), 1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX | MS_OPT_ALIAS, NULL}, \
+    {"waitfor", MS_OPT_IGNORE, 0, 0, 0, 0, NULL}
+static const ms_opt write_options[] = {RANGE_OPTIONS,
+                                       {"sel", MS_OPT_STRING, ROFF(sel), 0, 0, 0, NULL},
+                                       {NULL, 0, 0, 0, 0, 0, NULL}};
+static const ms_opt delete_options[] = {RANGE_OPTIONS, {NULL, 0, 0, 0, 0, 0, NULL}};
+
+static int parse_range(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], int start,
+                       const ms_opt *options, frame_range *r)
 {
     memset(r, 0, sizeof *r);
     r->end = -1;
     r->skip = 1;
-    for (int i = start; i < objc; i++) {
-        const char *w = Tcl_GetString(objv[i]);
-        if (!strcasecmp(w, "all")) { r->all = 1; continue; }
-        if (i + 1 >= objc) {
-            r->molword = objv[i];
-            break;
-        }
-        Tcl_Obj *v = objv[++i];
-        long *dst = !strcasecmp(w, "beg") || !strcasecmp(w, "first") ? &r->beg
-                  : !strcasecmp(w, "end") || !strcasecmp(w, "last") ? &r->end
-                  : !strcasecmp(w, "skip") || !strcasecmp(w, "step") ? &r->skip : NULL;
-        if (dst) {
-            int x;
-            if (Tcl_GetIntFromObj(NULL, v, &x) != TCL_OK || x < (dst == &r->end ? -1 : dst == &r->skip ? 1 : 0))
-                return ms_cmd_error(interp, "%s: bad value '%s' for %s", cmd, Tcl_GetString(v), w);
-            *dst = x;
-        } else if (!strcasecmp(w, "waitfor")) {
-            /* writing always waits for every frame; accepted for compatibility */
-        } else if (allow_sel && !strcasecmp(w, "sel")) {
-            r->sel = Tcl_GetString(v);
-        } else {
-            return ms_cmd_error(interp, "%s: unknown option '%s'", cmd, w);
-        }
-    }
-    return TCL_OK;
+    return ms_args_options(interp, objc, objv, start, options, r, &r->molword);
 }
 
 static int an_write(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 4)
-        return ms_cmd_error(interp, "animate write: usage: animate write <type> <file> ?beg b? "
-                                    "?end e? ?skip s? ?waitfor n|all? ?sel sel? ?molid?");
     frame_range r;
-    if (parse_range(interp, "animate write", objc, objv, 4, 1, &r)) return TCL_ERROR;
+    if (parse_range(interp, objc, objv, 4, write_options, &r)) return TCL_ERROR;
     ms_molecule *m = ms_cmd_mol(app, interp, r.molword ? r.molword : Tcl_NewStringObj("top", -1),
                                 "animate write");
     if (!m) return TCL_ERROR;
@@ -261,7 +243,7 @@ static int an_write(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 static int an_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     frame_range r;
-    if (parse_range(interp, "animate delete", objc, objv, 2, 0, &r)) return TCL_ERROR;
+    if (parse_range(interp, objc, objv, 2, delete_options, &r)) return TCL_ERROR;
     ms_molecule *m = ms_cmd_mol(app, interp, r.molword ? r.molword : Tcl_NewStringObj("top", -1),
                                 "animate delete");
     if (!m) return TCL_ERROR;
@@ -277,20 +259,22 @@ static int an_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int an_dup(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3 && objc != 5)
-        return ms_cmd_error(interp, "animate dup: usage: animate dup ?frame <n|now|null>? <molid>");
+    if (objc == 4) return ms_args_usage(interp);
     ms_molecule *m = ms_cmd_mol(app, interp, objv[objc - 1], "animate dup");
     if (!m) return TCL_ERROR;
     long src = m->frame;
     if (objc == 5) {
-        const char *w = Tcl_GetString(objv[3]);
-        if (strcasecmp(Tcl_GetString(objv[2]), "frame"))
-            return ms_cmd_error(interp, "animate dup: expected 'frame', got '%s'", Tcl_GetString(objv[2]));
-        int v;
-        if (!strcasecmp(w, "now")) src = m->frame;
-        else if (!strcasecmp(w, "null")) src = -1;
-        else if (Tcl_GetIntFromObj(NULL, objv[3], &v) == TCL_OK && v >= 0 && (size_t)v < m->nframes) src = v;
-        else return ms_cmd_error(interp, "animate dup: molecule %d has no frame '%s'", m->id, w);
+        static const char *const frame_word[] = {"frame", NULL};
+        static const char *const words[] = {"now", "null", NULL};
+        int k;
+        long v;
+        if (ms_arg_choice(interp, objv[2], frame_word, NULL, &k)) return TCL_ERROR;
+        if (ms_arg_long_or(NULL, objv[3], NULL, words, 0, INT_MAX, &k, &v) == TCL_OK &&
+            (k >= 0 || (size_t)v < m->nframes))
+            src = k == 0 ? m->frame : k == 1 ? -1 : v;
+        else
+            return ms_cmd_error(interp, "animate dup: molecule %d has no frame '%s'", m->id,
+                                Tcl_GetString(objv[3]));
     }
     ms_error err = {{0}};
     int with_vel = src >= 0 && m->frames[src].vel != NULL;
@@ -312,11 +296,25 @@ static int an_dup(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
 }
 
 static const ms_subcmd animate_table[] = {
-    {"goto", an_goto},      {"next", an_step},     {"prev", an_step},   {"forward", an_step},
-    {"for", an_step},       {"reverse", an_step},  {"rev", an_step},    {"pause", an_step},
-    {"style", an_style},    {"styles", an_styles}, {"speed", an_speed}, {"skip", an_skip},
-    {"read", an_read},      {"write", an_write},   {"delete", an_delete}, {"dup", an_dup},
-    {NULL, NULL}};
+    {"goto", an_goto, 1, 1, "start|end|<frame>"},
+    {"next", an_next, 0, 0, ""},
+    {"prev", an_prev, 0, 0, ""},
+    {"forward", an_forward, 0, 0, ""},
+    {"for", an_forward, 0, 0, ""},
+    {"reverse", an_reverse, 0, 0, ""},
+    {"rev", an_reverse, 0, 0, ""},
+    {"pause", an_pause, 0, 0, ""},
+    {"style", an_style, 0, 1, "?once|rock|loop?"},
+    {"styles", an_styles, 0, 0, ""},
+    {"speed", an_speed, 0, 1, "?<0..1>?"},
+    {"skip", an_skip, 0, 1, "?<n>?"},
+    {"read", an_read, 2, MS_ARGS_ANY,
+     "<type> <file> ?beg <b>? ?end <e>? ?skip <s>? ?waitfor <n>|all? ?<molid>?"},
+    {"write", an_write, 2, MS_ARGS_ANY,
+     "<type> <file> ?beg <b>? ?end <e>? ?skip <s>? ?waitfor <n>|all? ?sel <sel>? ?<molid>?"},
+    {"delete", an_delete, 0, MS_ARGS_ANY, "all ?<molid>? | ?beg <b>? ?end <e>? ?skip <s>? ?<molid>?"},
+    {"dup", an_dup, 1, 3, "?frame <n|now|null>? <molid>"},
+    {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_animate_register(ms_app *app)
 {

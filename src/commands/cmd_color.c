@@ -14,7 +14,6 @@
 #include "scene/color.h"
 
 #include <string.h>
-#include <strings.h>
 
 static int get_color(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, int *id)
 {
@@ -52,7 +51,7 @@ static int get_rgb(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd,
         memcpy(rgb, ms_color_rgb(app->colors, id), 3 * sizeof(float));
         return TCL_OK;
     }
-    return ms_cmd_get_vec3(interp, o, rgb, cmd);
+    return ms_arg_vec3(interp, o, NULL, rgb);
 }
 
 /* ---------------------------------------------------------------- color change */
@@ -60,8 +59,7 @@ static int get_rgb(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd,
 static int change_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *cmd = "color change rgb";
-    if (objc != 4 && objc != 5 && objc != 7)
-        return ms_cmd_error(interp, "%s: usage: color change rgb <color> ?<gray> | <r> <g> <b>?", cmd);
+    if (objc == 6) return ms_args_usage(interp);
     int id;
     if (get_color(app, interp, objv[3], cmd, &id)) return TCL_ERROR;
     if (id >= MS_COLOR_NUM)
@@ -71,16 +69,17 @@ static int change_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
         ms_color_default_rgb(id, rgb);
     } else {
         for (int k = 0; k < 3; k++)
-            if (ms_cmd_get_float(interp, objv[objc == 5 ? 4 : 4 + k], &rgb[k], cmd)) return TCL_ERROR;
+            if (ms_arg_float(interp, objv[objc == 5 ? 4 : 4 + k], NULL, &rgb[k])) return TCL_ERROR;
     }
     ms_color_set_rgb(app->colors, id, rgb);
     return TCL_OK;
 }
 
 /* {{r g b} ...} sets colours 0, 1, ...; {{name r g b} ...} or {{name {r g b}} ...} by name. */
-static int change_rgblist(ms_app *app, Tcl_Interp *interp, Tcl_Obj *list)
+static int change_rgblist(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *cmd = "color change rgblist";
+    Tcl_Obj *list = objv[3];
     Tcl_Obj **e;
     int n;
     if (Tcl_ListObjGetElements(NULL, list, &n, &e) != TCL_OK)
@@ -94,11 +93,11 @@ static int change_rgblist(ms_app *app, Tcl_Interp *interp, Tcl_Obj *list)
         if (Tcl_ListObjGetElements(NULL, e[i], &m, &f) != TCL_OK) m = 0;
         if (m == 3) {
             ids[i] = i;
-            if (ms_cmd_get_vec3(interp, e[i], rgb[i], cmd)) return TCL_ERROR;
+            if (ms_arg_vec3(interp, e[i], NULL, rgb[i])) return TCL_ERROR;
         } else if (m == 2 || m == 4) {
             if (get_color(app, interp, f[0], cmd, &ids[i])) return TCL_ERROR;
             Tcl_Obj *v = m == 2 ? f[1] : Tcl_NewListObj(3, f + 1);
-            if (ms_cmd_get_vec3(interp, v, rgb[i], cmd)) return TCL_ERROR;
+            if (ms_arg_vec3(interp, v, NULL, rgb[i])) return TCL_ERROR;
             if (ids[i] >= MS_COLOR_NUM)
                 return ms_cmd_error(interp, "%s: color %d is on the color scale", cmd, ids[i]);
         } else {
@@ -110,9 +109,10 @@ static int change_rgblist(ms_app *app, Tcl_Interp *interp, Tcl_Obj *list)
     return TCL_OK;
 }
 
-static int change_namelist(ms_app *app, Tcl_Interp *interp, Tcl_Obj *list)
+static int change_namelist(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *cmd = "color change namelist";
+    Tcl_Obj *list = objv[3];
     Tcl_Obj **e;
     int n;
     if (Tcl_ListObjGetElements(NULL, list, &n, &e) != TCL_OK)
@@ -137,15 +137,12 @@ static int change_namelist(ms_app *app, Tcl_Interp *interp, Tcl_Obj *list)
 
 static int color_change(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 4)
-        return ms_cmd_error(interp, "color change: usage: color change rgb|rgblist|namelist ...");
-    const char *what = Tcl_GetString(objv[2]);
-    if (ms_word_eq(what, "rgb")) return change_rgb(app, interp, objc, objv);
-    if (objc != 4)
-        return ms_cmd_error(interp, "color change %s: takes one list", what);
-    if (ms_word_eq(what, "rgblist")) return change_rgblist(app, interp, objv[3]);
-    if (ms_word_eq(what, "namelist")) return change_namelist(app, interp, objv[3]);
-    return ms_cmd_error(interp, "color change: unknown option '%s': must be rgb, rgblist or namelist", what);
+    static const ms_subcmd table[] = {
+        {"rgb", change_rgb, 1, 4, "<color> ?<gray> | <r> <g> <b>?"},
+        {"rgblist", change_rgblist, 1, 1, "{{r g b} ...} | {{<color> r g b} ...}"},
+        {"namelist", change_namelist, 1, 1, "{{<category> <item> <color>} ...}"},
+        {NULL, NULL, 0, 0, NULL}};
+    return ms_args_dispatch(app, interp, objc, objv, 2, table, NULL, NULL);
 }
 
 /* ---------------------------------------------------------------- color scale */
@@ -153,8 +150,7 @@ static int color_change(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 static int scale_colors(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *cmd = "color scale colors";
-    if (objc != 4 && objc != 7)
-        return ms_cmd_error(interp, "%s: usage: color scale colors <method> ?<low> <mid> <high>?", cmd);
+    if (objc != 4 && objc != 7) return ms_args_usage(interp);
     int m = ms_color_scale_method_index(app->colors, Tcl_GetString(objv[3]));
     if (m < 0)
         return ms_cmd_error(interp, "%s: unknown color scale method '%s'", cmd, Tcl_GetString(objv[3]));
@@ -171,26 +167,22 @@ static int scale_colors(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
     return TCL_OK;
 }
 
-static int color_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int scale_method(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc >= 3 && ms_word_eq(Tcl_GetString(objv[2]), "colors"))
-        return scale_colors(app, interp, objc, objv);
-    if (objc != 4)
-        return ms_cmd_error(interp, "color scale: usage: color scale method|midpoint|min|max <value>");
-    const char *what = Tcl_GetString(objv[2]);
+    int m = ms_color_scale_method_index(app->colors, Tcl_GetString(objv[3]));
+    if (m < 0)
+        return ms_cmd_error(interp, "color scale method: unknown method '%s'", Tcl_GetString(objv[3]));
+    ms_color_scale_set_method(app->colors, m);
+    return TCL_OK;
+}
+
+/* midpoint, min, max */
+static int scale_value(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
     ms_colors *c = app->colors;
-    if (ms_word_eq(what, "method")) {
-        int m = ms_color_scale_method_index(c, Tcl_GetString(objv[3]));
-        if (m < 0)
-            return ms_cmd_error(interp, "color scale method: unknown method '%s'", Tcl_GetString(objv[3]));
-        ms_color_scale_set_method(c, m);
-        return TCL_OK;
-    }
+    const char *what = Tcl_GetString(objv[2]);
     float v, mid = c->scale_mid, min = c->scale_min, max = c->scale_max;
-    if (!ms_word_eq(what, "midpoint") && !ms_word_eq(what, "min") && !ms_word_eq(what, "max"))
-        return ms_cmd_error(interp, "color scale: unknown option '%s': must be method, midpoint, "
-                                    "min, max or colors", what);
-    if (ms_cmd_get_float(interp, objv[3], &v, "color scale")) return TCL_ERROR;
+    if (ms_arg_float(interp, objv[3], NULL, &v)) return TCL_ERROR;
     if (ms_word_eq(what, "midpoint")) {
         if (v < 0 || v > 1)
             return ms_cmd_error(interp, "color scale midpoint: %g is outside 0..1", v);
@@ -204,6 +196,18 @@ static int color_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     return TCL_OK;
 }
 
+static int color_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const ms_subcmd table[] = {
+        {"method", scale_method, 1, 1, "<method>"},
+        {"midpoint", scale_value, 1, 1, "<0..1>"},
+        {"min", scale_value, 1, 1, "<value>"},
+        {"max", scale_value, 1, 1, "<value>"},
+        {"colors", scale_colors, 1, 4, "<method> ?<low> <mid> <high>?"},
+        {NULL, NULL, 0, 0, NULL}};
+    return ms_args_dispatch(app, interp, objc, objv, 2, table, NULL, NULL);
+}
+
 /* ---------------------------------------------------------------- the rest */
 
 /* color restype <resname> ?type?. `color Restype <type> ?color?` (the category, which the
@@ -212,8 +216,6 @@ static int color_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 
 static int color_restype(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3 && objc != 4)
-        return ms_cmd_error(interp, "color restype: usage: color restype <resname> ?<type>?");
     const char *res = Tcl_GetString(objv[2]);
     int cat = ms_color_category_index(app->colors, "Restype");
     int is_item = ms_color_item_index(app->colors, cat, res) >= 0;
@@ -230,10 +232,8 @@ static int color_restype(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
     return ms_cmd_error(interp, "color restype: unknown residue type '%s'", Tcl_GetString(objv[3]));
 }
 
-static int color_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int add_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 6 || !ms_word_eq(Tcl_GetString(objv[2]), "item"))
-        return ms_cmd_error(interp, "color add: usage: color add item <category> <item> <color>");
     int cat, col;
     if (get_category(app, interp, objv[3], "color add item", &cat) ||
         get_color(app, interp, objv[5], "color add item", &col))
@@ -243,12 +243,16 @@ static int color_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     return TCL_OK;
 }
 
+static int color_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const ms_subcmd table[] = {{"item", add_item, 3, 3, "<category> <item> <color>"},
+                                      {NULL, NULL, 0, 0, NULL}};
+    return ms_args_dispatch(app, interp, objc, objv, 2, table, NULL, NULL);
+}
+
 /* color <category> <item> ?color? */
 static int color_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3 && objc != 4)
-        return ms_cmd_error(interp, "color: usage: color <category> <item> ?<color>?, color change "
-                                    "..., color scale ..., color restype ...");
     int cat, col;
     if (get_category(app, interp, objv[1], "color", &cat)) return TCL_ERROR;
     const char *item = Tcl_GetString(objv[2]);
@@ -276,8 +280,6 @@ static int info_categories(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *c
 
 static int info_category(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3 && objc != 4)
-        return ms_cmd_error(interp, "colorinfo category: usage: colorinfo category <category> ?<item>?");
     int cat;
     if (get_category(app, interp, objv[2], "colorinfo category", &cat)) return TCL_ERROR;
     const ms_color_category *k = &app->colors->cats[cat];
@@ -320,7 +322,6 @@ static int info_colors(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
 static int info_index_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *what = Tcl_GetString(objv[1]);
-    if (objc != 3) return ms_cmd_error(interp, "colorinfo %s: usage: colorinfo %s <color>", what, what);
     int id;
     if (get_color(app, interp, objv[2], "colorinfo", &id)) return TCL_ERROR;
     Tcl_SetObjResult(interp, ms_word_eq(what, "index") ? Tcl_NewIntObj(id)
@@ -330,41 +331,48 @@ static int info_index_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
 
 static int info_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3)
-        return ms_cmd_error(interp, "colorinfo scale: usage: colorinfo scale method|methods|midpoint|min|max");
-    const char *w = Tcl_GetString(objv[2]);
+    static const char *const words[] = {"method", "methods", "midpoint", "min", "max", NULL};
     const ms_colors *c = app->colors;
-    if (ms_word_eq(w, "method")) {
+    int w;
+    if (ms_arg_choice(interp, objv[2], words, NULL, &w)) return TCL_ERROR;
+    if (w == 0) {
         Tcl_SetObjResult(interp, Tcl_NewStringObj(c->methods[c->method].name, -1));
-    } else if (ms_word_eq(w, "methods")) {
+    } else if (w == 1) {
         Tcl_Obj *l = Tcl_NewListObj(0, NULL);
         for (int i = 0; i < MS_COLOR_SCALE_METHODS; i++)
             Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(c->methods[i].name, -1));
         Tcl_SetObjResult(interp, l);
-    } else if (ms_word_eq(w, "midpoint") || ms_word_eq(w, "min") || ms_word_eq(w, "max")) {
-        float v = ms_word_eq(w, "midpoint") ? c->scale_mid : ms_word_eq(w, "min") ? c->scale_min
-                                                                                   : c->scale_max;
-        Tcl_SetObjResult(interp, Tcl_NewDoubleObj(v));
     } else {
-        return ms_cmd_error(interp, "colorinfo scale: unknown option '%s': must be method, methods, "
-                                    "midpoint, min or max", w);
+        Tcl_SetObjResult(interp, Tcl_NewDoubleObj(w == 2 ? c->scale_mid : w == 3 ? c->scale_min
+                                                                               : c->scale_max));
     }
     return TCL_OK;
 }
 
 static const ms_subcmd color_table[] = {
-    {"change", color_change}, {"scale", color_scale}, {"restype", color_restype},
-    {"add", color_add}, {NULL, NULL}};
+    {"change", color_change, 1, MS_ARGS_ANY, "rgb|rgblist|namelist ..."},
+    {"scale", color_scale, 1, MS_ARGS_ANY, "method|midpoint|min|max|colors ..."},
+    {"restype", color_restype, 1, 2, "<resname> ?<type>?"},
+    {"add", color_add, 1, MS_ARGS_ANY, "item <category> <item> <color>"},
+    {NULL, NULL, 0, 0, NULL}};
 
 static const ms_subcmd colorinfo_table[] = {
-    {"categories", info_categories}, {"category", info_category}, {"num", info_num},
-    {"max", info_max}, {"colors", info_colors}, {"index", info_index_rgb},
-    {"rgb", info_index_rgb}, {"scale", info_scale}, {NULL, NULL}};
+    {"categories", info_categories, 0, 0, ""},
+    {"category", info_category, 1, 2, "<category> ?<item>?"},
+    {"num", info_num, 0, 0, ""},
+    {"max", info_max, 0, 0, ""},
+    {"colors", info_colors, 0, 0, ""},
+    {"index", info_index_rgb, 1, 1, "<color>"},
+    {"rgb", info_index_rgb, 1, 1, "<color>"},
+    {"scale", info_scale, 1, 1, "method|methods|midpoint|min|max"},
+    {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_color_register(ms_app *app)
 {
+    static const ms_subcmd by_category = {"<category>", color_item, 2, 3,
+                                          "<category> <item> ?<color>?"};
     ms_cmdset_create(app, "color", color_table);
-    ms_cmdset_fallback(app, "color", color_item);
+    ms_cmdset_fallback(app, "color", &by_category);
     ms_cmdset_create(app, "colorinfo", colorinfo_table);
     ms_cmdset_quiet(app, "colorinfo");
 }

@@ -17,9 +17,10 @@
 #include "scene/mat4.h"
 #include "view/view.h"
 
+#include <limits.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <string.h>
-#include <strings.h>
 
 typedef enum { S_FLOAT, S_BOOL } stype;
 
@@ -83,19 +84,12 @@ static const setting *find_setting(const char *name)
 
 static int set_value(ms_app *app, Tcl_Interp *interp, const setting *s, Tcl_Obj *val)
 {
-    char what[64];
-    snprintf(what, sizeof what, "display %s", s->name);
     char *p = (char *)app->view + s->off;
-    if (s->type == S_BOOL) {
-        int b;
-        if (ms_cmd_get_bool(interp, val, &b, what)) return TCL_ERROR;
-        *(int *)p = b;
-        return TCL_OK;
-    }
+    if (s->type == S_BOOL) return ms_arg_bool(interp, val, NULL, (int *)p);
     float x;
-    if (ms_cmd_get_float(interp, val, &x, what)) return TCL_ERROR;
+    if (ms_arg_float(interp, val, NULL, &x)) return TCL_ERROR;
     const char *bad = s->check ? s->check(app->view, x) : NULL;
-    if (bad) return ms_cmd_error(interp, "%s: %g %s", what, x, bad);
+    if (bad) return ms_cmd_error(interp, "%s: %g %s", ms_args_where(), x, bad);
     *(float *)p = x;
     return TCL_OK;
 }
@@ -116,29 +110,45 @@ static Tcl_Obj *vec_obj(const float v[3])
 
 /* ---------------------------------------------------------------- display get */
 
+/* The words of display get besides the settings. */
+typedef enum {
+    W_PROJECTION, W_PROJECTIONS, W_CUEMODE, W_CUEMODES, W_NEARCLIP, W_FARCLIP, W_STEREO,
+    W_STEREOMODES, W_RENDERMODE, W_RENDERMODES, W_CACHEMODE, W_CACHEMODES, W_EYEPOS, W_EYEDIR,
+    W_EYEUP, W_SIZE, W_COUNT
+} get_word_id;
+static const char *const get_words[W_COUNT + 1] = {
+    "projection", "projections", "cuemode", "cuemodes", "nearclip", "farclip", "stereo",
+    "stereomodes", "rendermode", "rendermodes", "cachemode", "cachemodes", "eyepos", "eyedir",
+    "eyeup", "size", NULL};
+
 static Tcl_Obj *get_word(ms_app *app, const char *w)
 {
     const ms_view *v = app->view;
     static const char *const projs[] = {"Perspective", "Orthographic"};
     static const char *const cues[] = {"Linear", "Exp", "Exp2"};
-    if (ms_word_eq(w, "projection")) return Tcl_NewStringObj(ms_projection_name(v->cam.projection), -1);
-    if (ms_word_eq(w, "projections")) return list_of(projs, 2);
-    if (ms_word_eq(w, "cuemode")) return Tcl_NewStringObj(ms_cuemode_name(v->cuemode), -1);
-    if (ms_word_eq(w, "cuemodes")) return list_of(cues, 3);
-    if (ms_word_eq(w, "nearclip")) return ms_cmd_float_obj(v->cam.near_clip);
-    if (ms_word_eq(w, "farclip")) return ms_cmd_float_obj(v->cam.far_clip);
-    if (ms_word_eq(w, "stereo")) return Tcl_NewStringObj(v->stereo, -1);
-    if (ms_word_eq(w, "stereomodes")) return list_of(stereo_modes, 8);
-    if (ms_word_eq(w, "rendermode")) return Tcl_NewStringObj(v->rendermode, -1);
-    if (ms_word_eq(w, "rendermodes")) return list_of(render_modes, 8);
-    if (ms_word_eq(w, "cachemode")) return Tcl_NewStringObj(v->cachemode, -1);
-    if (ms_word_eq(w, "cachemodes")) return list_of(cache_modes, 8);
-    if (ms_word_eq(w, "eyepos")) return vec_obj(v->cam.eye);
-    if (ms_word_eq(w, "eyedir")) return vec_obj(v->cam.dir);
-    if (ms_word_eq(w, "eyeup")) return vec_obj(v->cam.up);
-    if (ms_word_eq(w, "size")) {
-        Tcl_Obj *e[2] = {Tcl_NewIntObj(app->width), Tcl_NewIntObj(app->height)};
+    Tcl_Obj *e[2];
+    switch ((get_word_id)ms_args_find(get_words, sizeof *get_words, w)) {
+    case W_PROJECTION: return Tcl_NewStringObj(ms_projection_name(v->cam.projection), -1);
+    case W_PROJECTIONS: return list_of(projs, 2);
+    case W_CUEMODE: return Tcl_NewStringObj(ms_cuemode_name(v->cuemode), -1);
+    case W_CUEMODES: return list_of(cues, 3);
+    case W_NEARCLIP: return ms_cmd_float_obj(v->cam.near_clip);
+    case W_FARCLIP: return ms_cmd_float_obj(v->cam.far_clip);
+    case W_STEREO: return Tcl_NewStringObj(v->stereo, -1);
+    case W_STEREOMODES: return list_of(stereo_modes, 8);
+    case W_RENDERMODE: return Tcl_NewStringObj(v->rendermode, -1);
+    case W_RENDERMODES: return list_of(render_modes, 8);
+    case W_CACHEMODE: return Tcl_NewStringObj(v->cachemode, -1);
+    case W_CACHEMODES: return list_of(cache_modes, 8);
+    case W_EYEPOS: return vec_obj(v->cam.eye);
+    case W_EYEDIR: return vec_obj(v->cam.dir);
+    case W_EYEUP: return vec_obj(v->cam.up);
+    case W_SIZE:
+        e[0] = Tcl_NewIntObj(app->width);
+        e[1] = Tcl_NewIntObj(app->height);
         return Tcl_NewListObj(2, e);
+    default:
+        break;
     }
     const setting *s = find_setting(w);
     if (!s) return NULL;
@@ -149,9 +159,17 @@ static Tcl_Obj *get_word(ms_app *app, const char *w)
 
 static int disp_get(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return ms_cmd_error(interp, "display get: usage: display get <setting>");
     Tcl_Obj *r = get_word(app, Tcl_GetString(objv[2]));
-    if (!r) return ms_cmd_error(interp, "display get: unknown setting '%s'", Tcl_GetString(objv[2]));
+    if (!r) {   /* the words, then the settings */
+        size_t n = W_COUNT + MS_COUNTOF(settings);
+        Tcl_Obj *msg = Tcl_ObjPrintf("%s: unknown setting \"%s\": must be ", ms_args_where(),
+                                     Tcl_GetString(objv[2]));
+        for (size_t i = 0; i < n; i++)
+            Tcl_AppendPrintfToObj(msg, "%s%s", i == 0 ? "" : i + 1 == n ? ", or " : ", ",
+                                  i < W_COUNT ? get_words[i] : settings[i - W_COUNT].name);
+        Tcl_SetObjResult(interp, msg);
+        return TCL_ERROR;
+    }
     Tcl_SetObjResult(interp, r);
     return TCL_OK;
 }
@@ -160,48 +178,54 @@ static int disp_get(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 
 static int disp_setting(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *w = Tcl_GetString(objv[1]);
-    const setting *s = find_setting(w);
+    const setting *s = find_setting(Tcl_GetString(objv[1]));
     if (objc == 2) {
         /* `display height` alone reports the value */
         Tcl_SetObjResult(interp, get_word(app, s->name));
         return TCL_OK;
     }
-    if (objc != 3) return ms_cmd_error(interp, "display %s: usage: display %s <value>", s->name, s->name);
     return set_value(app, interp, s, objv[2]);
 }
+
+/* A word from names (n of them) into *index; the error lists them. */
+static int pick(Tcl_Interp *interp, Tcl_Obj *word, const char *(*name)(int), int n,
+                const char *what, int *index)
+{
+    const char *names[16] = {NULL};
+    for (int i = 0; i < n && i < 15; i++) names[i] = name(i);
+    return ms_arg_choice(interp, word, names, what, index);
+}
+
+static const char *projection_name(int i) { return ms_projection_name((ms_projection)i); }
+static const char *cuemode_name(int i) { return ms_cuemode_name((ms_cuemode)i); }
+static const char *axes_name(int i) { return ms_axes_loc_name((ms_axes_loc)i); }
+static const char *stage_name(int i) { return ms_stage_loc_name((ms_stage_loc)i); }
 
 /* projection, cuemode, stereo, rendermode, cachemode: a word from a list */
 static int disp_choice(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *w = Tcl_GetString(objv[1]);
     ms_view *v = app->view;
+    int proj = ms_word_eq(w, "projection") || ms_word_eq(w, "proj");
     if (objc == 2) {
-        Tcl_SetObjResult(interp, get_word(app, ms_word_eq(w, "proj") ? "projection" : w));
+        Tcl_SetObjResult(interp, get_word(app, proj ? "projection" : w));
         return TCL_OK;
     }
-    if (objc != 3) return ms_cmd_error(interp, "display %s: usage: display %s <value>", w, w);
-    const char *val = Tcl_GetString(objv[2]);
     int i;
-    if (ms_word_eq(w, "projection") || ms_word_eq(w, "proj")) {
-        if ((i = ms_projection_from_name(val)) < 0)
-            return ms_cmd_error(interp, "display projection: unknown projection '%s': must be "
-                                        "Perspective or Orthographic", val);
+    if (proj) {
+        if (pick(interp, objv[2], projection_name, 2, "projection", &i)) return TCL_ERROR;
         v->cam.projection = (ms_projection)i;
     } else if (ms_word_eq(w, "cuemode")) {
-        if ((i = ms_cuemode_from_name(val)) < 0)
-            return ms_cmd_error(interp, "display cuemode: unknown cue mode '%s': must be Linear, "
-                                        "Exp or Exp2", val);
+        if (pick(interp, objv[2], cuemode_name, 3, "cue mode", &i)) return TCL_ERROR;
         v->cuemode = (ms_cuemode)i;
     } else {
-        const char *const *modes = ms_word_eq(w, "stereo") ? stereo_modes
-                                   : ms_word_eq(w, "rendermode") ? render_modes : cache_modes;
-        char *field = ms_word_eq(w, "stereo") ? v->stereo
-                      : ms_word_eq(w, "rendermode") ? v->rendermode : v->cachemode;
-        for (i = 0; modes[i] && strcasecmp(modes[i], val); i++) continue;
-        if (!modes[i])
-            return ms_cmd_error(interp, "display %s: mode '%s' is not available (this display "
-                                        "has: %s)", w, val, modes[0]);
+        int stereo = ms_word_eq(w, "stereo"), render = ms_word_eq(w, "rendermode");
+        const char *const *modes = stereo ? stereo_modes : render ? render_modes : cache_modes;
+        char *field = stereo ? v->stereo : render ? v->rendermode : v->cachemode;
+        const char *val = Tcl_GetString(objv[2]);
+        if ((i = ms_args_find(modes, sizeof *modes, val)) < 0)
+            return ms_cmd_error(interp, "%s: mode '%s' is not available (this display has: %s)",
+                                ms_args_where(), val, modes[0]);
         snprintf(field, 16, "%s", modes[i]);
     }
     return TCL_OK;
@@ -209,20 +233,19 @@ static int disp_choice(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
 
 static int disp_clip(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *w = Tcl_GetString(objv[1]);
-    int near = ms_word_eq(w, "nearclip");
+    static const char *const how_words[] = {"set", "add", NULL};
+    int near = ms_word_eq(Tcl_GetString(objv[1]), "nearclip"), add;
     ms_camera *c = &app->view->cam;
     if (objc == 2) {
         Tcl_SetObjResult(interp, ms_cmd_float_obj(near ? c->near_clip : c->far_clip));
         return TCL_OK;
     }
-    const char *how = objc == 4 ? Tcl_GetString(objv[2]) : "";
-    if (objc != 4 || (!ms_word_eq(how, "set") && !ms_word_eq(how, "add")))
-        return ms_cmd_error(interp, "display %s: usage: display %s set|add <value>", w, w);
+    if (objc != 4) return ms_args_usage(interp);
     float x;
-    if (ms_cmd_get_float(interp, objv[3], &x, near ? "display nearclip" : "display farclip"))
+    if (ms_arg_choice(interp, objv[2], how_words, NULL, &add) ||
+        ms_arg_float(interp, objv[3], NULL, &x))
         return TCL_ERROR;
-    if (ms_word_eq(how, "add")) x += near ? c->near_clip : c->far_clip;
+    if (add) x += near ? c->near_clip : c->far_clip;
     if (near && (x <= 0 || x >= c->far_clip))
         return ms_cmd_error(interp, "display nearclip: %g must be positive and less than the far "
                                     "clip %g", x, c->far_clip);
@@ -236,30 +259,27 @@ static int disp_clip(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int disp_resize(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    int wh[2];
-    if (objc != 4) return ms_cmd_error(interp, "display resize: usage: display resize <width> <height>");
-    for (int k = 0; k < 2; k++)
-        if (Tcl_GetIntFromObj(NULL, objv[2 + k], &wh[k]) != TCL_OK || wh[k] < 1 || wh[k] > 32768)
-            return ms_cmd_error(interp, "display resize: %s: expected a whole number from 1 to "
-                                        "32768, got '%s'", k ? "height" : "width",
-                                Tcl_GetString(objv[2 + k]));
-    app->width = wh[0];
-    app->height = wh[1];
+    int w, h;
+    if (ms_arg_int(interp, objv[2], "width", 1, 32768, &w) ||
+        ms_arg_int(interp, objv[3], "height", 1, 32768, &h))
+        return TCL_ERROR;
+    app->width = w;
+    app->height = h;
     return TCL_OK;
 }
 
 static int disp_reposition(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     int x, y;
-    if (objc != 4 || Tcl_GetIntFromObj(NULL, objv[2], &x) != TCL_OK ||
-        Tcl_GetIntFromObj(NULL, objv[3], &y) != TCL_OK)
-        return ms_cmd_error(interp, "display reposition: usage: display reposition <x> <y> (whole numbers)");
+    if (ms_arg_int(interp, objv[2], "x", INT_MIN, INT_MAX, &x) ||
+        ms_arg_int(interp, objv[3], "y", INT_MIN, INT_MAX, &y))
+        return TCL_ERROR;
     return TCL_OK;   /* no window to move */
 }
 
 static int disp_size(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 2)
+    if (objc > 2)   /* what VMD users may try: say what to use instead */
         return ms_cmd_error(interp, "display size: the size is read-only here; use display resize <w> <h>");
     Tcl_SetObjResult(interp, get_word(app, "size"));
     return TCL_OK;
@@ -267,7 +287,6 @@ static int disp_size(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int disp_resetview(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 2) return ms_cmd_error(interp, "display resetview: takes no arguments");
     ms_view_reset(app);
     return TCL_OK;
 }
@@ -279,179 +298,214 @@ static int disp_update(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
         ms_view_rock_step(app);   /* a redraw advances rocking, as VMD's display loop does */
         return TCL_OK;
     }
-    const char *w = objc == 3 ? Tcl_GetString(objv[2]) : "";
+    const char *w = Tcl_GetString(objv[2]);
     int b;
-    if (!strcmp(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->view->update));
-    else if (!strcmp(w, "ui")) return TCL_OK;
-    else if (objc == 3 && Tcl_GetBooleanFromObj(NULL, objv[2], &b) == TCL_OK) app->view->update = b;
-    else return ms_cmd_error(interp, "display update: usage: display update ?on|off|status|ui?");
+    if (ms_word_eq(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->view->update));
+    else if (ms_word_eq(w, "ui")) return TCL_OK;
+    else if (ms_arg_bool(NULL, objv[2], NULL, &b) == TCL_OK) app->view->update = b;
+    else return ms_args_usage(interp);
     return TCL_OK;
 }
 
 /* ---------------------------------------------------------------- axes, stage */
 
-static int axes_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int axes_location(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *w = objc > 1 ? Tcl_GetString(objv[1]) : "";
-    ms_view *v = app->view;
-    if (objc == 2 && ms_word_eq(w, "locations")) {
-        Tcl_Obj *l = Tcl_NewListObj(0, NULL);
-        for (int i = 0; i < MS_AXES_NLOCS; i++)
-            Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_axes_loc_name((ms_axes_loc)i), -1));
-        Tcl_SetObjResult(interp, l);
-        return TCL_OK;
-    }
-    if (!ms_word_eq(w, "location") || objc > 3)
-        return ms_cmd_error(interp, "axes: usage: axes location ?Off|Origin|LowerLeft|LowerRight|"
-                                    "UpperLeft|UpperRight? | axes locations");
+    int l;
     if (objc == 2) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_axes_loc_name(v->axes), -1));
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_axes_loc_name(app->view->axes), -1));
         return TCL_OK;
     }
-    int l = ms_axes_loc_from_name(Tcl_GetString(objv[2]));
-    if (l < 0) return ms_cmd_error(interp, "axes location: unknown location '%s'", Tcl_GetString(objv[2]));
-    v->axes = (ms_axes_loc)l;
+    if (pick(interp, objv[2], axes_name, MS_AXES_NLOCS, "location", &l)) return TCL_ERROR;
+    app->view->axes = (ms_axes_loc)l;
     return TCL_OK;
 }
 
-static int stage_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int axes_locations(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *w = objc > 1 ? Tcl_GetString(objv[1]) : "";
-    ms_view *v = app->view;
-    if (objc == 2 && ms_word_eq(w, "locations")) {
-        Tcl_Obj *l = Tcl_NewListObj(0, NULL);
-        for (int i = 0; i < MS_STAGE_NLOCS; i++)
-            Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_stage_loc_name((ms_stage_loc)i), -1));
-        Tcl_SetObjResult(interp, l);
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (int i = 0; i < MS_AXES_NLOCS; i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_axes_loc_name((ms_axes_loc)i), -1));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+static int stage_location(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    int l;
+    if (objc == 2) {
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_stage_loc_name(app->view->stage), -1));
         return TCL_OK;
     }
-    if (objc == 2 || objc == 3) {
-        if (ms_word_eq(w, "location")) {
-            if (objc == 2) {
-                Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_stage_loc_name(v->stage), -1));
-                return TCL_OK;
-            }
-            int l = ms_stage_loc_from_name(Tcl_GetString(objv[2]));
-            if (l < 0) return ms_cmd_error(interp, "stage location: unknown location '%s'", Tcl_GetString(objv[2]));
-            v->stage = (ms_stage_loc)l;
-            return TCL_OK;
-        }
-        if (ms_word_eq(w, "panels")) {
-            long n;
-            if (objc == 2) {
-                Tcl_SetObjResult(interp, Tcl_NewIntObj(v->stage_panels));
-                return TCL_OK;
-            }
-            if (ms_cmd_get_count(interp, objv[2], 30, "stage panels", &n)) return TCL_ERROR;
-            if (n < 1) return ms_cmd_error(interp, "stage panels: needs at least 1 panel");
-            v->stage_panels = (int)n;
-            return TCL_OK;
-        }
-        if (ms_word_eq(w, "size")) {
-            float s;
-            if (objc == 2) {
-                Tcl_SetObjResult(interp, ms_cmd_float_obj(v->stage_size));
-                return TCL_OK;
-            }
-            if (ms_cmd_get_float(interp, objv[2], &s, "stage size")) return TCL_ERROR;
-            if (s <= 0) return ms_cmd_error(interp, "stage size: %g must be positive", s);
-            v->stage_size = s;
-            return TCL_OK;
-        }
+    if (pick(interp, objv[2], stage_name, MS_STAGE_NLOCS, "location", &l)) return TCL_ERROR;
+    app->view->stage = (ms_stage_loc)l;
+    return TCL_OK;
+}
+
+static int stage_locations(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (int i = 0; i < MS_STAGE_NLOCS; i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_stage_loc_name((ms_stage_loc)i), -1));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+static int stage_panels(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (objc == 2) {
+        Tcl_SetObjResult(interp, Tcl_NewIntObj(app->view->stage_panels));
+        return TCL_OK;
     }
-    return ms_cmd_error(interp, "stage: usage: stage location ?<loc>? | locations | panels ?<n>? | size ?<s>?");
+    return ms_arg_int(interp, objv[2], NULL, 1, 30, &app->view->stage_panels);
+}
+
+static int stage_size(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    float s;
+    if (objc == 2) {
+        Tcl_SetObjResult(interp, ms_cmd_float_obj(app->view->stage_size));
+        return TCL_OK;
+    }
+    if (ms_arg_float(interp, objv[2], NULL, &s)) return TCL_ERROR;
+    if (s <= 0) return ms_cmd_error(interp, "stage size: %g must be positive", s);
+    app->view->stage_size = s;
+    return TCL_OK;
 }
 
 /* ---------------------------------------------------------------- light */
 
-static int light_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+/* light <n> ...: the light, checked by light_n before its word is dispatched */
+static ms_light *the_light(ms_app *app, Tcl_Obj *const objv[], int *n)
 {
-    ms_view *v = app->view;
-    if (objc == 2 && ms_word_eq(Tcl_GetString(objv[1]), "num")) {
-        Tcl_SetObjResult(interp, Tcl_NewIntObj(MS_SCENE_LIGHTS));
+    Tcl_GetIntFromObj(NULL, objv[1], n);
+    return &app->view->lights[*n];
+}
+
+static int light_switch(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    int n;
+    ms_light *l = the_light(app, objv, &n);
+    const char *w = Tcl_GetString(objv[2]);
+    if (ms_word_eq(w, "on") || ms_word_eq(w, "off")) l->on = ms_word_eq(w, "on");
+    else app->view->light_highlight[n] = ms_word_eq(w, "highlight");
+    return TCL_OK;
+}
+
+static int light_status(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    int n;
+    ms_light *l = the_light(app, objv, &n);
+    Tcl_SetObjResult(interp, Tcl_ObjPrintf("%s %s", l->on ? "on" : "off",
+                                           app->view->light_highlight[n] ? "highlight" : "unhighlight"));
+    return TCL_OK;
+}
+
+static int light_pos(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    int n;
+    ms_light *l = the_light(app, objv, &n);
+    if (objc == 3) {
+        Tcl_SetObjResult(interp, vec_obj(l->pos));
         return TCL_OK;
     }
+    if (ms_word_eq(Tcl_GetString(objv[3]), "default")) {
+        /* as VMD: reports the default position (the caller sets it if it wants) */
+        Tcl_SetObjResult(interp, vec_obj(ms_view_default_light(n)));
+        return TCL_OK;
+    }
+    return ms_arg_vec3(interp, objv[3], NULL, l->pos);
+}
+
+static int light_rot(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const char *const axes[] = {"x", "y", "z", NULL};
+    int n, ax;
+    ms_light *l = the_light(app, objv, &n);
+    float deg, r[16];
+    if (ms_arg_choice(interp, objv[3], axes, "axis", &ax) ||
+        ms_arg_float(interp, objv[4], "angle", &deg))
+        return TCL_ERROR;
+    ms_mat4_rotation(r, "xyz"[ax], deg);
+    ms_mat4_point(r, l->pos, l->pos);
+    return TCL_OK;
+}
+
+/* light <n> <word> ...: the light's number, then its subcommand */
+static int light_n(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const ms_subcmd words[] = {
+        {"on", light_switch, 0, 0, ""},
+        {"off", light_switch, 0, 0, ""},
+        {"highlight", light_switch, 0, 0, ""},
+        {"unhighlight", light_switch, 0, 0, ""},
+        {"status", light_status, 0, 0, ""},
+        {"pos", light_pos, 0, 1, "?{x y z}|default?"},
+        {"rot", light_rot, 2, 2, "<axis> <degrees>"},
+        {NULL, NULL, 0, 0, NULL}};
     int n;
-    if (objc < 3 || Tcl_GetIntFromObj(NULL, objv[1], &n) != TCL_OK)
-        return ms_cmd_error(interp, "light: usage: light num | light <n> on|off|highlight|"
-                                    "unhighlight|status | light <n> rot <axis> <deg> | light <n> pos ?{x y z}|default?");
+    if (ms_arg_int(interp, objv[1], "light", INT_MIN, INT_MAX, &n)) return TCL_ERROR;
     if (n < 0 || n >= MS_SCENE_LIGHTS)
         return ms_cmd_error(interp, "light: no light %d (lights are 0 to %d)", n, MS_SCENE_LIGHTS - 1);
-    ms_light *l = &v->lights[n];
-    const char *w = Tcl_GetString(objv[2]);
-    if (objc == 3) {
-        if (ms_word_eq(w, "on") || ms_word_eq(w, "off")) l->on = ms_word_eq(w, "on");
-        else if (ms_word_eq(w, "highlight") || ms_word_eq(w, "unhighlight"))
-            v->light_highlight[n] = ms_word_eq(w, "highlight");
-        else if (ms_word_eq(w, "status"))
-            Tcl_SetObjResult(interp, Tcl_ObjPrintf("%s %s", l->on ? "on" : "off",
-                                                   v->light_highlight[n] ? "highlight" : "unhighlight"));
-        else if (ms_word_eq(w, "pos"))
-            Tcl_SetObjResult(interp, vec_obj(l->pos));
-        else
-            return ms_cmd_error(interp, "light %d: unknown option '%s'", n, w);
-        return TCL_OK;
-    }
-    if (objc == 4 && ms_word_eq(w, "pos")) {
-        if (!strcasecmp(Tcl_GetString(objv[3]), "default")) {
-            /* as VMD: reports the default position (the caller sets it if it wants) */
-            Tcl_SetObjResult(interp, vec_obj(ms_view_default_light(n)));
-            return TCL_OK;
-        }
-        return ms_cmd_get_vec3(interp, objv[3], l->pos, "light pos");
-    }
-    if (objc == 5 && ms_word_eq(w, "rot")) {
-        const char *ax = Tcl_GetString(objv[3]);
-        float deg, r[16];
-        if (strlen(ax) != 1 || !strchr("xyzXYZ", ax[0]))
-            return ms_cmd_error(interp, "light rot: unknown axis '%s': must be x, y or z", ax);
-        if (ms_cmd_get_float(interp, objv[4], &deg, "light rot")) return TCL_ERROR;
-        ms_mat4_rotation(r, ax[0], deg);
-        ms_mat4_point(r, l->pos, l->pos);
-        return TCL_OK;
-    }
-    return ms_cmd_error(interp, "light %d: usage: light <n> rot <axis> <deg> | light <n> pos ?{x y z}|default?", n);
+    char where[32];
+    snprintf(where, sizeof where, "light %d", n);
+    return ms_args_dispatch(app, interp, objc, objv, 2, words, NULL, where);
+}
+
+static int light_num(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(MS_SCENE_LIGHTS));
+    return TCL_OK;
 }
 
 /* ---------------------------------------------------------------- registration */
 
-static int axes_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
-{
-    ((ms_app *)cd)->scene_version++;
-    return axes_cmd(cd, interp, objc, objv);
-}
-
-static int stage_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
-{
-    ((ms_app *)cd)->scene_version++;
-    return stage_cmd(cd, interp, objc, objv);
-}
-
-static int light_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
-{
-    ((ms_app *)cd)->scene_version++;
-    return light_cmd(cd, interp, objc, objv);
-}
-
 static const ms_subcmd display_table[] = {
-    {"resetview", disp_resetview}, {"update", disp_update},
-    {"resize", disp_resize}, {"reposition", disp_reposition}, {"size", disp_size},
-    {"nearclip", disp_clip}, {"farclip", disp_clip},
-    {"projection", disp_choice}, {"proj", disp_choice}, {"cuemode", disp_choice},
-    {"stereo", disp_choice}, {"rendermode", disp_choice}, {"cachemode", disp_choice},
-    {NULL, NULL}};
+    {"resetview", disp_resetview, 0, 0, ""},
+    {"update", disp_update, 0, 1, "?on|off|status|ui?"},
+    {"resize", disp_resize, 2, 2, "<width> <height>"},
+    {"reposition", disp_reposition, 2, 2, "<x> <y>"},
+    {"size", disp_size, 0, MS_ARGS_ANY, ""},
+    {"nearclip", disp_clip, 0, 2, "?set|add <value>?"},
+    {"farclip", disp_clip, 0, 2, "?set|add <value>?"},
+    {"projection", disp_choice, 0, 1, "?Perspective|Orthographic?"},
+    {"proj", disp_choice, 0, 1, "?Perspective|Orthographic?"},
+    {"cuemode", disp_choice, 0, 1, "?Linear|Exp|Exp2?"},
+    {"stereo", disp_choice, 0, 1, "?<mode>?"},
+    {"rendermode", disp_choice, 0, 1, "?<mode>?"},
+    {"cachemode", disp_choice, 0, 1, "?<mode>?"},
+    {NULL, NULL, 0, 0, NULL}};
+
+static const ms_subcmd axes_table[] = {
+    {"location", axes_location, 0, 1, "?<location>?"},
+    {"locations", axes_locations, 0, 0, ""},
+    {NULL, NULL, 0, 0, NULL}};
+
+static const ms_subcmd stage_table[] = {
+    {"location", stage_location, 0, 1, "?<location>?"},
+    {"locations", stage_locations, 0, 0, ""},
+    {"panels", stage_panels, 0, 1, "?<n>?"},
+    {"size", stage_size, 0, 1, "?<size>?"},
+    {NULL, NULL, 0, 0, NULL}};
+
+static const ms_subcmd light_table[] = {{"num", light_num, 0, 0, ""}, {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_display_register(ms_app *app)
 {
-    static const ms_subcmd queries[] = {{"get", disp_get}, {NULL, NULL}};
+    static const ms_subcmd queries[] = {{"get", disp_get, 1, 1, "<setting>"},
+                                        {NULL, NULL, 0, 0, NULL}};
+    static const ms_subcmd light_fallback = {
+        "<n>", light_n, 2, 4, "<n> on|off|highlight|unhighlight|status | <n> pos ?{x y z}|default? "
+                              "| <n> rot <axis> <degrees>"};
     ms_cmdset_create(app, "display", display_table);
     ms_cmdset_extend_quiet(app, "display", queries);
-    ms_subcmd one[2] = {{NULL, disp_setting}, {NULL, NULL}};
+    ms_subcmd one[2] = {{NULL, disp_setting, 0, 1, "?<value>?"}, {NULL, NULL, 0, 0, NULL}};
     for (size_t i = 0; i < MS_COUNTOF(settings); i++) {
         one[0].name = settings[i].name;
         ms_cmdset_extend(app, "display", one);
     }
-    Tcl_CreateObjCommand(app->interp, "axes", axes_proc, app, NULL);
-    Tcl_CreateObjCommand(app->interp, "stage", stage_proc, app, NULL);
-    Tcl_CreateObjCommand(app->interp, "light", light_proc, app, NULL);
+    ms_cmdset_create(app, "axes", axes_table);
+    ms_cmdset_create(app, "stage", stage_table);
+    ms_cmdset_create(app, "light", light_table);
+    ms_cmdset_fallback(app, "light", &light_fallback);
 }

@@ -19,85 +19,57 @@
 #include "scene/material.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
-typedef struct gctx {
-    ms_app *app;
-    Tcl_Interp *interp;
-    ms_ugraphics *g;
-    const char *shape;
-    char what[64];
-} gctx;
-
-static int add_item(gctx *c, ms_ug_item *it)
+/* The user graphics of `graphics <molid> ...` (the molecule was checked by graphics_cmd). */
+static ms_ugraphics *graphics_of(ms_app *app, Tcl_Interp *interp, Tcl_Obj *const objv[])
 {
-    int id = ms_ugraphics_add(c->g, it);
-    if (id < 0) return ms_cmd_error(c->interp, "graphics: %s: out of memory", c->shape);
-    Tcl_SetObjResult(c->interp, Tcl_NewIntObj(id));
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "graphics");
+    ms_ugraphics *g = m ? ms_cmd_ugraphics(app, m) : NULL;
+    if (m && !g) ms_cmd_error(interp, "graphics: out of memory");
+    return g;
+}
+
+static int add_item(ms_app *app, Tcl_Interp *interp, Tcl_Obj *const objv[], ms_ug_item *it)
+{
+    ms_ugraphics *g = graphics_of(app, interp, objv);
+    if (!g) return TCL_ERROR;
+    int id = ms_ugraphics_add(g, it);
+    if (id < 0) return ms_cmd_error(interp, "%s: out of memory", ms_args_where());
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(id));
     return TCL_OK;
 }
 
 /* n point/normal arguments into it->data. */
-static int get_points(gctx *c, int n, Tcl_Obj *const args[], ms_ug_item *it)
+static int get_points(Tcl_Interp *interp, int n, Tcl_Obj *const args[], ms_ug_item *it)
 {
     for (int i = 0; i < n; i++)
-        if (ms_cmd_get_vec3(c->interp, args[i], it->data + 3 * i, c->what)) return TCL_ERROR;
+        if (ms_arg_vec3(interp, args[i], NULL, it->data + 3 * i)) return TCL_ERROR;
     return TCL_OK;
 }
 
-static int get_int_opt(gctx *c, Tcl_Obj *o, int lo, int hi, int *out, const char *opt)
-{
-    if (Tcl_GetIntFromObj(NULL, o, out) != TCL_OK)
-        return ms_cmd_error(c->interp, "%s: %s: expected an integer, got '%s'", c->what, opt,
-                            Tcl_GetString(o));
-    *out = *out < lo ? lo : *out > hi ? hi : *out;   /* VMD clamps */
-    return TCL_OK;
-}
-
-static int get_radius(gctx *c, Tcl_Obj *o, float *out, const char *opt)
-{
-    char what[96];
-    snprintf(what, sizeof what, "%s: %s", c->what, opt);
-    if (ms_cmd_get_float(c->interp, o, out, what)) return TCL_ERROR;
-    if (*out < 0) *out = 0;                       /* VMD clamps */
-    return TCL_OK;
-}
-
-/* Option pairs after the points: the shape's allowed names decide what is parsed. */
-static int options(gctx *c, int n, Tcl_Obj *const args[], ms_ug_item *it)
-{
-    if (n % 2)
-        return ms_cmd_error(c->interp, "%s: options come in pairs, got an odd number", c->what);
-    int cyl = it->kind == MS_UG_CYLINDER, cone = it->kind == MS_UG_CONE;
-    int sph = it->kind == MS_UG_SPHERE, line = it->kind == MS_UG_LINE, text = it->kind == MS_UG_TEXT;
-    for (int i = 0; i < n; i += 2) {
-        const char *o = Tcl_GetString(args[i]);
-        Tcl_Obj *v = args[i + 1];
-        int b, rc;
-        if ((cyl || cone || sph) && !strcasecmp(o, "radius")) rc = get_radius(c, v, &it->radius, o);
-        else if (cone && !strcasecmp(o, "radius2")) rc = get_radius(c, v, &it->radius2, o);
-        else if ((cyl || sph) && !strcasecmp(o, "resolution")) rc = get_int_opt(c, v, 0, 30, &it->iv[0], o);
-        else if (cone && !strcasecmp(o, "resolution")) rc = get_int_opt(c, v, 0, 300, &it->iv[0], o);
-        else if (cyl && !strcasecmp(o, "filled")) {
-            rc = ms_cmd_get_bool(c->interp, v, &b, c->what);
-            it->iv[1] = b;
-        } else if (line && !strcasecmp(o, "width")) rc = get_int_opt(c, v, 0, 255, &it->iv[1], o);
-        else if (line && !strcasecmp(o, "style")) {
-            const char *s = Tcl_GetString(v);
-            rc = TCL_OK;
-            if (!strcasecmp(s, "solid")) it->iv[0] = MS_LINE_SOLID;
-            else if (!strcasecmp(s, "dashed")) it->iv[0] = MS_LINE_DASHED;
-            else rc = ms_cmd_error(c->interp, "%s: unknown line style '%s': must be solid or dashed", c->what, s);
-        } else if (text && !strcasecmp(o, "size")) rc = get_radius(c, v, &it->size, o);
-        else if (text && !strcasecmp(o, "thickness")) rc = get_radius(c, v, &it->thickness, o);
-        else rc = ms_cmd_error(c->interp, "%s: unknown option '%s'", c->what, o);
-        if (rc) return TCL_ERROR;
-    }
-    return TCL_OK;
-}
+/* The options of each shape; sizes and resolutions are clamped, as VMD does. */
+#define IOFF(f) offsetof(ms_ug_item, f)
+#define RADIUS(name, f) {name, MS_OPT_FLOAT, IOFF(f), 0, 0, MS_OPT_MIN | MS_OPT_CLAMP, NULL}
+#define RESOLUTION(max) \
+    {"resolution", MS_OPT_INT, IOFF(iv[0]), 0, max, MS_OPT_MIN | MS_OPT_MAX | MS_OPT_CLAMP, NULL}
+#define END_OPTIONS {NULL, 0, 0, 0, 0, 0, NULL}
+static const char *const line_styles[] = {"solid", "dashed", NULL};   /* MS_LINE_* */
+static const ms_opt line_options[] = {
+    {"width", MS_OPT_INT, IOFF(iv[1]), 0, 255, MS_OPT_MIN | MS_OPT_MAX | MS_OPT_CLAMP, NULL},
+    {"style", MS_OPT_ENUM, IOFF(iv[0]), 0, 0, 0, line_styles}, END_OPTIONS};
+static const ms_opt cylinder_options[] = {
+    RADIUS("radius", radius), RESOLUTION(30), {"filled", MS_OPT_BOOL, IOFF(iv[1]), 0, 0, 0, NULL},
+    END_OPTIONS};
+static const ms_opt cone_options[] = {RADIUS("radius", radius), RADIUS("radius2", radius2),
+                                      RESOLUTION(300), END_OPTIONS};
+static const ms_opt sphere_options[] = {RADIUS("radius", radius), RESOLUTION(30), END_OPTIONS};
+static const ms_opt text_options[] = {RADIUS("size", size), RADIUS("thickness", thickness),
+                                      END_OPTIONS};
+static const ms_opt no_options[] = {END_OPTIONS};
 
 static void normalize(float *n)
 {
@@ -105,152 +77,165 @@ static void normalize(float *n)
     if (l > 0) for (int k = 0; k < 3; k++) n[k] /= l;
 }
 
-/* A shape: its kind, how many points it takes first, and whether the rest is fixed. */
-static int add_shape(gctx *c, int objc, Tcl_Obj *const objv[])
+/* A shape: its kind, how many points come first, and its options after them. */
+static const struct shape {
+    const char *name;
+    ms_ug_kind kind;
+    int npts;
+    const ms_opt *options;
+} shapes[] = {
+    {"point", MS_UG_POINT, 1, no_options},          {"line", MS_UG_LINE, 2, line_options},
+    {"cylinder", MS_UG_CYLINDER, 2, cylinder_options}, {"cone", MS_UG_CONE, 2, cone_options},
+    {"sphere", MS_UG_SPHERE, 1, sphere_options},    {"triangle", MS_UG_TRIANGLE, 3, no_options},
+    {"trinorm", MS_UG_TRINORM, 6, no_options},      {"tricolor", MS_UG_TRICOLOR, 6, no_options},
+    {NULL, MS_UG_NONE, 0, NULL}};
+
+static int add_shape(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    static const struct {
-        const char *name;
-        ms_ug_kind kind;
-        int npts, exact;
-    } shapes[] = {
-        {"point", MS_UG_POINT, 1, 1}, {"line", MS_UG_LINE, 2, 0}, {"cylinder", MS_UG_CYLINDER, 2, 0},
-        {"cone", MS_UG_CONE, 2, 0}, {"sphere", MS_UG_SPHERE, 1, 0}, {"triangle", MS_UG_TRIANGLE, 3, 1},
-        {"trinorm", MS_UG_TRINORM, 6, 1}, {"tricolor", MS_UG_TRICOLOR, 6, 0}};
-    for (size_t s = 0; s < MS_COUNTOF(shapes); s++) {
-        if (strcasecmp(c->shape, shapes[s].name)) continue;
-        int nargs = objc - 3, np = shapes[s].npts;
-        int need = shapes[s].kind == MS_UG_TRICOLOR ? 9 : np;
-        if (nargs < need || (shapes[s].exact && nargs != need) ||
-            (shapes[s].kind == MS_UG_TRICOLOR && nargs != 9))
-            return ms_cmd_error(c->interp, "%s: expected %s%d arguments, got %d", c->what,
-                                shapes[s].exact || need == 9 ? "" : "at least ", need, nargs);
-        ms_ug_item it;
-        memset(&it, 0, sizeof it);
-        it.kind = shapes[s].kind;
-        it.radius = 1.0f;
-        it.iv[0] = it.kind == MS_UG_LINE ? MS_LINE_SOLID : 6;
-        it.iv[1] = it.kind == MS_UG_LINE ? 1 : 0;
-        if (get_points(c, np, objv + 3, &it)) return TCL_ERROR;
-        if (it.kind == MS_UG_TRICOLOR) {
-            for (int k = 0; k < 3; k++) {
-                it.iv[k] = ms_color_index(c->app->colors, Tcl_GetString(objv[9 + k]));
-                if (it.iv[k] < 0)
-                    return ms_cmd_error(c->interp, "%s: unknown color '%s'", c->what, Tcl_GetString(objv[9 + k]));
-            }
-        } else if (options(c, nargs - np, objv + 3 + np, &it)) {
-            return TCL_ERROR;
+    const struct shape *sh = &shapes[ms_args_find(shapes, sizeof *shapes, Tcl_GetString(objv[2]))];
+    int np = sh->npts;
+    ms_ug_item it;
+    memset(&it, 0, sizeof it);
+    it.kind = sh->kind;
+    it.radius = 1.0f;
+    it.iv[0] = it.kind == MS_UG_LINE ? MS_LINE_SOLID : 6;
+    it.iv[1] = it.kind == MS_UG_LINE ? 1 : 0;
+    if (get_points(interp, np, objv + 3, &it)) return TCL_ERROR;
+    if (it.kind == MS_UG_TRICOLOR) {
+        for (int k = 0; k < 3; k++) {
+            it.iv[k] = ms_color_index(app->colors, Tcl_GetString(objv[9 + k]));
+            if (it.iv[k] < 0)
+                return ms_cmd_error(interp, "%s: unknown color '%s'", ms_args_where(),
+                                    Tcl_GetString(objv[9 + k]));
         }
-        if (np == 6) for (int k = 3; k < 6; k++) normalize(it.data + 3 * k);
-        return add_item(c, &it);
+    } else if (ms_args_options(interp, objc, objv, 3 + np, sh->options, &it, NULL)) {
+        return TCL_ERROR;
     }
-    return ms_cmd_error(c->interp, "graphics: unknown graphics command '%s': must be point, line, "
-                                   "cylinder, cone, sphere, triangle, trinorm, tricolor, text, "
-                                   "color, material, materials, delete, replace, exists, info or list",
-                        c->shape);
+    if (np == 6) for (int k = 3; k < 6; k++) normalize(it.data + 3 * k);
+    return add_item(app, interp, objv, &it);
 }
 
-static int add_text(gctx *c, int objc, Tcl_Obj *const objv[])
+static int add_text(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 5) return ms_cmd_error(c->interp, "%s: usage: text {x y z} <string> ?size s? ?thickness t?", c->what);
     ms_ug_item it;
     memset(&it, 0, sizeof it);
     it.kind = MS_UG_TEXT;
     it.size = it.thickness = 1.0f;
     it.text = Tcl_GetString(objv[4]);
-    if (get_points(c, 1, objv + 3, &it) || options(c, objc - 5, objv + 5, &it)) return TCL_ERROR;
-    return add_item(c, &it);
+    if (get_points(interp, 1, objv + 3, &it) ||
+        ms_args_options(interp, objc, objv, 5, text_options, &it, NULL))
+        return TCL_ERROR;
+    return add_item(app, interp, objv, &it);
 }
 
-static int add_state(gctx *c, int objc, Tcl_Obj *const objv[])
+/* color, material, materials: items that change the state of those after them */
+static int add_state(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4) return ms_cmd_error(c->interp, "%s: takes one argument", c->what);
     ms_ug_item it;
     memset(&it, 0, sizeof it);
-    const char *v = Tcl_GetString(objv[3]);
-    if (!strcasecmp(c->shape, "color") || !strcasecmp(c->shape, "colour")) {
+    const char *w = Tcl_GetString(objv[2]), *v = Tcl_GetString(objv[3]);
+    if (ms_word_eq(w, "color") || ms_word_eq(w, "colour")) {
         it.kind = MS_UG_COLOR;
-        if ((it.iv[0] = ms_color_index(c->app->colors, v)) < 0)
-            return ms_cmd_error(c->interp, "%s: unknown color '%s'", c->what, v);
-    } else if (!strcasecmp(c->shape, "material")) {
+        if ((it.iv[0] = ms_color_index(app->colors, v)) < 0)
+            return ms_cmd_error(interp, "%s: unknown color '%s'", ms_args_where(), v);
+    } else if (ms_word_eq(w, "material")) {
         it.kind = MS_UG_MATERIAL;
-        int i = ms_material_index(c->app->materials, v);
-        if (i < 0) return ms_cmd_error(c->interp, "%s: unknown material '%s'", c->what, v);
-        it.iv[0] = c->app->materials->list[i].id;
+        int i = ms_material_index(app->materials, v);
+        if (i < 0) return ms_cmd_error(interp, "%s: unknown material '%s'", ms_args_where(), v);
+        it.iv[0] = app->materials->list[i].id;
     } else {
         it.kind = MS_UG_MATERIALS;
-        if (ms_cmd_get_bool(c->interp, objv[3], &it.iv[0], c->what)) return TCL_ERROR;
+        if (ms_arg_bool(interp, objv[3], NULL, &it.iv[0])) return TCL_ERROR;
     }
-    return add_item(c, &it);
+    return add_item(app, interp, objv, &it);
 }
 
-/* delete / replace / exists / info / list */
-static int manage(gctx *c, int objc, Tcl_Obj *const objv[])
+static int g_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    Tcl_Interp *interp = c->interp;
-    if (!strcasecmp(c->shape, "list")) {
-        if (objc != 3) return ms_cmd_error(interp, "graphics list: takes no arguments");
-        Tcl_Obj *l = Tcl_NewListObj(0, NULL);
-        for (size_t i = 0; i < c->g->n; i++)
-            if (c->g->items[i].kind != MS_UG_NONE)
-                Tcl_ListObjAppendElement(NULL, l, Tcl_NewIntObj(c->g->items[i].id));
-        Tcl_SetObjResult(interp, l);
-        return TCL_OK;
-    }
-    if (objc != 4) return ms_cmd_error(interp, "%s: takes one argument", c->what);
-    if (!strcasecmp(c->shape, "delete") && !strcasecmp(Tcl_GetString(objv[3]), "all")) {
-        ms_ugraphics_delete_all(c->g);
+    ms_ugraphics *g = graphics_of(app, interp, objv);
+    if (!g) return TCL_ERROR;
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (size_t i = 0; i < g->n; i++)
+        if (g->items[i].kind != MS_UG_NONE)
+            Tcl_ListObjAppendElement(NULL, l, Tcl_NewIntObj(g->items[i].id));
+    Tcl_SetObjResult(interp, l);
+    return TCL_OK;
+}
+
+/* delete / replace / exists / info <id> */
+static int manage(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    ms_ugraphics *g = graphics_of(app, interp, objv);
+    const char *w = Tcl_GetString(objv[2]);
+    if (!g) return TCL_ERROR;
+    if (ms_word_eq(w, "delete") && ms_word_eq(Tcl_GetString(objv[3]), "all")) {
+        ms_ugraphics_delete_all(g);
         return TCL_OK;
     }
     int id;
     if (Tcl_GetIntFromObj(NULL, objv[3], &id) != TCL_OK)
-        return ms_cmd_error(interp, "%s: expected a graphics id, got '%s'", c->what, Tcl_GetString(objv[3]));
-    long i = ms_ugraphics_find(c->g, id);
-    if (!strcasecmp(c->shape, "exists")) {
+        return ms_cmd_error(interp, "%s: expected a graphics id, got '%s'", ms_args_where(),
+                            Tcl_GetString(objv[3]));
+    long i = ms_ugraphics_find(g, id);
+    if (ms_word_eq(w, "exists")) {
         Tcl_SetObjResult(interp, Tcl_NewIntObj(i >= 0));
         return TCL_OK;
     }
-    if (!strcasecmp(c->shape, "delete")) {
-        ms_ugraphics_delete(c->g, id);   /* as VMD: deleting a missing id does nothing */
+    if (ms_word_eq(w, "delete")) {
+        ms_ugraphics_delete(g, id);   /* as VMD: deleting a missing id does nothing */
         return TCL_OK;
     }
-    if (i < 0) return ms_cmd_error(interp, "%s: no graphics item with id %d", c->what, id);
-    if (!strcasecmp(c->shape, "replace")) {
-        ms_ugraphics_replace(c->g, id);
+    if (i < 0) return ms_cmd_error(interp, "%s: no graphics item with id %d", ms_args_where(), id);
+    if (ms_word_eq(w, "replace")) {
+        ms_ugraphics_replace(g, id);
         return TCL_OK;
     }
     char buf[2048];
-    ms_ugraphics_info(c->g, i, c->app->materials, buf, sizeof buf);
+    ms_ugraphics_info(g, i, app->materials, buf, sizeof buf);
     Tcl_SetObjResult(interp, Tcl_NewStringObj(buf, -1));
     return TCL_OK;
 }
 
-static int graphics_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static const ms_subcmd graphics_table[] = {
+    {"point", add_shape, 1, 1, "{x y z}"},
+    {"line", add_shape, 2, MS_ARGS_ANY, "{x y z} {x y z} ?width <w>? ?style solid|dashed?"},
+    {"cylinder", add_shape, 2, MS_ARGS_ANY,
+     "{x y z} {x y z} ?radius <r>? ?resolution <n>? ?filled yes|no?"},
+    {"cone", add_shape, 2, MS_ARGS_ANY,
+     "{x y z} {x y z} ?radius <r>? ?radius2 <r>? ?resolution <n>?"},
+    {"sphere", add_shape, 1, MS_ARGS_ANY, "{x y z} ?radius <r>? ?resolution <n>?"},
+    {"triangle", add_shape, 3, 3, "{x y z} {x y z} {x y z}"},
+    {"trinorm", add_shape, 6, 6, "{x y z} {x y z} {x y z} {nx ny nz} {nx ny nz} {nx ny nz}"},
+    {"tricolor", add_shape, 9, 9,
+     "{x y z} {x y z} {x y z} {nx ny nz} {nx ny nz} {nx ny nz} <color> <color> <color>"},
+    {"text", add_text, 2, MS_ARGS_ANY, "{x y z} <text> ?size <s>? ?thickness <t>?"},
+    {"color", add_state, 1, 1, "<color>"},
+    {"colour", add_state, 1, 1, "<color>"},
+    {"material", add_state, 1, 1, "<material>"},
+    {"materials", add_state, 1, 1, "on|off"},
+    {"list", g_list, 0, 0, ""},
+    {"delete", manage, 1, 1, "<id>|all"},
+    {"replace", manage, 1, 1, "<id>"},
+    {"exists", manage, 1, 1, "<id>"},
+    {"info", manage, 1, 1, "<id>"},
+    {NULL, NULL, 0, 0, NULL}};
+
+/* graphics <molid|top> <command> ...: the molecule, then its graphics command */
+static int graphics_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_app *app = cd;
     app->scene_version++;
-    if (objc < 3)
-        return ms_cmd_error(interp, "graphics: usage: graphics <molid|top> <command> ?args?");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "graphics");
     if (!m) return TCL_ERROR;
-    gctx c = {app, interp, ms_cmd_ugraphics(app, m), Tcl_GetString(objv[2]), ""};
-    if (!c.g) return ms_cmd_error(interp, "graphics: out of memory");
-    snprintf(c.what, sizeof c.what, "graphics %d %s", m->id, c.shape);
-    if (!strcasecmp(c.shape, "text")) return add_text(&c, objc, objv);
-    if (!strcasecmp(c.shape, "color") || !strcasecmp(c.shape, "colour") ||
-        !strcasecmp(c.shape, "material") || !strcasecmp(c.shape, "materials"))
-        return add_state(&c, objc, objv);
-    static const char *const manage_words[] = {"list", "delete", "replace", "exists", "info"};
-    for (size_t i = 0; i < MS_COUNTOF(manage_words); i++)
-        if (!strcasecmp(c.shape, manage_words[i])) return manage(&c, objc, objv);
-    return add_shape(&c, objc, objv);
+    if (!ms_cmd_ugraphics(app, m)) return ms_cmd_error(interp, "graphics: out of memory");
+    char where[48];
+    snprintf(where, sizeof where, "graphics %d", m->id);
+    return ms_args_dispatch(app, interp, objc, objv, 2, graphics_table, NULL, where);
 }
 
 /* draw <shape> args: graphics on the top molecule, or a user's vmd_draw_<shape> proc. */
-static int draw_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int draw_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_app *app = cd;
     app->scene_version++;
-    if (objc < 2) return ms_cmd_error(interp, "draw: usage: draw <shape> ?args?");
     ms_molecule *top = ms_molset_top(&app->mols);
     if (!top) {
         ms_error err = {{0}};
@@ -277,6 +262,8 @@ static int draw_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 
 void ms_cmd_graphics_register(ms_app *app)
 {
-    Tcl_CreateObjCommand(app->interp, "graphics", graphics_cmd, app, NULL);
-    Tcl_CreateObjCommand(app->interp, "draw", draw_cmd, app, NULL);
+    static const ms_subcmd cmds[] = {
+        {"graphics", graphics_cmd, 2, MS_ARGS_ANY, "<molid|top> <command> ?<argument> ...?"},
+        {"draw", draw_cmd, 1, MS_ARGS_ANY, "<shape> ?<argument> ...?"}};
+    for (size_t i = 0; i < MS_COUNTOF(cmds); i++) ms_cmd_create(app, &cmds[i]);
 }

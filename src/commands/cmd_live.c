@@ -11,22 +11,29 @@
 #include "live/live.h"
 #include "parallel/parallel.h"
 
+#include <limits.h>
 #include <stdio.h>
-#include <string.h>
-#include <strings.h>
 
-#define USAGE "display live: usage: display live on ?port? ?-bind addr? | off | status"
+/* Under MPI, ranks other than 0 answer this and do nothing. */
+static int served_elsewhere(Tcl_Interp *interp)
+{
+    Tcl_SetObjResult(interp, Tcl_NewStringObj("display live: served by rank 0 only", -1));
+    return TCL_OK;
+}
 
 static int live_on(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    int port = 0;
+    static const ms_opt options[] = {{"-bind", MS_OPT_STRING, 0, 0, 0, 0, NULL},
+                                     {NULL, 0, 0, 0, 0, 0, NULL}};
+    int port = 0, first = 3;
     const char *bind = NULL;
-    for (int i = 3; i < objc; i++) {
-        const char *w = Tcl_GetString(objv[i]);
-        if (!strcmp(w, "-bind") && i + 1 < objc) bind = Tcl_GetString(objv[++i]);
-        else if (i == 3 && Tcl_GetIntFromObj(NULL, objv[i], &port) == TCL_OK) continue;
-        else return ms_cmd_error(interp, "display live on: bad argument '%s': expected ?port? ?-bind addr?", w);
-    }
+    char why[300];
+    if (ms_par_rank() != 0) return served_elsewhere(interp);
+    if (!ms_live_available(why, sizeof why)) return ms_cmd_error(interp, "display live on: %s", why);
+    if (objc > 3 && !ms_word_eq(Tcl_GetString(objv[3]), "-bind") &&
+        ms_arg_int(interp, objv[first++], "port", INT_MIN, INT_MAX, &port))
+        return TCL_ERROR;
+    if (ms_args_options(interp, objc, objv, first, options, &bind, NULL)) return TCL_ERROR;
     ms_live_status st;
     ms_error err = {{0}};
     if (ms_live_start(app, port, bind, &st, &err))
@@ -37,7 +44,14 @@ static int live_on(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
     return TCL_OK;
 }
 
-static int live_status(ms_app *app, Tcl_Interp *interp)
+static int live_off(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    if (ms_par_rank() != 0) return served_elsewhere(interp);
+    if (ms_live_stop(app)) return ms_cmd_error(interp, "display live off: the live view is not on");
+    return TCL_OK;
+}
+
+static int live_status(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     ms_live_status st;
     ms_live_get_status(app, &st);
@@ -57,27 +71,18 @@ static int live_status(ms_app *app, Tcl_Interp *interp)
 
 static int disp_live(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 3) return ms_cmd_error(interp, USAGE);
-    const char *w = Tcl_GetString(objv[2]);
-    if (!strcasecmp(w, "status") && objc == 3) return live_status(app, interp);
-    if (ms_par_rank() != 0) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj("display live: served by rank 0 only", -1));
-        return TCL_OK;
-    }
-    if (!strcasecmp(w, "on")) {
-        char why[300];
-        if (!ms_live_available(why, sizeof why)) return ms_cmd_error(interp, "display live on: %s", why);
-        return live_on(app, interp, objc, objv);
-    }
-    if (!strcasecmp(w, "off") && objc == 3) {
-        if (ms_live_stop(app)) return ms_cmd_error(interp, "display live off: the live view is not on");
-        return TCL_OK;
-    }
-    return ms_cmd_error(interp, USAGE);
+    static const ms_subcmd table[] = {
+        {"on", live_on, 0, 3, "?<port>? ?-bind <address>?"},
+        {"off", live_off, 0, 0, ""},
+        {"status", live_status, 0, 0, ""},
+        {NULL, NULL, 0, 0, NULL}};
+    return ms_args_dispatch(app, interp, objc, objv, 2, table, NULL, NULL);
 }
 
 void ms_cmd_live_register(ms_app *app)
 {
-    static const ms_subcmd table[] = {{"live", disp_live}, {NULL, NULL}};
+    static const ms_subcmd table[] = {
+        {"live", disp_live, 1, MS_ARGS_ANY, "on ?<port>? ?-bind <address>? | off | status"},
+        {NULL, NULL, 0, 0, NULL}};
     ms_cmdset_extend_quiet(app, "display", table);
 }

@@ -31,8 +31,6 @@ static int mat_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 static int mat_settings(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     int i;
-    if (objc != 3)
-        return ms_cmd_error(interp, "material settings: usage: material settings <name>");
     if (get_material(app, interp, objv[2], "material settings", &i)) return TCL_ERROR;
     Tcl_Obj *l = Tcl_NewListObj(0, NULL);
     for (int p = 0; p < MS_MAT_NPROPS; p++)
@@ -44,17 +42,11 @@ static int mat_settings(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 
 static int mat_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *name = NULL;
-    int from = 0, copy = -1;
-    if (objc == 3) name = Tcl_GetString(objv[2]);
-    else if (objc == 4) copy = 2;
-    else if (objc == 5) name = Tcl_GetString(objv[2]), copy = 3;
-    else if (objc != 2)
-        return ms_cmd_error(interp, "material add: usage: material add ?<name>? ?copy <from>?");
+    static const char *const copy_word[] = {"copy", NULL};
+    const char *name = objc == 3 || objc == 5 ? Tcl_GetString(objv[2]) : NULL;
+    int from = 0, copy = objc == 4 ? 2 : objc == 5 ? 3 : -1, k;
     if (copy > 0) {
-        if (!ms_word_eq(Tcl_GetString(objv[copy]), "copy"))
-            return ms_cmd_error(interp, "material add: expected 'copy', got '%s'",
-                                Tcl_GetString(objv[copy]));
+        if (ms_arg_choice(interp, objv[copy], copy_word, NULL, &k)) return TCL_ERROR;
         if (get_material(app, interp, objv[copy + 1], "material add", &from)) return TCL_ERROR;
     }
     ms_error err = {{0}};
@@ -67,7 +59,6 @@ static int mat_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
 static int mat_rename(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     int i;
-    if (objc != 4) return ms_cmd_error(interp, "material rename: usage: material rename <old> <new>");
     if (get_material(app, interp, objv[2], "material rename", &i)) return TCL_ERROR;
     ms_error err = {{0}};
     if (ms_material_rename(app->materials, i, Tcl_GetString(objv[3]), &err))
@@ -78,7 +69,6 @@ static int mat_rename(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 static int mat_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     int i;
-    if (objc != 3) return ms_cmd_error(interp, "material delete: usage: material delete <name>");
     if (get_material(app, interp, objv[2], "material delete", &i)) return TCL_ERROR;
     ms_error err = {{0}};
     if (ms_material_delete(app->materials, i, &err))
@@ -88,17 +78,13 @@ static int mat_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 
 static int mat_change(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 5)
-        return ms_cmd_error(interp, "material change: usage: material change <property> <name> <value>");
-    int p = ms_material_prop_from_name(Tcl_GetString(objv[2]));
-    if (p < 0)
-        return ms_cmd_error(interp, "material change: unknown property '%s': must be ambient, "
-                                    "specular, diffuse, shininess, mirror, opacity, outline, "
-                                    "outlinewidth or transmode", Tcl_GetString(objv[2]));
-    int i;
+    const char *props[MS_MAT_NPROPS + 1] = {NULL};
+    for (int k = 0; k < MS_MAT_NPROPS; k++) props[k] = ms_material_prop_name((ms_mat_prop)k);
+    int p, i;
     float v;
-    if (get_material(app, interp, objv[3], "material change", &i) ||
-        ms_cmd_get_float(interp, objv[4], &v, "material change"))
+    if (ms_arg_choice(interp, objv[2], props, "property", &p) ||
+        get_material(app, interp, objv[3], "material change", &i) ||
+        ms_arg_float(interp, objv[4], NULL, &v))
         return TCL_ERROR;
     ms_material_set(app->materials, i, (ms_mat_prop)p, v);
     return TCL_OK;
@@ -107,7 +93,6 @@ static int mat_change(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 static int mat_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     int i;
-    if (objc != 3) return ms_cmd_error(interp, "material default: usage: material default <name|index>");
     if (get_material(app, interp, objv[2], "material default", &i)) return TCL_ERROR;
     ms_error err = {{0}};
     if (ms_material_restore_default(app->materials, i, &err))
@@ -116,8 +101,14 @@ static int mat_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
 }
 
 static const ms_subcmd material_table[] = {
-    {"list", mat_list}, {"settings", mat_settings}, {"add", mat_add}, {"rename", mat_rename},
-    {"delete", mat_delete}, {"change", mat_change}, {"default", mat_default}, {NULL, NULL}};
+    {"list", mat_list, 0, 0, ""},
+    {"settings", mat_settings, 1, 1, "<name>"},
+    {"add", mat_add, 0, 3, "?<name>? ?copy <from>?"},
+    {"rename", mat_rename, 2, 2, "<old> <new>"},
+    {"delete", mat_delete, 1, 1, "<name>"},
+    {"change", mat_change, 3, 3, "<property> <name> <value>"},
+    {"default", mat_default, 1, 1, "<name|index>"},
+    {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_material_register(ms_app *app)
 {

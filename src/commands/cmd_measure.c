@@ -25,7 +25,9 @@
 #include "commands/tclvec.h"
 #include "measure/measure.h"
 
+#include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -96,7 +98,7 @@ static int get_weights(Tcl_Interp *interp, const char *cmd, const msel *s, Tcl_O
 {
     *w = NULL;
     const char *word = obj ? Tcl_GetString(obj) : "none";
-    if (!strcmp(word, "none")) return TCL_OK;
+    if (ms_word_eq(word, "none")) return TCL_OK;
     if (ms_measure_is_atom_keyword(word) && !ms_measure_is_float_keyword(word))
         return ms_cmd_error(interp, "%s: weight: '%s' does not have floating-point values", cmd,
                             word);
@@ -117,13 +119,35 @@ static int get_weights(Tcl_Interp *interp, const char *cmd, const msel *s, Tcl_O
     return rc;
 }
 
+/* weight (and fit's order): each at most once */
+typedef struct weight_args {
+    Tcl_Obj *weight, *order;
+} weight_args;
+
+static const ms_opt weight_options[] = {
+    {"weight", MS_OPT_OBJ, offsetof(weight_args, weight), 0, 0, MS_OPT_ONCE, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
+static const ms_opt fit_options[] = {
+    {"weight", MS_OPT_OBJ, offsetof(weight_args, weight), 0, 0, MS_OPT_ONCE, NULL},
+    {"order", MS_OPT_OBJ, offsetof(weight_args, order), 0, 0, MS_OPT_ONCE, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
+
+/* The weight option from objv[at] on (NULL when not given). */
+static int weight_option(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], int at,
+                         Tcl_Obj **wobj)
+{
+    weight_args a = {NULL, NULL};
+    int rc = ms_args_options(interp, objc, objv, at, weight_options, &a, NULL);
+    *wobj = a.weight;
+    return rc;
+}
+
 /* "<sel> ?weight <w>?" at objv[2]: the selection (with coordinates) and its weights. */
 static int sel_weighted(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[],
                         const char *cmd, msel *s, double **w)
 {
-    Tcl_Obj *wobj = NULL;
-    if (objc == 5 && ms_word_eq(Tcl_GetString(objv[3]), "weight")) wobj = objv[4];
-    else if (objc != 3) return ms_cmd_error(interp, "%s: usage: %s <sel> ?weight <w>?", cmd, cmd);
+    Tcl_Obj *wobj;
+    if (weight_option(interp, objc, objv, 3, &wobj) != TCL_OK) return TCL_ERROR;
     if (get_sel(app, interp, objv[2], cmd, 1, s) != TCL_OK) return TCL_ERROR;
     if (get_weights(interp, cmd, s, wobj, w) == TCL_OK) return TCL_OK;
     free_sel(s);
@@ -156,10 +180,10 @@ SUBCMD(m_sumweights)
     const char *cmd = "measure sumweights";
     msel s;
     double *w = NULL;
-    if (objc != 5 || !ms_word_eq(Tcl_GetString(objv[3]), "weight"))
-        return ms_cmd_error(interp, "%s: usage: measure sumweights <sel> weight <weights>", cmd);
+    Tcl_Obj *wobj;
+    if (weight_option(interp, objc, objv, 3, &wobj) != TCL_OK) return TCL_ERROR;
     if (get_sel(app, interp, objv[2], cmd, 1, &s) != TCL_OK) return TCL_ERROR;
-    int rc = get_weights(interp, cmd, &s, objv[4], &w);
+    int rc = get_weights(interp, cmd, &s, wobj, &w);
     if (rc == TCL_OK)
         Tcl_SetObjResult(interp, Tcl_NewDoubleObj(ms_measure_sumweights(w, s.set.n)));
     free(w);
@@ -173,9 +197,10 @@ SUBCMD(m_minmax)
     msel s;
     double lo[3], hi[3];
     ms_error err = {{0}};
-    int radii = objc == 4;
-    if ((objc != 3 && objc != 4) || (radii && strcmp(Tcl_GetString(objv[3]), "-withradii")))
-        return ms_cmd_error(interp, "%s: usage: measure minmax <sel> ?-withradii?", cmd);
+    static const ms_opt options[] = {{"-withradii", MS_OPT_FLAG, 0, 0, 0, 0, NULL},
+                                     {NULL, 0, 0, 0, 0, 0, NULL}};
+    int radii = 0;
+    if (ms_args_options(interp, objc, objv, 3, options, &radii, NULL)) return TCL_ERROR;
     if (get_sel(app, interp, objv[2], cmd, 1, &s) != TCL_OK) return TCL_ERROR;
     int rc = TCL_OK;
     if (ms_measure_minmax(&s.set, radii, lo, hi, &err)) rc = core_error(interp, cmd, &err);
@@ -203,23 +228,25 @@ SUBCMD(m_rgyr)
 
 /* inertia: options moments and eigenvals, with or without a dash, in any order; the
  * answer always lists the tensor before the eigenvalues, as VMD's does. */
+typedef struct inertia_args {
+    int moments, eigen;
+} inertia_args;
+
 SUBCMD(m_inertia)
 {
+    static const ms_opt options[] = {
+        {"-moments", MS_OPT_FLAG, offsetof(inertia_args, moments), 0, 0, 0, NULL},
+        {"moments", MS_OPT_FLAG, offsetof(inertia_args, moments), 0, 0, MS_OPT_ALIAS, NULL},
+        {"-eigenvals", MS_OPT_FLAG, offsetof(inertia_args, eigen), 0, 0, 0, NULL},
+        {"eigenvals", MS_OPT_FLAG, offsetof(inertia_args, eigen), 0, 0, MS_OPT_ALIAS, NULL},
+        {NULL, 0, 0, 0, 0, 0, NULL}};
     const char *cmd = "measure inertia";
-    int moments = 0, eigen = 0;
+    inertia_args a = {0, 0};
     msel s;
     ms_inertia in;
     ms_error err = {{0}};
-    if (objc < 3 || objc > 5)
-        return ms_cmd_error(interp, "%s: usage: measure inertia <sel> ?-moments? ?-eigenvals?", cmd);
-    for (int i = 3; i < objc; i++) {
-        const char *o = Tcl_GetString(objv[i]);
-        o += o[0] == '-';
-        if (ms_word_eq(o, "moments")) moments = 1;
-        else if (ms_word_eq(o, "eigenvals")) eigen = 1;
-        else return ms_cmd_error(interp, "%s: unknown option '%s': must be -moments or -eigenvals",
-                                 cmd, Tcl_GetString(objv[i]));
-    }
+    if (ms_args_options(interp, objc, objv, 3, options, &a, NULL)) return TCL_ERROR;
+    int moments = a.moments, eigen = a.eigen;
     if (get_sel(app, interp, objv[2], cmd, 1, &s) != TCL_OK) return TCL_ERROR;
     int rc = ms_measure_inertia(&s.set, &in, &err) ? core_error(interp, cmd, &err) : TCL_OK;
     free_sel(&s);
@@ -266,11 +293,10 @@ SUBCMD(m_rmsd)
     msel a, b;
     double *w = NULL, r;
     ms_error err = {{0}};
-    int weighted = objc == 6 && ms_word_eq(Tcl_GetString(objv[4]), "weight");
-    if (objc != 4 && !weighted)
-        return ms_cmd_error(interp, "%s: usage: measure rmsd <sel1> <sel2> ?weight <w>?", cmd);
+    Tcl_Obj *wobj;
+    if (weight_option(interp, objc, objv, 4, &wobj) != TCL_OK) return TCL_ERROR;
     if (sel_pair(app, interp, objv, cmd, &a, &b) != TCL_OK) return TCL_ERROR;
-    int rc = get_weights(interp, cmd, &a, weighted ? objv[5] : NULL, &w);
+    int rc = get_weights(interp, cmd, &a, wobj, &w);
     if (rc == TCL_OK && ms_measure_rmsd(&a.set, &b.set, w, &r, &err))
         rc = core_error(interp, cmd, &err);
     if (rc == TCL_OK) Tcl_SetObjResult(interp, Tcl_NewDoubleObj(r));
@@ -303,34 +329,16 @@ static int get_order(Tcl_Interp *interp, Tcl_Obj *obj, size_t n, uint32_t **orde
     return TCL_OK;
 }
 
-/* fit's options: weight and order, each at most once, in any order. */
-static int fit_options(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], Tcl_Obj **wobj,
-                       Tcl_Obj **oobj)
-{
-    *wobj = *oobj = NULL;
-    for (int i = 4; i < objc; i += 2) {
-        const char *o = Tcl_GetString(objv[i]);
-        Tcl_Obj **slot = ms_word_eq(o, "weight") ? wobj : ms_word_eq(o, "order") ? oobj : NULL;
-        if (!slot || i + 1 >= objc || *slot)
-            return ms_cmd_error(interp, "measure fit: usage: measure fit <sel1> <sel2> "
-                                "?weight <w>? ?order <index list>?");
-        *slot = objv[i + 1];
-    }
-    return TCL_OK;
-}
-
 SUBCMD(m_fit)
 {
     const char *cmd = "measure fit";
-    Tcl_Obj *wobj, *oobj;
+    weight_args o = {NULL, NULL};
     msel a, b;
     double *w = NULL, m[16];
     uint32_t *order = NULL;
     ms_error err = {{0}};
-    if (objc < 4)
-        return ms_cmd_error(interp, "%s: usage: measure fit <sel1> <sel2> ?weight <w>? ?order "
-                            "<index list>?", cmd);
-    if (fit_options(interp, objc, objv, &wobj, &oobj) != TCL_OK) return TCL_ERROR;
+    if (ms_args_options(interp, objc, objv, 4, fit_options, &o, NULL) != TCL_OK) return TCL_ERROR;
+    Tcl_Obj *wobj = o.weight, *oobj = o.order;
     if (sel_pair(app, interp, objv, cmd, &a, &b) != TCL_OK) return TCL_ERROR;
     int rc = get_weights(interp, cmd, &a, wobj, &w);
     if (rc == TCL_OK && oobj) rc = get_order(interp, oobj, a.set.n, &order);
@@ -346,26 +354,12 @@ SUBCMD(m_fit)
 
 /* ---------------------------------------------------------------- over frames */
 
-/* first/last/step options from objv[at], VMD's defaults 0, -1 (the last frame), 1. */
-static int frame_options(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], int at,
-                         const char *cmd, long fls[3])
-{
-    static const char *names[3] = {"first", "last", "step"};
-    fls[0] = 0, fls[1] = -1, fls[2] = 1;
-    for (int i = at; i < objc; i += 2) {
-        int k = 0;
-        while (k < 3 && !ms_word_eq(Tcl_GetString(objv[i]), names[k])) k++;
-        if (k == 3 || i + 1 >= objc)
-            return ms_cmd_error(interp, "%s: usage: %s <sel> ?first <f>? ?last <l>? ?step <s>?",
-                                cmd, cmd);
-        Tcl_WideInt v;
-        if (Tcl_GetWideIntFromObj(NULL, objv[i + 1], &v) != TCL_OK || v < -1 || v > 2147483647)
-            return ms_cmd_error(interp, "%s: bad %s frame value '%s'", cmd, names[k],
-                                Tcl_GetString(objv[i + 1]));
-        fls[k] = (long)v;
-    }
-    return TCL_OK;
-}
+/* first/last/step options, VMD's defaults 0, -1 (the last frame), 1. */
+static const ms_opt frame_options[] = {
+    {"first", MS_OPT_LONG, 0 * sizeof(long), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"last", MS_OPT_LONG, 1 * sizeof(long), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"step", MS_OPT_LONG, 2 * sizeof(long), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
 
 /* avpos and rmsf: per-atom averages over the frames. */
 static int per_atom_over_frames(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[],
@@ -375,9 +369,8 @@ static int per_atom_over_frames(ms_app *app, Tcl_Interp *interp, int objc, Tcl_O
     msel s;
     ms_frame_range r;
     ms_error err = {{0}};
-    if (objc < 3) return ms_cmd_error(interp, "%s: usage: %s <sel> ?first <f>? ?last <l>? ?step <s>?",
-                                      cmd, cmd);
-    if (frame_options(interp, objc, objv, 3, cmd, fls) != TCL_OK) return TCL_ERROR;
+    fls[0] = 0, fls[1] = -1, fls[2] = 1;
+    if (ms_args_options(interp, objc, objv, 3, frame_options, fls, NULL) != TCL_OK) return TCL_ERROR;
     if (get_sel(app, interp, objv[2], cmd, 0, &s) != TCL_OK) return TCL_ERROR;
     double *out = ms_alloc_array(s.set.n, (rmsf ? 1 : 3) * sizeof *out);
     int rc = TCL_OK;
@@ -410,15 +403,6 @@ static Tcl_Obj *index_list(const uint32_t *v, size_t n)
     return l;
 }
 
-static int get_number(Tcl_Interp *interp, Tcl_Obj *obj, const char *cmd, const char *what,
-                      double *v)
-{
-    if (Tcl_GetDoubleFromObj(NULL, obj, v) != TCL_OK)
-        return ms_cmd_error(interp, "%s: %s: expected a number, got '%s'", cmd, what,
-                            Tcl_GetString(obj));
-    return TCL_OK;
-}
-
 /* One or two selections from objv[at]; b is a copy of a when the second is missing. */
 static int one_or_two(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], int at,
                       const char *cmd, msel *a, msel *b, int *two)
@@ -441,9 +425,7 @@ SUBCMD(m_contacts)
     int two;
     ms_pairs p;
     ms_error err = {{0}};
-    if (objc != 4 && objc != 5)
-        return ms_cmd_error(interp, "%s: usage: measure contacts <cutoff> <sel1> ?<sel2>?", cmd);
-    if (get_number(interp, objv[2], cmd, "cutoff", &cutoff) != TCL_OK) return TCL_ERROR;
+    if (ms_arg_double(interp, objv[2], "cutoff", &cutoff) != TCL_OK) return TCL_ERROR;
     if (one_or_two(app, interp, objc, objv, 3, cmd, &a, &b, &two) != TCL_OK) return TCL_ERROR;
     int rc = TCL_OK;
     if (ms_measure_contacts(&a.set, two ? &b.set : NULL, cutoff, &p, &err))
@@ -466,11 +448,8 @@ SUBCMD(m_hbonds)
     int two;
     ms_hbonds h;
     ms_error err = {{0}};
-    if (objc != 5 && objc != 6)
-        return ms_cmd_error(interp, "%s: usage: measure hbonds <cutoff> <angle> <sel1> ?<sel2>?",
-                            cmd);
-    if (get_number(interp, objv[2], cmd, "cutoff", &cutoff) != TCL_OK ||
-        get_number(interp, objv[3], cmd, "angle", &angle) != TCL_OK)
+    if (ms_arg_double(interp, objv[2], "cutoff", &cutoff) != TCL_OK ||
+        ms_arg_double(interp, objv[3], "angle", &angle) != TCL_OK)
         return TCL_ERROR;
     if (one_or_two(app, interp, objc, objv, 4, cmd, &a, &b, &two) != TCL_OK) return TCL_ERROR;
     int rc = TCL_OK;
@@ -496,27 +475,12 @@ typedef struct sasa_args {
     int samples;
 } sasa_args;
 
-static int sasa_options(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], sasa_args *o)
-{
-    const char *cmd = "measure sasa";
-    *o = (sasa_args){NULL, NULL, 500};
-    for (int i = 4; i < objc; i += 2) {
-        const char *opt = Tcl_GetString(objv[i]);
-        if (i + 1 >= objc) return ms_cmd_error(interp, "%s: option '%s' has no value", cmd, opt);
-        if (!strcmp(opt, "-points")) o->points_var = objv[i + 1];
-        else if (!strcmp(opt, "-restrict")) o->restrict_sel = objv[i + 1];
-        else if (!strcmp(opt, "-samples")) {
-            Tcl_WideInt n;
-            if (Tcl_GetWideIntFromObj(NULL, objv[i + 1], &n) != TCL_OK || n < 1 || n > 10000000)
-                return ms_cmd_error(interp, "%s: -samples: expected a whole number from 1 to "
-                                    "10000000, got '%s'", cmd, Tcl_GetString(objv[i + 1]));
-            o->samples = (int)n;
-        } else
-            return ms_cmd_error(interp, "%s: unknown option '%s': must be -points, -restrict or "
-                                "-samples", cmd, opt);
-    }
-    return TCL_OK;
-}
+static const ms_opt sasa_options[] = {
+    {"-points", MS_OPT_OBJ, offsetof(sasa_args, points_var), 0, 0, 0, NULL},
+    {"-restrict", MS_OPT_OBJ, offsetof(sasa_args, restrict_sel), 0, 0, 0, NULL},
+    {"-samples", MS_OPT_INT, offsetof(sasa_args, samples), 1, 10000000,
+     MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
 
 /* Store the exposed points in the caller's variable as {{x y z} ...}. */
 static int set_points(Tcl_Interp *interp, Tcl_Obj *var, const float *pts, size_t n)
@@ -539,11 +503,9 @@ SUBCMD(m_sasa)
     float *pts = NULL;
     size_t npts = 0;
     ms_error err = {{0}};
-    if (objc < 4)
-        return ms_cmd_error(interp, "%s: usage: measure sasa <srad> <sel> ?-points <var>? "
-                            "?-restrict <sel>? ?-samples <n>?", cmd);
-    if (get_number(interp, objv[2], cmd, "probe radius", &srad) != TCL_OK ||
-        sasa_options(interp, objc, objv, &o) != TCL_OK)
+    o = (sasa_args){NULL, NULL, 500};
+    if (ms_arg_double(interp, objv[2], "probe radius", &srad) != TCL_OK ||
+        ms_args_options(interp, objc, objv, 4, sasa_options, &o, NULL) != TCL_OK)
         return TCL_ERROR;
     if (get_sel(app, interp, objv[3], cmd, 1, &s) != TCL_OK) return TCL_ERROR;
     int rc = TCL_OK;
@@ -570,34 +532,16 @@ typedef struct gofr_args {
     long first, last, step;
 } gofr_args;
 
-static int gofr_options(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], const char *cmd,
-                        gofr_args *g)
-{
-    *g = (gofr_args){0.1, 10.0, 0, 0, -1, -1, 1};
-    for (int i = 4; i < objc; i += 2) {
-        const char *o = Tcl_GetString(objv[i]);
-        Tcl_Obj *v = i + 1 < objc ? objv[i + 1] : NULL;
-        Tcl_WideInt n = 0;
-        int ok = 1;
-        if (!v) return ms_cmd_error(interp, "%s: option '%s' has no value", cmd, o);
-        if (ms_word_eq(o, "delta") || ms_word_eq(o, "rmax")) {
-            double *d = ms_word_eq(o, "delta") ? &g->delta : &g->rmax;
-            ok = Tcl_GetDoubleFromObj(NULL, v, d) == TCL_OK && *d > 0 && isfinite(*d);
-        } else if (ms_word_eq(o, "usepbc") || ms_word_eq(o, "selupdate")) {
-            ok = Tcl_GetBooleanFromObj(NULL, v, ms_word_eq(o, "usepbc") ? &g->usepbc
-                                                                        : &g->selupdate) == TCL_OK;
-        } else if (ms_word_eq(o, "first") || ms_word_eq(o, "last") || ms_word_eq(o, "step")) {
-            ok = Tcl_GetWideIntFromObj(NULL, v, &n) == TCL_OK && n >= -1 && n <= 2147483647;
-            *(ms_word_eq(o, "first") ? &g->first : ms_word_eq(o, "last") ? &g->last : &g->step) = (long)n;
-        } else {
-            return ms_cmd_error(interp, "%s: unknown option '%s': usage: %s <sel1> <sel2> ?delta "
-                                "<d>? ?rmax <r>? ?usepbc <bool>? ?selupdate <bool>? ?first <f>? "
-                                "?last <l>? ?step <s>?", cmd, o, cmd);
-        }
-        if (!ok) return ms_cmd_error(interp, "%s: bad value for %s: '%s'", cmd, o, Tcl_GetString(v));
-    }
-    return TCL_OK;
-}
+#define GOFF(f) offsetof(gofr_args, f)
+static const ms_opt gofr_options[] = {
+    {"delta", MS_OPT_DOUBLE, GOFF(delta), 0, 0, MS_OPT_ABOVE, NULL},
+    {"rmax", MS_OPT_DOUBLE, GOFF(rmax), 0, 0, MS_OPT_ABOVE, NULL},
+    {"usepbc", MS_OPT_BOOL, GOFF(usepbc), 0, 0, 0, NULL},
+    {"selupdate", MS_OPT_BOOL, GOFF(selupdate), 0, 0, 0, NULL},
+    {"first", MS_OPT_LONG, GOFF(first), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"last", MS_OPT_LONG, GOFF(last), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"step", MS_OPT_LONG, GOFF(step), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
 
 /* VMD's frame range: last -1 is the last frame; first -1 (the default) means the frame the
  * selections are on, alone. */
@@ -701,10 +645,8 @@ static int gofr_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     msel s[2];
     Tcl_Obj *orig[2] = {NULL, NULL};
     ms_error err = {{0}};
-    if (objc < 4) return ms_cmd_error(interp, "%s: usage: %s <sel1> <sel2> ?delta <d>? ?rmax <r>? "
-                                      "?usepbc <bool>? ?selupdate <bool>? ?first <f>? ?last <l>? "
-                                      "?step <s>?", cmd, cmd);
-    if (gofr_options(interp, objc, objv, cmd, &g) != TCL_OK) return TCL_ERROR;
+    g = (gofr_args){0.1, 10.0, 0, 0, -1, -1, 1};
+    if (ms_args_options(interp, objc, objv, 4, gofr_options, &g, NULL) != TCL_OK) return TCL_ERROR;
     if (get_sel(app, interp, objv[2], cmd, 1, &s[0]) != TCL_OK) return TCL_ERROR;
     if (get_sel(app, interp, objv[3], cmd, 1, &s[1]) != TCL_OK) {
         free_sel(&s[0]);
@@ -734,13 +676,27 @@ SUBCMD(m_rdf) { return gofr_cmd(app, interp, objc, objv, "measure rdf"); }
 
 void ms_cmd_measure_register(ms_app *app)
 {
+#define FRAMES_USAGE "<sel> ?first <f>? ?last <l>? ?step <s>?"
+#define GOFR_USAGE                                                                        \
+    "<sel1> <sel2> ?delta <d>? ?rmax <r>? ?usepbc <bool>? ?selupdate <bool>? ?first <f>? " \
+    "?last <l>? ?step <s>?"
     static const ms_subcmd table[] = {
-        {"avpos", m_avpos},     {"center", m_center}, {"contacts", m_contacts},
-        {"fit", m_fit},         {"gofr", m_gofr},     {"hbonds", m_hbonds},
-        {"inertia", m_inertia}, {"minmax", m_minmax}, {"rdf", m_rdf},
-        {"rgyr", m_rgyr},       {"rmsd", m_rmsd},     {"rmsf", m_rmsf},
-        {"sasa", m_sasa},       {"sumweights", m_sumweights},
-        {NULL, NULL}};
+        {"avpos", m_avpos, 1, MS_ARGS_ANY, FRAMES_USAGE},
+        {"center", m_center, 1, 3, "<sel> ?weight <w>?"},
+        {"contacts", m_contacts, 2, 3, "<cutoff> <sel1> ?<sel2>?"},
+        {"fit", m_fit, 2, 6, "<sel1> <sel2> ?weight <w>? ?order <index list>?"},
+        {"gofr", m_gofr, 2, MS_ARGS_ANY, GOFR_USAGE},
+        {"hbonds", m_hbonds, 3, 4, "<cutoff> <angle> <sel1> ?<sel2>?"},
+        {"inertia", m_inertia, 1, 3, "<sel> ?-moments? ?-eigenvals?"},
+        {"minmax", m_minmax, 1, 2, "<sel> ?-withradii?"},
+        {"rdf", m_rdf, 2, MS_ARGS_ANY, GOFR_USAGE},
+        {"rgyr", m_rgyr, 1, 3, "<sel> ?weight <w>?"},
+        {"rmsd", m_rmsd, 2, 4, "<sel1> <sel2> ?weight <w>?"},
+        {"rmsf", m_rmsf, 1, MS_ARGS_ANY, FRAMES_USAGE},
+        {"sasa", m_sasa, 2, MS_ARGS_ANY,
+         "<srad> <sel> ?-points <var>? ?-restrict <sel>? ?-samples <n>?"},
+        {"sumweights", m_sumweights, 3, 3, "<sel> weight <w>"},
+        {NULL, NULL, 0, 0, NULL}};
     ms_cmdset_create(app, "measure", table);
     ms_cmdset_quiet(app, "measure");
 }

@@ -16,6 +16,8 @@
 #include "commands/tclvec.h"
 #include "vecmath/vecmath.h"
 
+#include <limits.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,30 +30,29 @@ typedef struct geom_atom {
 
 typedef struct geom_args {
     Tcl_Obj *molid;           /* default molecule word, NULL = top */
+    Tcl_Obj *frame_word;      /* f, all or last; NULL when not given */
     long frame;               /* -1 none given, -2 last, -3 all */
     long first, last;         /* -1 when not given */
 } geom_args;
 
+static const ms_opt geom_options_table[] = {
+    {"molid", MS_OPT_OBJ, offsetof(geom_args, molid), 0, 0, 0, NULL},
+    {"frame", MS_OPT_OBJ, offsetof(geom_args, frame_word), 0, 0, 0, NULL},
+    {"first", MS_OPT_LONG, offsetof(geom_args, first), 0, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"last", MS_OPT_LONG, offsetof(geom_args, last), 0, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
+
 static int geom_options(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], const char *cmd,
                         geom_args *g)
 {
-    *g = (geom_args){NULL, -1, -1, -1};
-    for (int i = 3; i < objc; i += 2) {
-        const char *o = Tcl_GetString(objv[i]), *v = i + 1 < objc ? Tcl_GetString(objv[i + 1]) : NULL;
-        Tcl_WideInt n = -1;
-        if (!v) return ms_cmd_error(interp, "%s: option '%s' has no value", cmd, o);
-        if (ms_word_eq(o, "molid")) {
-            g->molid = objv[i + 1];
-            continue;
-        }
-        int is_frame = ms_word_eq(o, "frame");
-        if (is_frame && ms_word_eq(v, "all")) n = -3;
-        else if (is_frame && ms_word_eq(v, "last")) n = -2;
-        else if ((!is_frame && !ms_word_eq(o, "first") && !ms_word_eq(o, "last")) ||
-                 Tcl_GetWideIntFromObj(NULL, objv[i + 1], &n) != TCL_OK || n < 0 || n > 2147483647)
-            return ms_cmd_error(interp, "%s: bad option '%s %s': must be molid <id>, frame "
-                                "<f|all|last>, first <f> or last <l>", cmd, o, v);
-        *(is_frame ? &g->frame : ms_word_eq(o, "first") ? &g->first : &g->last) = (long)n;
+    *g = (geom_args){NULL, NULL, -1, -1, -1};
+    if (ms_args_options(interp, objc, objv, 3, geom_options_table, g, NULL)) return TCL_ERROR;
+    static const char *const words[] = {"all", "last", NULL};
+    int k;
+    if (g->frame_word) {
+        if (ms_arg_long_or(interp, g->frame_word, "frame", words, 0, INT_MAX, &k, &g->frame))
+            return TCL_ERROR;
+        if (k >= 0) g->frame = k == 0 ? -3 : -2;
     }
     if (g->frame != -1 && (g->first >= 0 || g->last >= 0))
         return ms_cmd_error(interp, "%s: cannot give a frame and a frame range (first or last) "
@@ -140,9 +141,6 @@ static int geom_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     geom_atom at[4];
     double p[4][3];
     long first = 0, last = -1;
-    if (objc < 3)
-        return ms_cmd_error(interp, "%s: usage: %s {{<atomid> ?<molid>?} ...} ?molid <id>? ?frame "
-                            "<f|all|last>? | ?first <f>? ?last <l>?", cmd, cmd);
     if (geom_options(interp, objc, objv, cmd, &g) != TCL_OK) return TCL_ERROR;
     Tcl_Obj *word = g.molid ? g.molid : Tcl_NewStringObj("top", -1);
     Tcl_IncrRefCount(word);
@@ -172,7 +170,6 @@ SUBCMD(m_imprp) { return geom_cmd(app, interp, objc, objv, 4, "measure imprp"); 
 SUBCMD(m_inverse)
 {
     double m[16], inv[16];
-    if (objc != 3) return ms_cmd_error(interp, "measure inverse: usage: measure inverse <matrix>");
     if (ms_tcl_get_mat4(interp, objv[2], "measure inverse", m) != TCL_OK) return TCL_ERROR;
     if (ms_mat4d_inverse(m, inv))
         return ms_cmd_error(interp, "measure inverse: singular matrix, inverse not computed");
@@ -182,8 +179,14 @@ SUBCMD(m_inverse)
 
 void ms_cmd_measure_geom_register(ms_app *app)
 {
-    static const ms_subcmd table[] = {{"bond", m_bond},   {"angle", m_angle},
-                                      {"dihed", m_dihed}, {"imprp", m_imprp},
-                                      {"inverse", m_inverse}, {NULL, NULL}};
+#define GEOM_USAGE \
+    "{{<atomid> ?<molid>?} ...} ?molid <id>? ?frame <f|all|last>? | ?first <f>? ?last <l>?"
+    static const ms_subcmd table[] = {
+        {"bond", m_bond, 1, MS_ARGS_ANY, GEOM_USAGE},
+        {"angle", m_angle, 1, MS_ARGS_ANY, GEOM_USAGE},
+        {"dihed", m_dihed, 1, MS_ARGS_ANY, GEOM_USAGE},
+        {"imprp", m_imprp, 1, MS_ARGS_ANY, GEOM_USAGE},
+        {"inverse", m_inverse, 1, 1, "<matrix>"},
+        {NULL, NULL, 0, 0, NULL}};
     ms_cmdset_extend(app, "measure", table);
 }

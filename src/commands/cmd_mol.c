@@ -20,14 +20,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 static int mol_new_atoms(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     long n;
-    if (objc != 4)
-        return ms_cmd_error(interp, "mol new atoms: usage: mol new atoms <count>");
-    if (ms_cmd_get_count(interp, objv[3], 0x7fffffffL, "mol new atoms", &n)) return TCL_ERROR;
+    if (ms_arg_long(interp, objv[3], "count", 0, 0x7fffffffL, &n)) return TCL_ERROR;
     ms_error err = {{0}};
     ms_molecule *m = ms_mol_new(&err);
     if (!m || !(m->name = ms_strdup("molecule")) || ms_mol_reserve_atoms(m, (size_t)n, &err))
@@ -57,7 +54,7 @@ static int mol_new(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
         Tcl_SetObjResult(interp, Tcl_NewIntObj(m->id));
         return TCL_OK;
     }
-    if (!strcasecmp(Tcl_GetString(objv[2]), "atoms") && objc == 4)
+    if (objc == 4 && ms_word_eq(Tcl_GetString(objv[2]), "atoms"))
         return mol_new_atoms(app, interp, objc, objv);
     ms_load_opts o;
     ms_load_opts_default(&o);
@@ -67,8 +64,6 @@ static int mol_new(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
 
 static int mol_addfile(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 3)
-        return ms_cmd_error(interp, "mol addfile: usage: mol addfile <file> ?options? ?molid?");
     ms_load_opts o;
     ms_load_opts_default(&o);
     Tcl_Obj *molword;
@@ -85,8 +80,7 @@ static int mol_addfile(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
 
 static int mol_load(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 4 || (objc - 2) % 2)
-        return ms_cmd_error(interp, "mol load: usage: mol load <type> <file> ?<type> <file>...?");
+    if ((objc - 2) % 2) return ms_args_usage(interp);
     ms_molecule *m = NULL;
     for (int i = 2; i < objc; i += 2) {
         ms_load_opts o;
@@ -105,7 +99,6 @@ static int mol_load(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 
 static int mol_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return ms_cmd_error(interp, "mol delete: usage: mol delete <molid|all>");
     int *ids, n;
     if (ms_cmd_molspec(app, interp, Tcl_GetString(objv[2]), "mol delete", &ids, &n))
         return TCL_ERROR;
@@ -116,7 +109,6 @@ static int mol_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 
 static int mol_top(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return ms_cmd_error(interp, "mol top: usage: mol top <molid>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol top");
     if (!m) return TCL_ERROR;
     app->mols.top = m->id;
@@ -125,7 +117,6 @@ static int mol_top(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
 
 static int mol_rename(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4) return ms_cmd_error(interp, "mol rename: usage: mol rename <molid> <name>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol rename");
     if (!m) return TCL_ERROR;
     char *name = ms_strdup(Tcl_GetString(objv[3]));
@@ -147,7 +138,6 @@ static void list_line(Tcl_Obj *out, const ms_molecule *m, int top)
 
 static int mol_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc > 3) return ms_cmd_error(interp, "mol list: usage: mol list ?molid?");
     Tcl_Obj *out = Tcl_NewObj();
     if (objc == 3) {
         ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol list");
@@ -173,23 +163,26 @@ static int mol_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     return TCL_OK;
 }
 
-/* mol on|off|fix|free|unfix|active|inactive <molspec> */
+/* mol on|off|fix|free|unfix|active|inactive <molspec>: the flag each word sets. */
+static const struct {
+    const char *name;
+    enum { F_DISPLAYED, F_FIXED, F_ACTIVE } flag;
+    unsigned value;
+} flag_words[] = {{"on", F_DISPLAYED, 1}, {"off", F_DISPLAYED, 0}, {"fix", F_FIXED, 1},
+                  {"free", F_FIXED, 0},   {"unfix", F_FIXED, 0},  {"active", F_ACTIVE, 1},
+                  {"inactive", F_ACTIVE, 0}, {NULL, F_DISPLAYED, 0}};
+
 static int mol_flag(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *what = Tcl_GetString(objv[1]);
-    char cmd[64];
-    snprintf(cmd, sizeof cmd, "mol %s", what);
-    if (objc != 3) return ms_cmd_error(interp, "%s: usage: %s <molspec>", cmd, cmd);
-    int *ids, n;
-    if (ms_cmd_molspec(app, interp, Tcl_GetString(objv[2]), cmd, &ids, &n)) return TCL_ERROR;
+    int k = ms_args_find(flag_words, sizeof *flag_words, Tcl_GetString(objv[1])), *ids, n;
+    if (ms_cmd_molspec(app, interp, Tcl_GetString(objv[2]), ms_args_where(), &ids, &n))
+        return TCL_ERROR;
     for (int i = 0; i < n; i++) {
         ms_molecule *m = ms_molset_get(&app->mols, ids[i]);
-        if (!strcasecmp(what, "on")) m->displayed = 1;
-        else if (!strcasecmp(what, "off")) m->displayed = 0;
-        else if (!strcasecmp(what, "fix")) m->fixed = 1;
-        else if (!strcasecmp(what, "free") || !strcasecmp(what, "unfix")) m->fixed = 0;
-        else if (!strcasecmp(what, "active")) m->active = 1;
-        else if (!strcasecmp(what, "inactive")) m->active = 0;
+        unsigned v = flag_words[k].value;
+        if (flag_words[k].flag == F_DISPLAYED) m->displayed = v;
+        else if (flag_words[k].flag == F_FIXED) m->fixed = v;
+        else m->active = v;
     }
     free(ids);
     return TCL_OK;
@@ -197,7 +190,6 @@ static int mol_flag(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 
 static int mol_cancel(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return ms_cmd_error(interp, "mol cancel: usage: mol cancel <molid>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol cancel");
     if (!m) return TCL_ERROR;
     ms_loader_cancel(m);
@@ -208,11 +200,8 @@ static int mol_cancel(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
  * distance bonds from the current frame). */
 static int mol_reanalyze(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *what = Tcl_GetString(objv[1]);
-    int bonds = !strcasecmp(what, "bondsrecalc");
-    char cmd[64];
-    snprintf(cmd, sizeof cmd, "mol %s", bonds ? "bondsrecalc" : "reanalyze");
-    if (objc != 3) return ms_cmd_error(interp, "%s: usage: %s <molid>", cmd, cmd);
+    const char *cmd = ms_args_where();
+    int bonds = ms_word_eq(Tcl_GetString(objv[1]), "bondsrecalc");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], cmd);
     if (!m) return TCL_ERROR;
     ms_error err = {{0}};
@@ -234,7 +223,6 @@ static int mol_reanalyze(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
 /* mol voldelete <volid> <molid>: delete one volumetric data set. */
 static int mol_voldelete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4) return ms_cmd_error(interp, "mol voldelete: usage: mol voldelete <volid> <molid>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[3], "mol voldelete");
     if (!m) return TCL_ERROR;
     int k;
@@ -247,14 +235,25 @@ static int mol_voldelete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
 }
 
 static const ms_subcmd mol_table[] = {
-    {"new", mol_new},           {"addfile", mol_addfile},   {"load", mol_load},
-    {"delete", mol_delete},     {"top", mol_top},           {"rename", mol_rename},
-    {"list", mol_list},         {"on", mol_flag},           {"off", mol_flag},
-    {"fix", mol_flag},          {"free", mol_flag},         {"unfix", mol_flag},
-    {"active", mol_flag},       {"inactive", mol_flag},     {"cancel", mol_cancel},
-    {"reanalyze", mol_reanalyze}, {"bondsrecalc", mol_reanalyze},
-    {"voldelete", mol_voldelete},
-    {NULL, NULL}};
+    {"new", mol_new, 0, MS_ARGS_ANY, "?<file> ?<option> <value> ...?? | atoms <count>"},
+    {"addfile", mol_addfile, 1, MS_ARGS_ANY, "<file> ?<option> <value> ...? ?<molid>?"},
+    {"load", mol_load, 2, MS_ARGS_ANY, "<type> <file> ?<type> <file> ...?"},
+    {"delete", mol_delete, 1, 1, "<molid|all>"},
+    {"top", mol_top, 1, 1, "<molid>"},
+    {"rename", mol_rename, 2, 2, "<molid> <name>"},
+    {"list", mol_list, 0, 1, "?<molid>?"},
+    {"on", mol_flag, 1, 1, "<molspec>"},
+    {"off", mol_flag, 1, 1, "<molspec>"},
+    {"fix", mol_flag, 1, 1, "<molspec>"},
+    {"free", mol_flag, 1, 1, "<molspec>"},
+    {"unfix", mol_flag, 1, 1, "<molspec>"},
+    {"active", mol_flag, 1, 1, "<molspec>"},
+    {"inactive", mol_flag, 1, 1, "<molspec>"},
+    {"cancel", mol_cancel, 1, 1, "<molid>"},
+    {"reanalyze", mol_reanalyze, 1, 1, "<molid>"},
+    {"bondsrecalc", mol_reanalyze, 1, 1, "<molid>"},
+    {"voldelete", mol_voldelete, 2, 2, "<volid> <molid>"},
+    {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_mol_register(ms_app *app)
 {

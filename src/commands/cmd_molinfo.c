@@ -11,6 +11,8 @@
 #include "commands/commands.h"
 #include "commands/molinfo.h"
 
+#include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -106,63 +108,96 @@ static Tcl_Obj *str_list_files(const ms_molecule *m, int types)
     return l;
 }
 
-static const char *cell_names[6] = {"a", "b", "c", "alpha", "beta", "gamma"};
+/* The keywords of molinfo get (and, where marked, set). */
+typedef enum {
+    K_ID, K_INDEX, K_NAME, K_FILENAME, K_FILETYPE, K_FILESPEC, K_DATABASE, K_ACCESSION,
+    K_REMARKS, K_NUMATOMS, K_NUMFRAMES, K_FRAME, K_LAST, K_NUMVOLUMEDATA, K_ACTIVE, K_DRAWN,
+    K_DISPLAYED, K_FIXED, K_TOP, K_CENTER, K_CENTER_MATRIX, K_ROTATE_MATRIX, K_SCALE_MATRIX,
+    K_GLOBAL_MATRIX, K_VIEW_MATRIX, K_PHYSICAL_TIME, K_TIMESTEPS, K_A, K_B, K_C, K_ALPHA,
+    K_BETA, K_GAMMA, K_COUNT
+} keyword;
+static const char *const keywords[K_COUNT + 1] = {
+    "id", "index", "name", "filename", "filetype", "filespec", "database", "accession",
+    "remarks", "numatoms", "numframes", "frame", "last", "numvolumedata", "active", "drawn",
+    "displayed", "fixed", "top", "center", "center_matrix", "rotate_matrix", "scale_matrix",
+    "global_matrix", "view_matrix", "physical_time", "timesteps", "a", "b", "c", "alpha",
+    "beta", "gamma", NULL};
+
+/* An extra keyword's handler for k, or NULL ("rep " also takes "rep 0"). */
+static const ms_molinfo_keyword *find_extra(const char *k, int setting)
+{
+    for (int e = 0; e < nextra; e++)
+        if ((!setting || extra[e].set) &&
+            (ms_word_eq(k, extra[e].name) ||
+             (extra[e].prefix && !strncasecmp(k, extra[e].name, strlen(extra[e].name)))))
+            return &extra[e];
+    return NULL;
+}
+
+/* "<where>: unknown keyword \"k\": must be ..." over the table and the extra keywords. */
+static int unknown_keyword(Tcl_Interp *interp, const char *k)
+{
+    Tcl_Obj *msg = Tcl_ObjPrintf("%s: unknown keyword \"%s\": must be ", ms_args_where(), k);
+    int total = K_COUNT + nextra;
+    for (int i = 0; i < total; i++) {
+        const char *name = i < K_COUNT ? keywords[i] : extra[i - K_COUNT].name;
+        Tcl_AppendPrintfToObj(msg, "%s%.*s", i == 0 ? "" : i + 1 == total ? ", or " : ", ",
+                              (int)strcspn(name, " "), name);
+    }
+    Tcl_SetObjResult(interp, msg);
+    return TCL_ERROR;
+}
 
 static int get_keyword(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char *k, long frame,
                        Tcl_Obj **out)
 {
     const ms_frame *f = frame >= 0 && (size_t)frame < m->nframes ? &m->frames[frame] : NULL;
-    float cm[16], rm[16], sm[16], gm[16], vm[16];
-    if (!strcasecmp(k, "id")) *out = Tcl_NewIntObj(m->id);
-    else if (!strcasecmp(k, "index")) *out = Tcl_NewIntObj(ms_molset_index_of(&app->mols, m->id));
-    else if (!strcasecmp(k, "name")) *out = Tcl_NewStringObj(m->name ? m->name : "", -1);
-    else if (!strcasecmp(k, "filename")) *out = str_list_files(m, 0);
-    else if (!strcasecmp(k, "filetype")) *out = str_list_files(m, 1);
-    else if (!strcasecmp(k, "filespec")) {
+    float mats[5][16];
+    int i = ms_args_find(keywords, sizeof *keywords, k);
+    Tcl_Obj *v[3];
+    switch ((keyword)i) {
+    case K_ID: *out = Tcl_NewIntObj(m->id); break;
+    case K_INDEX: *out = Tcl_NewIntObj(ms_molset_index_of(&app->mols, m->id)); break;
+    case K_NAME: *out = Tcl_NewStringObj(m->name ? m->name : "", -1); break;
+    case K_FILENAME: *out = str_list_files(m, 0); break;
+    case K_FILETYPE: *out = str_list_files(m, 1); break;
+    case K_FILESPEC:
         *out = Tcl_NewListObj(0, NULL);
-        for (size_t i = 0; i < m->nfiles; i++) {
-            Tcl_Obj *pair[2] = {Tcl_NewStringObj(m->files[i].type, -1),
-                                Tcl_NewStringObj(m->files[i].path, -1)};
+        for (size_t j = 0; j < m->nfiles; j++) {
+            Tcl_Obj *pair[2] = {Tcl_NewStringObj(m->files[j].type, -1),
+                                Tcl_NewStringObj(m->files[j].path, -1)};
             Tcl_ListObjAppendElement(NULL, *out, Tcl_NewListObj(2, pair));
         }
-    } else if (!strcasecmp(k, "database") || !strcasecmp(k, "accession"))
-        *out = Tcl_NewStringObj("", 0);
-    else if (!strcasecmp(k, "remarks")) *out = Tcl_NewStringObj(m->remarks ? m->remarks : "", -1);
-    else if (!strcasecmp(k, "numatoms")) *out = Tcl_NewWideIntObj((Tcl_WideInt)m->atoms.n);
-    else if (!strcasecmp(k, "numframes")) *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nframes);
-    else if (!strcasecmp(k, "frame")) *out = Tcl_NewIntObj(m->frame);
-    else if (!strcasecmp(k, "last")) *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nframes - 1);
-    else if (!strcasecmp(k, "numvolumedata")) *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nvolumes);
-    else if (!strcasecmp(k, "active")) *out = Tcl_NewIntObj(m->active);
-    else if (!strcasecmp(k, "drawn") || !strcasecmp(k, "displayed")) *out = Tcl_NewIntObj(m->displayed);
-    else if (!strcasecmp(k, "fixed")) *out = Tcl_NewIntObj(m->fixed);
-    else if (!strcasecmp(k, "top")) *out = Tcl_NewIntObj(app->mols.top == m->id);
-    else if (!strcasecmp(k, "center")) {
-        Tcl_Obj *v[3];
-        for (int i = 0; i < 3; i++) v[i] = Tcl_NewDoubleObj(m->center[i]);
+        break;
+    case K_DATABASE: case K_ACCESSION: *out = Tcl_NewStringObj("", 0); break;
+    case K_REMARKS: *out = Tcl_NewStringObj(m->remarks ? m->remarks : "", -1); break;
+    case K_NUMATOMS: *out = Tcl_NewWideIntObj((Tcl_WideInt)m->atoms.n); break;
+    case K_NUMFRAMES: case K_TIMESTEPS: *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nframes); break;
+    case K_FRAME: *out = Tcl_NewIntObj(m->frame); break;
+    case K_LAST: *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nframes - 1); break;
+    case K_NUMVOLUMEDATA: *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nvolumes); break;
+    case K_ACTIVE: *out = Tcl_NewIntObj(m->active); break;
+    case K_DRAWN: case K_DISPLAYED: *out = Tcl_NewIntObj(m->displayed); break;
+    case K_FIXED: *out = Tcl_NewIntObj(m->fixed); break;
+    case K_TOP: *out = Tcl_NewIntObj(app->mols.top == m->id); break;
+    case K_CENTER:
+        for (int c = 0; c < 3; c++) v[c] = Tcl_NewDoubleObj(m->center[c]);
         *out = Tcl_NewListObj(3, v);
-    } else if (!strcasecmp(k, "center_matrix") || !strcasecmp(k, "rotate_matrix") ||
-               !strcasecmp(k, "scale_matrix") || !strcasecmp(k, "global_matrix") ||
-               !strcasecmp(k, "view_matrix")) {
-        ms_mol_matrices(m, cm, rm, sm, gm, vm);
-        const float *which = k[0] == 'c' || k[0] == 'C' ? cm : k[0] == 'r' || k[0] == 'R' ? rm
-                             : k[0] == 's' || k[0] == 'S' ? sm : k[0] == 'g' || k[0] == 'G' ? gm : vm;
-        *out = ms_matrix_to_obj(which);
-    } else if (!strcasecmp(k, "physical_time")) {
-        *out = Tcl_NewDoubleObj(f ? f->time : 0.0);
-    } else if (!strcasecmp(k, "timesteps")) {
-        *out = Tcl_NewWideIntObj((Tcl_WideInt)m->nframes);
-    } else {
-        for (int c = 0; c < 6; c++)
-            if (!strcasecmp(k, cell_names[c])) {
-                *out = Tcl_NewDoubleObj(f ? f->cell[c] : 0.0);
-                return TCL_OK;
-            }
-        for (int e = 0; e < nextra; e++)
-            if (!strcasecmp(k, extra[e].name) ||
-                (extra[e].prefix && !strncasecmp(k, extra[e].name, strlen(extra[e].name))))
-                return extra[e].get(app, interp, m, k, frame, out);
-        return ms_cmd_error(interp, "molinfo: unknown keyword '%s'", k);
+        break;
+    case K_CENTER_MATRIX: case K_ROTATE_MATRIX: case K_SCALE_MATRIX: case K_GLOBAL_MATRIX:
+    case K_VIEW_MATRIX:
+        ms_mol_matrices(m, mats[0], mats[1], mats[2], mats[3], mats[4]);
+        *out = ms_matrix_to_obj(mats[i - K_CENTER_MATRIX]);
+        break;
+    case K_PHYSICAL_TIME: *out = Tcl_NewDoubleObj(f ? f->time : 0.0); break;
+    case K_A: case K_B: case K_C: case K_ALPHA: case K_BETA: case K_GAMMA:
+        *out = Tcl_NewDoubleObj(f ? f->cell[i - K_A] : 0.0);
+        break;
+    default: {
+        const ms_molinfo_keyword *e = find_extra(k, 0);
+        if (!e) return unknown_keyword(interp, k);
+        return e->get(app, interp, m, k, frame, out);
+    }
     }
     return TCL_OK;
 }
@@ -181,30 +216,36 @@ static int takes_index(const char *k)
 /* frame n|now|first|last -> index, or -2 on error. */
 static long parse_frame(Tcl_Interp *interp, const ms_molecule *m, Tcl_Obj *w)
 {
-    const char *s = Tcl_GetString(w);
-    if (!strcasecmp(s, "now")) return m->frame;
-    if (!strcasecmp(s, "first")) return 0;
-    if (!strcasecmp(s, "last")) return (long)m->nframes - 1;
-    int v;
-    if (Tcl_GetIntFromObj(NULL, w, &v) != TCL_OK || v < 0 || (size_t)v >= m->nframes) {
-        ms_cmd_error(interp, "molinfo: molecule %d has no frame '%s' (it has %zu)", m->id, s,
-                     m->nframes);
-        return -2;
-    }
-    return v;
+    static const char *const words[] = {"now", "first", "last", NULL};
+    int k;
+    long v;
+    if (ms_arg_long_or(NULL, w, NULL, words, 0, INT_MAX, &k, &v) == TCL_OK &&
+        (k >= 0 || (size_t)v < m->nframes))
+        return k == 0 ? m->frame : k == 1 ? 0 : k == 2 ? (long)m->nframes - 1 : v;
+    ms_cmd_error(interp, "%s: molecule %d has no frame '%s' (it has %zu)", ms_args_where(),
+                 m->id, Tcl_GetString(w), m->nframes);
+    return -2;
 }
 
-static int molinfo_get(ms_app *app, Tcl_Interp *interp, ms_molecule *m, int objc,
-                       Tcl_Obj *const objv[])
+/* The frame of "?frame <n>?" at objv[at] (the words are there when at < objc). */
+static int frame_option(Tcl_Interp *interp, const ms_molecule *m, int objc,
+                        Tcl_Obj *const objv[], int at, long *frame)
 {
-    if (objc != 4 && objc != 6)
-        return ms_cmd_error(interp, "molinfo: usage: molinfo <molid> get <keywords> ?frame <n>?");
-    long frame = m->frame;
-    if (objc == 6) {
-        if (strcasecmp(Tcl_GetString(objv[4]), "frame"))
-            return ms_cmd_error(interp, "molinfo: expected 'frame', got '%s'", Tcl_GetString(objv[4]));
-        if ((frame = parse_frame(interp, m, objv[5])) == -2) return TCL_ERROR;
-    }
+    static const char *const frame_word[] = {"frame", NULL};
+    int k;
+    *frame = m->frame;
+    if (at >= objc) return TCL_OK;
+    if (at + 2 != objc) return ms_args_usage(interp);
+    if (ms_arg_choice(interp, objv[at], frame_word, NULL, &k)) return TCL_ERROR;
+    return (*frame = parse_frame(interp, m, objv[at + 1])) == -2 ? TCL_ERROR : TCL_OK;
+}
+
+/* molinfo <molid> get <keywords> ?frame <n>? */
+static int molinfo_get(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "molinfo");
+    long frame;
+    if (!m || frame_option(interp, m, objc, objv, 4, &frame)) return TCL_ERROR;
     Tcl_Obj **keys;
     int nk;
     if (Tcl_ListObjGetElements(interp, objv[3], &nk, &keys) != TCL_OK) return TCL_ERROR;
@@ -239,90 +280,60 @@ static int molinfo_get(ms_app *app, Tcl_Interp *interp, ms_molecule *m, int objc
 static int set_keyword(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char *k,
                        Tcl_Obj *v, long frame)
 {
+    ms_frame *f = frame >= 0 && (size_t)frame < m->nframes ? &m->frames[frame] : NULL;
+    float mat[16];
     double d;
-    int b;
-    if (!strcasecmp(k, "frame")) {
-        int f;
-        if (Tcl_GetIntFromObj(NULL, v, &f) != TCL_OK)
-            return ms_cmd_error(interp, "molinfo: frame: expected an integer, got '%s'", Tcl_GetString(v));
-        ms_molset_set_frame(&app->mols, m, f);
+    int i = ms_args_find(keywords, sizeof *keywords, k), b;
+    switch ((keyword)i) {
+    case K_FRAME:
+        if (ms_arg_int(interp, v, k, INT_MIN, INT_MAX, &b)) return TCL_ERROR;
+        ms_molset_set_frame(&app->mols, m, b);
         return TCL_OK;
-    }
-    if (!strcasecmp(k, "name")) {
+    case K_NAME: {
         char *n = ms_strdup(Tcl_GetString(v));
-        if (!n) return ms_cmd_error(interp, "molinfo: out of memory");
+        if (!n) return ms_cmd_error(interp, "%s: out of memory", ms_args_where());
         free(m->name);
         m->name = n;
         return TCL_OK;
     }
-    if (!strcasecmp(k, "active") || !strcasecmp(k, "drawn") || !strcasecmp(k, "displayed") ||
-        !strcasecmp(k, "fixed") || !strcasecmp(k, "top")) {
-        if (Tcl_GetBooleanFromObj(NULL, v, &b) != TCL_OK)
-            return ms_cmd_error(interp, "molinfo: %s: expected a boolean, got '%s'", k, Tcl_GetString(v));
-        if (!strcasecmp(k, "active")) m->active = (unsigned)b;
-        else if (!strcasecmp(k, "fixed")) m->fixed = (unsigned)b;
-        else if (!strcasecmp(k, "top")) { if (b) app->mols.top = m->id; }
+    case K_ACTIVE: case K_DRAWN: case K_DISPLAYED: case K_FIXED: case K_TOP:
+        if (ms_arg_bool(interp, v, k, &b)) return TCL_ERROR;
+        if (i == K_ACTIVE) m->active = (unsigned)b;
+        else if (i == K_FIXED) m->fixed = (unsigned)b;
+        else if (i == K_TOP) { if (b) app->mols.top = m->id; }
         else m->displayed = (unsigned)b;
         return TCL_OK;
-    }
-    if (!strcasecmp(k, "center")) {
-        Tcl_Obj **e;
-        int n;
-        double c[3];
-        if (Tcl_ListObjGetElements(NULL, v, &n, &e) != TCL_OK || n != 3 ||
-            Tcl_GetDoubleFromObj(NULL, e[0], &c[0]) || Tcl_GetDoubleFromObj(NULL, e[1], &c[1]) ||
-            Tcl_GetDoubleFromObj(NULL, e[2], &c[2]))
-            return ms_cmd_error(interp, "molinfo: center: expected {x y z}, got '%s'", Tcl_GetString(v));
-        for (int i = 0; i < 3; i++) m->center[i] = (float)c[i];
-        return TCL_OK;
-    }
-    if (!strcasecmp(k, "center_matrix") || !strcasecmp(k, "rotate_matrix") ||
-        !strcasecmp(k, "scale_matrix") || !strcasecmp(k, "global_matrix")) {
-        float mat[16];
+    case K_CENTER:
+        return ms_arg_vec3(interp, v, k, m->center);
+    case K_CENTER_MATRIX: case K_ROTATE_MATRIX: case K_SCALE_MATRIX: case K_GLOBAL_MATRIX:
         if (ms_matrix_from_obj(interp, v, mat, k) != TCL_OK) return TCL_ERROR;
-        switch (k[0] | 0x20) {
-        case 'c': for (int i = 0; i < 3; i++) m->center[i] = -mat[4 * i + 3]; break;
-        case 'r': memcpy(m->rotate, mat, sizeof mat); break;
-        case 's': m->scale = mat[0]; break;
-        case 'g': for (int i = 0; i < 3; i++) m->global[i] = mat[4 * i + 3]; break;
-        }
+        if (i == K_CENTER_MATRIX) for (int c = 0; c < 3; c++) m->center[c] = -mat[4 * c + 3];
+        else if (i == K_ROTATE_MATRIX) memcpy(m->rotate, mat, sizeof mat);
+        else if (i == K_SCALE_MATRIX) m->scale = mat[0];
+        else for (int c = 0; c < 3; c++) m->global[c] = mat[4 * c + 3];
         return TCL_OK;
-    }
-    ms_frame *f = frame >= 0 && (size_t)frame < m->nframes ? &m->frames[frame] : NULL;
-    for (int c = 0; c < 6; c++)
-        if (!strcasecmp(k, cell_names[c])) {
-            if (!f) return ms_cmd_error(interp, "molinfo: molecule %d has no frames", m->id);
-            if (Tcl_GetDoubleFromObj(NULL, v, &d) != TCL_OK)
-                return ms_cmd_error(interp, "molinfo: %s: expected a number, got '%s'", k, Tcl_GetString(v));
-            f->cell[c] = (float)d;
-            return TCL_OK;
-        }
-    if (!strcasecmp(k, "physical_time")) {
-        if (!f) return ms_cmd_error(interp, "molinfo: molecule %d has no frames", m->id);
-        if (Tcl_GetDoubleFromObj(NULL, v, &d) != TCL_OK)
-            return ms_cmd_error(interp, "molinfo: physical_time: expected a number, got '%s'", Tcl_GetString(v));
-        f->time = d;
+    case K_A: case K_B: case K_C: case K_ALPHA: case K_BETA: case K_GAMMA: case K_PHYSICAL_TIME:
+        if (!f) return ms_cmd_error(interp, "%s: molecule %d has no frames", ms_args_where(), m->id);
+        if (ms_arg_double(interp, v, k, &d)) return TCL_ERROR;
+        if (i == K_PHYSICAL_TIME) f->time = d;
+        else f->cell[i - K_A] = (float)d;
         return TCL_OK;
+    default: {
+        const ms_molinfo_keyword *e = find_extra(k, 1);
+        if (!e) return ms_cmd_error(interp, "%s: cannot set keyword '%s'", ms_args_where(), k);
+        return e->set(app, interp, m, k, v, frame);
     }
-    for (int e = 0; e < nextra; e++)
-        if (extra[e].set && (!strcasecmp(k, extra[e].name) ||
-                             (extra[e].prefix && !strncasecmp(k, extra[e].name, strlen(extra[e].name)))))
-            return extra[e].set(app, interp, m, k, v, frame);
-    return ms_cmd_error(interp, "molinfo: cannot set keyword '%s'", k);
+    }
 }
 
-static int molinfo_set(ms_app *app, Tcl_Interp *interp, ms_molecule *m, int objc,
-                       Tcl_Obj *const objv[])
+/* molinfo <molid> set <keywords> <values> ?frame <n>? */
+static int molinfo_set(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 5 && objc != 7)
-        return ms_cmd_error(interp, "molinfo: usage: molinfo <molid> set <keywords> <values> ?frame <n>?");
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "molinfo");
+    long frame;
+    if (!m) return TCL_ERROR;
     app->scene_version++;
-    long frame = m->frame;
-    if (objc == 7) {
-        if (strcasecmp(Tcl_GetString(objv[5]), "frame"))
-            return ms_cmd_error(interp, "molinfo: expected 'frame', got '%s'", Tcl_GetString(objv[5]));
-        if ((frame = parse_frame(interp, m, objv[6])) == -2) return TCL_ERROR;
-    }
+    if (frame_option(interp, m, objc, objv, 5, &frame)) return TCL_ERROR;
     Tcl_Obj **keys, **vals;
     int nk, nv;
     if (Tcl_ListObjGetElements(interp, objv[3], &nk, &keys) != TCL_OK ||
@@ -334,7 +345,7 @@ static int molinfo_set(ms_app *app, Tcl_Interp *interp, ms_molecule *m, int objc
         vals = (Tcl_Obj **)&objv[4];
     }
     if (nk != nv)
-        return ms_cmd_error(interp, "molinfo: %d keywords but %d values", nk, nv);
+        return ms_cmd_error(interp, "%s: %d keywords but %d values", ms_args_where(), nk, nv);
     for (int i = 0; i < nk; i++)
         if (set_keyword(app, interp, m, Tcl_GetString(keys[i]), vals[i], frame) != TCL_OK)
             return TCL_ERROR;
@@ -358,17 +369,22 @@ static int molinfo_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
     return TCL_OK;
 }
 
+/* molinfo <molid> get|set ...: the molecule first, then the operation. */
+static int molinfo_mol(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const ms_subcmd ops[] = {
+        {"get", molinfo_get, 1, 3, "<keywords> ?frame <n>?"},
+        {"set", molinfo_set, 2, 4, "<keywords> <values> ?frame <n>?"},
+        {NULL, NULL, 0, 0, NULL}};
+    if (!ms_cmd_mol(app, interp, objv[1], "molinfo")) return TCL_ERROR;
+    char where[64];
+    snprintf(where, sizeof where, "molinfo %.40s", Tcl_GetString(objv[1]));
+    return ms_args_dispatch(app, interp, objc, objv, 2, ops, NULL, where);
+}
+
 static int molinfo_top(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc > 2) {
-        /* `molinfo top get ...` */
-        ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "molinfo");
-        if (!m) return TCL_ERROR;
-        const char *op = Tcl_GetString(objv[2]);
-        if (!strcasecmp(op, "get")) return molinfo_get(app, interp, m, objc, objv);
-        if (!strcasecmp(op, "set")) return molinfo_set(app, interp, m, objc, objv);
-        return ms_cmd_error(interp, "molinfo: unknown operation '%s': must be get or set", op);
-    }
+    if (objc > 2) return molinfo_mol(app, interp, objc, objv);   /* molinfo top get ... */
     Tcl_SetObjResult(interp, Tcl_NewIntObj(app->mols.top));
     return TCL_OK;
 }
@@ -376,8 +392,7 @@ static int molinfo_top(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
 static int molinfo_index(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     int i;
-    if (objc != 3 || Tcl_GetIntFromObj(NULL, objv[2], &i) != TCL_OK)
-        return ms_cmd_error(interp, "molinfo: usage: molinfo index <n>");
+    if (ms_arg_int(interp, objv[2], NULL, INT_MIN, INT_MAX, &i)) return TCL_ERROR;
     if (i < 0 || (size_t)i >= app->mols.n) {
         Tcl_SetObjResult(interp, Tcl_NewIntObj(-1));
         return TCL_OK;
@@ -386,25 +401,18 @@ static int molinfo_index(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
     return TCL_OK;
 }
 
-/* molinfo <molid> get|set ... */
-static int molinfo_mol(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
-{
-    ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "molinfo");
-    if (!m) return TCL_ERROR;
-    if (objc < 3) return ms_cmd_error(interp, "molinfo: usage: molinfo <molid> get|set ...");
-    const char *op = Tcl_GetString(objv[2]);
-    if (!strcasecmp(op, "get")) return molinfo_get(app, interp, m, objc, objv);
-    if (!strcasecmp(op, "set")) return molinfo_set(app, interp, m, objc, objv);
-    return ms_cmd_error(interp, "molinfo: unknown operation '%s': must be get or set", op);
-}
-
 static const ms_subcmd molinfo_table[] = {
-    {"num", molinfo_num}, {"list", molinfo_list}, {"top", molinfo_top},
-    {"index", molinfo_index}, {NULL, NULL}};
+    {"num", molinfo_num, 0, 0, ""},
+    {"list", molinfo_list, 0, 0, ""},
+    {"top", molinfo_top, 0, 5, "?get|set <keywords> ...?"},
+    {"index", molinfo_index, 1, 1, "<n>"},
+    {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_molinfo_register(ms_app *app)
 {
+    static const ms_subcmd by_molid = {"<molid>", molinfo_mol, 2, 6,
+                                       "<molid> get|set <keywords> ?<values>? ?frame <n>?"};
     ms_cmdset_create(app, "molinfo", molinfo_table);
-    ms_cmdset_fallback(app, "molinfo", molinfo_mol);
+    ms_cmdset_fallback(app, "molinfo", &by_molid);
     ms_cmdset_quiet(app, "molinfo");
 }

@@ -20,6 +20,8 @@
 #include "movie/movie.h"
 #include "view/view.h"
 
+#include <limits.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -48,49 +50,43 @@ static int call_frame(void *ctx, long frame, const char *tmp, ms_error *err)
     return -1;
 }
 
-static int get_double(Tcl_Interp *interp, Tcl_Obj *o, const char *what, double *out)
-{
-    if (Tcl_GetDoubleFromObj(NULL, o, out) == TCL_OK) return TCL_OK;
-    return ms_cmd_error(interp, "movie: %s: expected a number, got '%s'", what, Tcl_GetString(o));
-}
+/* run's options: the movie's and -progress, read as a number */
+typedef struct run_args {
+    ms_movie_opts o;
+    int progress;
+} run_args;
+
+#define ROFF(f) offsetof(run_args, f)
+#define COUNT(max) 0, max, MS_OPT_MIN | MS_OPT_MAX, NULL
+static const ms_opt run_options[] = {
+    {"-basename", MS_OPT_STRING, ROFF(o.basename), 0, 0, 0, NULL},
+    {"-frames", MS_OPT_LONG, ROFF(o.nframes), COUNT(99999999)},
+    {"-width", MS_OPT_INT, ROFF(o.width), COUNT(MS_IMAGE_MAX_SIDE)},
+    {"-height", MS_OPT_INT, ROFF(o.height), COUNT(MS_IMAGE_MAX_SIDE)},
+    {"-video", MS_OPT_STRING, ROFF(o.video), 0, 0, 0, NULL},
+    {"-fps", MS_OPT_DOUBLE, ROFF(o.fps), 0, 1000, MS_OPT_ABOVE | MS_OPT_MAX, NULL},
+    {"-crf", MS_OPT_INT, ROFF(o.crf), COUNT(51)},
+    {"-preset", MS_OPT_STRING, ROFF(o.preset), 0, 0, 0, NULL},
+    {"-keepframes", MS_OPT_INT, ROFF(o.keep_frames), COUNT(1)},
+    {"-progress", MS_OPT_INT, ROFF(progress), 0, 0, 0, NULL},
+    {"-started", MS_OPT_DOUBLE, ROFF(o.started), 0, 0, 0, NULL},
+    {"-scriptdone", MS_OPT_DOUBLE, ROFF(o.script_done), 0, 0, 0, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
 
 /* Parse the options of run into o; video and basename point into objv. */
 static int run_opts(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], ms_movie_opts *o)
 {
-    long n = -1, w = 0, h = 0, crf = 18, keep = 1;
-    int prog = -1;
-    for (int i = 2; i < objc; i += 2) {
-        const char *k = Tcl_GetString(objv[i]);
-        if (i + 1 >= objc) return ms_cmd_error(interp, "movie: %s needs a value", k);
-        Tcl_Obj *v = objv[i + 1];
-        int rc = TCL_OK;
-        if (!strcmp(k, "-basename")) o->basename = Tcl_GetString(v);
-        else if (!strcmp(k, "-video")) o->video = Tcl_GetString(v);
-        else if (!strcmp(k, "-preset")) o->preset = Tcl_GetString(v);
-        else if (!strcmp(k, "-frames")) rc = ms_cmd_get_count(interp, v, 99999999, "movie: -frames", &n);
-        else if (!strcmp(k, "-width")) rc = ms_cmd_get_count(interp, v, MS_IMAGE_MAX_SIDE, "movie: -width", &w);
-        else if (!strcmp(k, "-height")) rc = ms_cmd_get_count(interp, v, MS_IMAGE_MAX_SIDE, "movie: -height", &h);
-        else if (!strcmp(k, "-crf")) rc = ms_cmd_get_count(interp, v, 51, "movie: -crf", &crf);
-        else if (!strcmp(k, "-keepframes")) rc = ms_cmd_get_count(interp, v, 1, "movie: -keepframes", &keep);
-        else if (!strcmp(k, "-progress")) rc = Tcl_GetIntFromObj(interp, v, &prog);
-        else if (!strcmp(k, "-fps")) rc = get_double(interp, v, "-fps", &o->fps);
-        else if (!strcmp(k, "-started")) rc = get_double(interp, v, "-started", &o->started);
-        else if (!strcmp(k, "-scriptdone")) rc = get_double(interp, v, "-scriptdone", &o->script_done);
-        else return ms_cmd_error(interp, "movie: unknown option '%s'", k);
-        if (rc != TCL_OK) return TCL_ERROR;
-    }
-    if (!o->basename || !*o->basename || n < 0 || w < 1 || h < 1)
+    run_args a = {*o, -1};
+    a.o.nframes = -1;
+    a.o.crf = 18;
+    a.o.keep_frames = 1;
+    if (ms_args_options(interp, objc, objv, 2, run_options, &a, NULL)) return TCL_ERROR;
+    *o = a.o;
+    if (!o->basename || !*o->basename || o->nframes < 0 || o->width < 1 || o->height < 1)
         return ms_cmd_error(interp, "movie: -basename, -frames, -width and -height are required");
     if (o->preset && !ms_movie_preset_ok(o->preset))
         return ms_cmd_error(interp, "movie: -preset: unknown x264 preset '%s'", o->preset);
-    if (!(o->fps > 0 && o->fps <= 1000))
-        return ms_cmd_error(interp, "movie: -fps must be above 0 and at most 1000");
-    o->nframes = n;
-    o->width = (int)w;
-    o->height = (int)h;
-    o->crf = (int)crf;
-    o->keep_frames = (int)keep;
-    o->progress = prog < 0 ? -1 : prog > 0;
+    o->progress = a.progress < 0 ? -1 : a.progress > 0;
     return TCL_OK;
 }
 
@@ -114,12 +110,8 @@ static Tcl_Obj *stats_dict(const ms_movie_opts *o, const ms_movie_stats *s)
     return d;
 }
 
-static int movie_run(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int movie_run(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    (void)cd;
-    if (objc < 2 || objc % 2 != 0)
-        return ms_cmd_error(interp, "movie: usage: ::molscope::movie::run <framecmd> -basename "
-                                    "B -frames N -width W -height H ?-option value ...?");
     if (Tcl_GetAssocData(interp, BUSY_KEY, NULL))
         return ms_cmd_error(interp, "movie: not allowed inside a parallel for or movie frame "
                                     "callback (the other ranks are not at the same point)");
@@ -138,31 +130,24 @@ static int movie_run(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const
 
 /* ---------------------------------------------------------------- helpers */
 
-static int movie_frameok(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int movie_frameok(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    (void)cd;
     int w, h;
-    if (objc != 4 || Tcl_GetIntFromObj(NULL, objv[2], &w) != TCL_OK ||
-        Tcl_GetIntFromObj(NULL, objv[3], &h) != TCL_OK)
-        return ms_cmd_error(interp, "movie: usage: ::molscope::movie::frameok <file> <width> <height>");
+    if (ms_arg_int(interp, objv[2], "width", INT_MIN, INT_MAX, &w) ||
+        ms_arg_int(interp, objv[3], "height", INT_MIN, INT_MAX, &h))
+        return TCL_ERROR;
     Tcl_SetObjResult(interp, Tcl_NewBooleanObj(ms_movie_frame_ok(Tcl_GetString(objv[1]), w, h)));
     return TCL_OK;
 }
 
-static int movie_started(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int movie_started(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    (void)cd;
-    (void)objc;
-    (void)objv;
     Tcl_SetObjResult(interp, Tcl_NewDoubleObj(ms_movie_process_start()));
     return TCL_OK;
 }
 
-static int movie_ffmpeg(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int movie_ffmpeg(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    (void)cd;
-    (void)objc;
-    (void)objv;
     char *p = ms_movie_find_ffmpeg();
     Tcl_SetObjResult(interp, Tcl_NewStringObj(p ? p : "", -1));
     free(p);
@@ -216,8 +201,8 @@ static int pose_set_one(ms_app *app, Tcl_Interp *interp, Tcl_Obj *rec)
     if (Tcl_ListObjGetElements(NULL, rec, &n, &e) != TCL_OK || n < 2)
         return ms_cmd_error(interp, "movie pose: bad record '%s'", Tcl_GetString(rec));
     const char *kind = Tcl_GetString(e[0]);
-    if (!strcmp(kind, "axes") && n == 2) return get_floats(interp, e[1], 16, app->view->axes_rotate);
-    if (strcmp(kind, "mol") || n != 6 || Tcl_GetIntFromObj(NULL, e[1], &id) != TCL_OK)
+    if (ms_word_eq(kind, "axes") && n == 2) return get_floats(interp, e[1], 16, app->view->axes_rotate);
+    if (!ms_word_eq(kind, "mol") || n != 6 || Tcl_GetIntFromObj(NULL, e[1], &id) != TCL_OK)
         return ms_cmd_error(interp, "movie pose: bad record '%s'", Tcl_GetString(rec));
     if (get_floats(interp, e[2], 3, c) || get_floats(interp, e[3], 16, r) ||
         get_floats(interp, e[4], 1, &s) || get_floats(interp, e[5], 3, g))
@@ -231,17 +216,17 @@ static int pose_set_one(ms_app *app, Tcl_Interp *interp, Tcl_Obj *rec)
     return TCL_OK;
 }
 
-static int movie_pose(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int movie_pose(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_app *app = cd;
     if (objc == 1) {
         Tcl_SetObjResult(interp, pose_get(app));
         return TCL_OK;
     }
     Tcl_Obj **e;
     int n;
-    if (objc != 2 || Tcl_ListObjGetElements(NULL, objv[1], &n, &e) != TCL_OK)
-        return ms_cmd_error(interp, "movie pose: usage: ::molscope::movie::pose ?<pose>?");
+    if (Tcl_ListObjGetElements(NULL, objv[1], &n, &e) != TCL_OK)
+        return ms_cmd_error(interp, "movie pose: bad value '%s': must be a list of records",
+                            Tcl_GetString(objv[1]));
     for (int i = 0; i < n; i++)
         if (pose_set_one(app, interp, e[i]) != TCL_OK) return TCL_ERROR;
     return TCL_OK;
@@ -249,11 +234,13 @@ static int movie_pose(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 
 void ms_cmd_movie_register(ms_app *app)
 {
-    static const struct { const char *name; Tcl_ObjCmdProc *fn; } cmds[] = {
-        {"::molscope::movie::run", movie_run}, {"::molscope::movie::frameok", movie_frameok},
-        {"::molscope::movie::pose", movie_pose}, {"::molscope::movie::started", movie_started},
-        {"::molscope::movie::ffmpeg", movie_ffmpeg}};
+    static const ms_subcmd cmds[] = {
+        {"::molscope::movie::run", movie_run, 1, MS_ARGS_ANY,
+         "<framecmd> -basename <B> -frames <N> -width <W> -height <H> ?-option <value> ...?"},
+        {"::molscope::movie::frameok", movie_frameok, 3, 3, "<file> <width> <height>"},
+        {"::molscope::movie::pose", movie_pose, 0, 1, "?<pose>?"},
+        {"::molscope::movie::started", movie_started, 0, 0, ""},
+        {"::molscope::movie::ffmpeg", movie_ffmpeg, 0, 0, ""}};
     Tcl_Eval(app->interp, "namespace eval ::molscope::movie {}");
-    for (size_t i = 0; i < MS_COUNTOF(cmds); i++)
-        Tcl_CreateObjCommand(app->interp, cmds[i].name, cmds[i].fn, app, NULL);
+    for (size_t i = 0; i < MS_COUNTOF(cmds); i++) ms_cmd_create(app, &cmds[i]);
 }

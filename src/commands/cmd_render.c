@@ -14,7 +14,6 @@
 
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 static const ms_render_device *get_device(Tcl_Interp *interp, Tcl_Obj *o, const char *cmd)
 {
@@ -50,18 +49,19 @@ static int r_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
     return TCL_OK;
 }
 
+static int r_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const ms_render_device *d = get_device(interp, objv[2], "render");
+    if (!d || !setting(app, interp, d)) return TCL_ERROR;
+    Tcl_SetObjResult(interp, Tcl_NewStringObj(d->default_cmd, -1));
+    return TCL_OK;
+}
+
 static int r_options(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *w = Tcl_GetString(objv[1]);
-    if (objc < 3) return ms_cmd_error(interp, "render %s: usage: render %s <method>", w, w);
     const ms_render_device *d = get_device(interp, objv[2], "render");
     ms_render_setting *s = d ? setting(app, interp, d) : NULL;
     if (!s) return TCL_ERROR;
-    if (ms_word_eq(w, "default")) {
-        if (objc != 3) return ms_cmd_error(interp, "render default: usage: render default <method>");
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(d->default_cmd, -1));
-        return TCL_OK;
-    }
     if (objc == 3) {
         Tcl_SetObjResult(interp, Tcl_NewStringObj(s->cmd, -1));
         return TCL_OK;
@@ -75,17 +75,13 @@ static int r_options(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int r_samples(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const char *w = Tcl_GetString(objv[1]);
-    int ao = ms_word_eq(w, "aosamples");
-    if (objc != 3 && objc != 4) return ms_cmd_error(interp, "render %s: usage: render %s <method> ?<n>?", w, w);
+    int ao = ms_word_eq(Tcl_GetString(objv[1]), "aosamples");
     const ms_render_device *d = get_device(interp, objv[2], "render");
     ms_render_setting *s = d ? setting(app, interp, d) : NULL;
     if (!s) return TCL_ERROR;
     if (objc == 4) {
         long n;
-        char what[32];
-        snprintf(what, sizeof what, "render %s", ao ? "aosamples" : "aasamples");
-        if (ms_cmd_get_count(interp, objv[3], 65536, what, &n)) return TCL_ERROR;
+        if (ms_arg_long(interp, objv[3], NULL, 0, 65536, &n)) return TCL_ERROR;
         if (ms_render_set_samples(s, ao ? -1 : (int)n, ao ? (int)n : -1))
             return ms_cmd_error(interp, "render: out of memory");
     }
@@ -96,7 +92,6 @@ static int r_samples(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 static int r_info(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *w = Tcl_GetString(objv[1]);
-    if (objc != 3) return ms_cmd_error(interp, "render %s: usage: render %s <method>", w, w);
     const ms_render_device *d = get_device(interp, objv[2], "render");
     if (!d) return TCL_ERROR;
     if (ms_word_eq(w, "hasaa")) {
@@ -116,7 +111,6 @@ static int r_info(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
 
 static int r_format(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3 && objc != 4) return ms_cmd_error(interp, "render format: usage: render format <method> ?<format>?");
     const ms_render_device *d = get_device(interp, objv[2], "render format");
     ms_render_setting *s = d ? setting(app, interp, d) : NULL;
     if (!s) return TCL_ERROR;
@@ -132,8 +126,6 @@ static int r_format(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 /* render <method> <file> ?cmd...? */
 static int r_render(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 3)
-        return ms_cmd_error(interp, "render: usage: render list | render <method> <file> ?<command>?");
     const ms_render_device *d = get_device(interp, objv[1], "render");
     if (!d) return TCL_ERROR;
     Tcl_Obj *cmd = joined(objc, objv, 3);
@@ -146,13 +138,23 @@ static int r_render(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 }
 
 static const ms_subcmd render_table[] = {
-    {"list", r_list}, {"options", r_options}, {"default", r_options}, {"aasamples", r_samples},
-    {"aosamples", r_samples}, {"hasaa", r_info}, {"imagesize", r_info}, {"aspectratio", r_info},
-    {"formats", r_info}, {"format", r_format}, {NULL, NULL}};
+    {"list", r_list, 0, 0, ""},
+    {"options", r_options, 1, MS_ARGS_ANY, "<method> ?<command> ...?"},
+    {"default", r_default, 1, 1, "<method>"},
+    {"aasamples", r_samples, 1, 2, "<method> ?<n>?"},
+    {"aosamples", r_samples, 1, 2, "<method> ?<n>?"},
+    {"hasaa", r_info, 1, 1, "<method>"},
+    {"imagesize", r_info, 1, 1, "<method>"},
+    {"aspectratio", r_info, 1, 1, "<method>"},
+    {"formats", r_info, 1, 1, "<method>"},
+    {"format", r_format, 1, 2, "<method> ?<format>?"},
+    {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_render_register(ms_app *app)
 {
+    static const ms_subcmd by_method = {"<method>", r_render, 2, MS_ARGS_ANY,
+                                        "<method> <file> ?<command> ...?"};
     ms_cmdset_create(app, "render", render_table);
-    ms_cmdset_fallback(app, "render", r_render);
+    ms_cmdset_fallback(app, "render", &by_method);
     ms_cmdset_quiet(app, "render");
 }

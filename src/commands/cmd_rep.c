@@ -26,10 +26,10 @@
 #include "rep/rep.h"
 #include "scene/material.h"
 
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 /* The words objv[from..] joined with spaces, as VMD's combine_arguments (refcount 0). */
 static Tcl_Obj *joined(int objc, Tcl_Obj *const objv[], int from)
@@ -40,12 +40,6 @@ static Tcl_Obj *joined(int objc, Tcl_Obj *const objv[], int from)
         Tcl_AppendObjToObj(s, objv[i]);
     }
     return s;
-}
-
-static const char *cmd_name(Tcl_Obj *const objv[], char *buf, size_t size)
-{
-    snprintf(buf, size, "mol %s", Tcl_GetString(objv[1]));
-    return buf;
 }
 
 /* Rep `w` of molecule m; NULL with an error naming cmd, the word and the molecule. */
@@ -75,15 +69,21 @@ static ms_rep *target(ms_app *app, Tcl_Interp *interp, Tcl_Obj *const objv[], in
     return get_rep(app, interp, m, objv[rep_first ? 2 : 3], cmd, repid);
 }
 
+/* The words that name what of a rep a subcommand or keyword is about. */
+static const struct {
+    const char *name;
+    ms_rep_what what;
+} what_words[] = {
+    {"representation", MS_REP_STYLE}, {"rep", MS_REP_STYLE}, {"style", MS_REP_STYLE},
+    {"modstyle", MS_REP_STYLE}, {"selection", MS_REP_SELECTION},
+    {"modselect", MS_REP_SELECTION}, {"color", MS_REP_COLOR}, {"modcolor", MS_REP_COLOR},
+    {"material", MS_REP_MATERIAL}, {"modmaterial", MS_REP_MATERIAL}, {NULL, MS_REP_STYLE}};
+
 static int what_of(const char *w, ms_rep_what *what)
 {
-    if (ms_word_eq(w, "representation") || ms_word_eq(w, "rep") || ms_word_eq(w, "style") ||
-        ms_word_eq(w, "modstyle"))
-        *what = MS_REP_STYLE;
-    else if (ms_word_eq(w, "selection") || ms_word_eq(w, "modselect")) *what = MS_REP_SELECTION;
-    else if (ms_word_eq(w, "color") || ms_word_eq(w, "modcolor")) *what = MS_REP_COLOR;
-    else if (ms_word_eq(w, "material") || ms_word_eq(w, "modmaterial")) *what = MS_REP_MATERIAL;
-    else return -1;
+    int k = ms_args_find(what_words, sizeof *what_words, w);
+    if (k < 0) return -1;
+    *what = what_words[k].what;
     return 0;
 }
 
@@ -92,10 +92,9 @@ static int what_of(const char *w, ms_rep_what *what)
 /* mol representation|rep|selection|color|material ?value...? */
 static int m_current(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    char cmd[64];
-    ms_rep_what what;
+    const char *cmd = ms_args_where();
+    ms_rep_what what = MS_REP_STYLE;
     what_of(Tcl_GetString(objv[1]), &what);
-    cmd_name(objv, cmd, sizeof cmd);
     if (objc == 2) {
         Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_text(app, NULL, what), -1));
         return TCL_OK;
@@ -111,10 +110,12 @@ static int m_current(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 /* mol default color|style|representation|selection|material ?value? */
 static int m_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_rep_what what;
-    if ((objc != 3 && objc != 4) || what_of(Tcl_GetString(objv[2]), &what))
-        return ms_cmd_error(interp, "mol default: usage: mol default color|style|selection|"
-                                    "material ?<value>?");
+    /* every word of what_words is taken; a refused one is told the usual four */
+    static const char *const words[] = {"color", "style", "selection", "material", NULL};
+    ms_rep_what what = MS_REP_STYLE;
+    int k;
+    if (what_of(Tcl_GetString(objv[2]), &what))
+        return ms_arg_choice(interp, objv[2], words, NULL, &k);
     if (objc == 3) {
         Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_get_default(app, what), -1));
         return TCL_OK;
@@ -139,7 +140,6 @@ static int settle(ms_app *app, Tcl_Interp *interp, ms_molecule *m, ms_rep *r, co
 
 static int m_addrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return ms_cmd_error(interp, "mol addrep: usage: mol addrep <molid>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol addrep");
     if (!m) return TCL_ERROR;
     ms_error err = {{0}};
@@ -150,7 +150,6 @@ static int m_addrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 
 static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4) return ms_cmd_error(interp, "mol delrep: usage: mol delrep <repid> <molid>");
     ms_molecule *m;
     long id;
     if (!target(app, interp, objv, 1, "mol delrep", &m, &id)) return TCL_ERROR;
@@ -160,7 +159,6 @@ static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 
 static int m_modrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4) return ms_cmd_error(interp, "mol modrep: usage: mol modrep <repid> <molid>");
     ms_molecule *m;
     ms_rep *r = target(app, interp, objv, 1, "mol modrep", &m, NULL);
     ms_error err = {{0}};
@@ -172,11 +170,9 @@ static int m_modrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 /* mol modstyle|modselect|modcolor|modmaterial <repid> <molid> <value...> */
 static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    char cmd[64];
-    ms_rep_what what;
-    cmd_name(objv, cmd, sizeof cmd);
+    const char *cmd = ms_args_where();
+    ms_rep_what what = MS_REP_STYLE;
     what_of(Tcl_GetString(objv[1]), &what);
-    if (objc < 5) return ms_cmd_error(interp, "%s: usage: %s <repid> <molid> <value>", cmd, cmd);
     ms_molecule *m;
     ms_rep *r = target(app, interp, objv, 1, cmd, &m, NULL);
     if (!r) return TCL_ERROR;
@@ -194,30 +190,22 @@ static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 /* mol showrep <molid> <repid> ?bool?; mol selupdate|colupdate <repid> <molid> ?bool? */
 static int m_flag(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    char cmd[64];
     const char *w = Tcl_GetString(objv[1]);
     int show = ms_word_eq(w, "showrep"), sel = ms_word_eq(w, "selupdate");
-    cmd_name(objv, cmd, sizeof cmd);
-    if (objc != 4 && objc != 5)
-        return ms_cmd_error(interp, "%s: usage: %s %s ?on|off?", cmd, cmd,
-                            show ? "<molid> <repid>" : "<repid> <molid>");
-    ms_rep *r = target(app, interp, objv, !show, cmd, NULL, NULL);
+    ms_rep *r = target(app, interp, objv, !show, ms_args_where(), NULL, NULL);
     if (!r) return TCL_ERROR;
     int *flag = show ? &r->shown : sel ? &r->selupdate : &r->colupdate, v;
     if (objc == 4) {
         Tcl_SetObjResult(interp, Tcl_NewIntObj(*flag));
         return TCL_OK;
     }
-    if (Tcl_GetBooleanFromObj(NULL, objv[4], &v) != TCL_OK)
-        return ms_cmd_error(interp, "%s: expected on or off, got '%s'", cmd, Tcl_GetString(objv[4]));
+    if (ms_arg_bool(interp, objv[4], NULL, &v)) return TCL_ERROR;
     *flag = v;
     return TCL_OK;
 }
 
 static int m_drawframes(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 4)
-        return ms_cmd_error(interp, "mol drawframes: usage: mol drawframes <molid> <repid> ?<frames>|now?");
     ms_rep *r = target(app, interp, objv, 0, "mol drawframes", NULL, NULL);
     if (!r) return TCL_ERROR;
     if (objc == 4) {
@@ -234,8 +222,6 @@ static int m_drawframes(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 
 static int m_smoothrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4 && objc != 5)
-        return ms_cmd_error(interp, "mol smoothrep: usage: mol smoothrep <molid> <repid> ?<n>?");
     ms_rep *r = target(app, interp, objv, 0, "mol smoothrep", NULL, NULL);
     if (!r) return TCL_ERROR;
     if (objc == 4) {
@@ -243,15 +229,13 @@ static int m_smoothrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
         return TCL_OK;
     }
     long n;
-    if (ms_cmd_get_count(interp, objv[4], 100000, "mol smoothrep", &n)) return TCL_ERROR;
+    if (ms_arg_long(interp, objv[4], NULL, 0, 100000, &n)) return TCL_ERROR;
     ms_rep_set_smooth(r, (int)n);
     return TCL_OK;
 }
 
 static int m_scaleminmax(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 4 || objc > 6)
-        return ms_cmd_error(interp, "mol scaleminmax: usage: mol scaleminmax <molid> <repid> ?<min> <max>|auto?");
     ms_molecule *m;
     ms_rep *r = target(app, interp, objv, 0, "mol scaleminmax", &m, NULL);
     if (!r) return TCL_ERROR;
@@ -263,17 +247,15 @@ static int m_scaleminmax(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
         return TCL_OK;
     }
     if (objc == 5) {
-        if (!ms_word_eq(Tcl_GetString(objv[4]), "auto"))
-            return ms_cmd_error(interp, "mol scaleminmax: expected <min> <max> or auto, got '%s'",
-                                Tcl_GetString(objv[4]));
+        static const char *const auto_word[] = {"auto", NULL};
+        int k;
+        if (ms_arg_choice(interp, objv[4], auto_word, NULL, &k)) return TCL_ERROR;
         ms_rep_auto_range(r);
         return TCL_OK;
     }
     double lo, hi;
-    if (Tcl_GetDoubleFromObj(NULL, objv[4], &lo) != TCL_OK ||
-        Tcl_GetDoubleFromObj(NULL, objv[5], &hi) != TCL_OK)
-        return ms_cmd_error(interp, "mol scaleminmax: expected two numbers, got '%s %s'",
-                            Tcl_GetString(objv[4]), Tcl_GetString(objv[5]));
+    if (ms_arg_double(interp, objv[4], "min", &lo) || ms_arg_double(interp, objv[5], "max", &hi))
+        return TCL_ERROR;
     ms_rep_set_range(r, (float)lo, (float)hi);
     return TCL_OK;
 }
@@ -283,12 +265,9 @@ static int m_scaleminmax(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
 /* mol showperiodic <molid> <repid> ?flags?; mol numperiodic <molid> <repid> ?n? */
 static int m_periodic(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    char cmd[64], text[8];
+    const char *cmd = ms_args_where();
+    char text[8];
     int num = ms_word_eq(Tcl_GetString(objv[1]), "numperiodic"), rc;
-    cmd_name(objv, cmd, sizeof cmd);
-    if (objc != 4 && objc != 5)
-        return ms_cmd_error(interp, "%s: usage: %s <molid> <repid> ?%s?", cmd, cmd,
-                            num ? "<n>" : "<flags of xyzXYZn>");
     ms_rep *r = target(app, interp, objv, 0, cmd, NULL, NULL);
     if (!r) return TCL_ERROR;
     if (objc == 4) {
@@ -299,9 +278,7 @@ static int m_periodic(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     ms_error err = {{0}};
     long n;
     if (!num) rc = ms_rep_set_periodic(r, Tcl_GetString(objv[4]), &err);
-    else if (Tcl_GetLongFromObj(NULL, objv[4], &n) != TCL_OK)
-        return ms_cmd_error(interp, "%s: expected a whole number, got '%s'", cmd,
-                            Tcl_GetString(objv[4]));
+    else if (ms_arg_long(interp, objv[4], NULL, LONG_MIN, LONG_MAX, &n)) return TCL_ERROR;
     else rc = ms_rep_set_numperiodic(r, n, &err);
     return rc ? ms_cmd_error(interp, "%s: %s", cmd, err.msg) : TCL_OK;
 }
@@ -310,7 +287,6 @@ static int m_periodic(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 
 static int m_repname(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4) return ms_cmd_error(interp, "mol repname: usage: mol repname <molid> <repid>");
     ms_rep *r = target(app, interp, objv, 0, "mol repname", NULL, NULL);
     if (!r) return TCL_ERROR;
     Tcl_SetObjResult(interp, Tcl_NewStringObj(r->name, -1));
@@ -319,7 +295,6 @@ static int m_repname(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int m_repindex(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4) return ms_cmd_error(interp, "mol repindex: usage: mol repindex <molid> <name>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol repindex");
     if (!m) return TCL_ERROR;
     Tcl_SetObjResult(interp, Tcl_NewLongObj(ms_rep_find(app, m, Tcl_GetString(objv[3]))));
@@ -413,10 +388,7 @@ static Tcl_Obj *primitive(const ms_displaylist *dl, int kind, size_t i)
 static int m_repinfo(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     static const char *const kinds[] = {"spheres", "cylinders", "lines", "points", "vertices",
-                                        "triangles"};
-    if (objc != 4 && objc != 5)
-        return ms_cmd_error(interp, "mol repinfo: usage: mol repinfo <molid> <repid> ?spheres|"
-                                    "cylinders|lines|points|vertices|triangles?");
+                                        "triangles", NULL};
     ms_molecule *m;
     ms_rep *r = target(app, interp, objv, 0, "mol repinfo", &m, NULL);
     ms_error err = {{0}};
@@ -426,12 +398,8 @@ static int m_repinfo(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
         Tcl_SetObjResult(interp, counts(app, r));
         return TCL_OK;
     }
-    int kind = -1;
-    for (int k = 0; k < (int)MS_COUNTOF(kinds); k++)
-        if (ms_word_eq(Tcl_GetString(objv[4]), kinds[k])) kind = k;
-    if (kind < 0)
-        return ms_cmd_error(interp, "mol repinfo: unknown kind '%s': must be spheres, cylinders, "
-                                    "lines, points, vertices or triangles", Tcl_GetString(objv[4]));
+    int kind;
+    if (ms_arg_choice(interp, objv[4], kinds, "kind", &kind)) return TCL_ERROR;
     const ms_displaylist *dl = ms_rep_list(r);
     size_t n = kind == 0 ? dl->spheres.n : kind == 1 ? dl->cylinders.n : kind == 2 ? dl->lines.n
                : kind == 3 ? dl->points.n : kind == 4 ? dl->mesh.nverts : dl->mesh.ntris;
@@ -456,8 +424,9 @@ static int info_get(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char 
     long i = sp ? strtol(sp + 1, &end, 10) : -1;
     ms_rep *r = sp && end != sp + 1 && !*end ? ms_rep_get(app, m, i) : NULL;
     if (!r)
-        return ms_cmd_error(interp, "molinfo: %s: molecule %d has no rep '%s' (it has %zu)",
-                            keyword, m->id, sp ? sp + 1 : "", ms_rep_count(app, m));
+        return ms_cmd_error(interp, "%s: %s: molecule %d has no rep '%s' (it has %zu)",
+                            ms_args_where(), keyword, m->id, sp ? sp + 1 : "",
+                            ms_rep_count(app, m));
     *out = Tcl_NewStringObj(ms_rep_text(app, r, what), -1);
     return TCL_OK;
 }
@@ -497,15 +466,32 @@ static void new_volumes(ms_app *app, ms_molecule *m)
 }
 
 static const ms_subcmd rep_table[] = {
-    {"representation", m_current}, {"rep", m_current},        {"selection", m_current},
-    {"color", m_current},          {"material", m_current},   {"default", m_default},
-    {"addrep", m_addrep},          {"delrep", m_delrep},      {"modrep", m_modrep},
-    {"modstyle", m_modify},        {"modselect", m_modify},   {"modcolor", m_modify},
-    {"modmaterial", m_modify},     {"showrep", m_flag},       {"selupdate", m_flag},
-    {"colupdate", m_flag},         {"drawframes", m_drawframes}, {"smoothrep", m_smoothrep},
-    {"scaleminmax", m_scaleminmax}, {"repname", m_repname},   {"repindex", m_repindex},
-    {"showperiodic", m_periodic},  {"numperiodic", m_periodic}, {"repinfo", m_repinfo},
-    {NULL, NULL}};
+    {"representation", m_current, 0, MS_ARGS_ANY, "?<style> ?<parameter> ...??"},
+    {"rep", m_current, 0, MS_ARGS_ANY, "?<style> ?<parameter> ...??"},
+    {"selection", m_current, 0, MS_ARGS_ANY, "?<selection text>?"},
+    {"color", m_current, 0, MS_ARGS_ANY, "?<method> ?<parameter> ...??"},
+    {"material", m_current, 0, MS_ARGS_ANY, "?<material>?"},
+    {"default", m_default, 1, 2, "color|style|selection|material ?<value>?"},
+    {"addrep", m_addrep, 1, 1, "<molid>"},
+    {"delrep", m_delrep, 2, 2, "<repid> <molid>"},
+    {"modrep", m_modrep, 2, 2, "<repid> <molid>"},
+    {"modstyle", m_modify, 3, MS_ARGS_ANY, "<repid> <molid> <style> ?<parameter> ...?"},
+    {"modselect", m_modify, 3, MS_ARGS_ANY, "<repid> <molid> <selection text>"},
+    {"modcolor", m_modify, 3, MS_ARGS_ANY, "<repid> <molid> <method> ?<parameter> ...?"},
+    {"modmaterial", m_modify, 3, MS_ARGS_ANY, "<repid> <molid> <material>"},
+    {"showrep", m_flag, 2, 3, "<molid> <repid> ?on|off?"},
+    {"selupdate", m_flag, 2, 3, "<repid> <molid> ?on|off?"},
+    {"colupdate", m_flag, 2, 3, "<repid> <molid> ?on|off?"},
+    {"drawframes", m_drawframes, 2, MS_ARGS_ANY, "<molid> <repid> ?<frames>|now?"},
+    {"smoothrep", m_smoothrep, 2, 3, "<molid> <repid> ?<n>?"},
+    {"scaleminmax", m_scaleminmax, 2, 4, "<molid> <repid> ?<min> <max>|auto?"},
+    {"repname", m_repname, 2, 2, "<molid> <repid>"},
+    {"repindex", m_repindex, 2, 2, "<molid> <name>"},
+    {"showperiodic", m_periodic, 2, 3, "<molid> <repid> ?<flags of xyzXYZn>?"},
+    {"numperiodic", m_periodic, 2, 3, "<molid> <repid> ?<n>?"},
+    {"repinfo", m_repinfo, 2, 3,
+     "<molid> <repid> ?spheres|cylinders|lines|points|vertices|triangles?"},
+    {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_rep_register(ms_app *app)
 {

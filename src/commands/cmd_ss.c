@@ -12,7 +12,6 @@
 
 static int mol_ssrecalc(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return ms_cmd_error(interp, "mol ssrecalc: usage: mol ssrecalc <molid>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol ssrecalc");
     if (!m) return TCL_ERROR;
     ms_error err = {{0}};
@@ -24,6 +23,7 @@ static int mol_ssrecalc(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 
 void ms_cmd_ss_register(ms_app *app)
 {
-    static const ms_subcmd table[] = {{"ssrecalc", mol_ssrecalc}, {NULL, NULL}};
+    static const ms_subcmd table[] = {{"ssrecalc", mol_ssrecalc, 1, 1, "<molid>"},
+                                      {NULL, NULL, 0, 0, NULL}};
     ms_cmdset_extend(app, "mol", table);
 }

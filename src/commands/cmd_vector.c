@@ -21,7 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define VEC_CMD(name) static int name(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+#define VEC_CMD(name) static int name(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 
 static int set_doubles(Tcl_Interp *interp, const double *v, int n)
 {
@@ -113,13 +113,9 @@ static int get_tnums(Tcl_Interp *interp, Tcl_Obj *obj, const char *cmd, const ch
 }
 
 /* Two expr-style lists; with same_size they must be equally long. */
-static int get_tnum_pair(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], const char *cmd,
+static int get_tnum_pair(Tcl_Interp *interp, Tcl_Obj *const objv[], const char *cmd,
                          int same_size, tn_list *a, tn_list *b)
 {
-    if (objc != 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vec1 vec2");
-        return TCL_ERROR;
-    }
     if (get_tnums(interp, objv[1], cmd, "first vector", a) != TCL_OK) return TCL_ERROR;
     if (get_tnums(interp, objv[2], cmd, "second vector", b) != TCL_OK) {
         free(a->v);
@@ -143,10 +139,6 @@ static int set_tnums(Tcl_Interp *interp, const tnum *v, int n)
 
 VEC_CMD(cmd_vecadd)
 {
-    if (objc < 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vec1 vec2 ?vec3? ?vec4? ...");
-        return TCL_ERROR;
-    }
     ms_numlist sum, term;
     if (ms_tcl_get_numlist(interp, objv[1], "vecadd", "vector", &sum) != TCL_OK) return TCL_ERROR;
     for (int t = 2; t < objc; t++) {
@@ -170,10 +162,6 @@ VEC_CMD(cmd_vecadd)
 VEC_CMD(cmd_vecsub)
 {
     ms_numlist a, b;
-    if (objc != 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vec1 vec2");
-        return TCL_ERROR;
-    }
     if (two_vectors(interp, objv, "vecsub", &a, &b) != TCL_OK) return TCL_ERROR;
     for (int i = 0; i < a.n; i++) a.v[i] -= b.v[i];
     set_doubles(interp, a.v, a.n);
@@ -185,10 +173,6 @@ VEC_CMD(cmd_vecsub)
 VEC_CMD(cmd_vecscale)
 {
     ms_numlist a, b;
-    if (objc != 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "scalar vector | vector scalar");
-        return TCL_ERROR;
-    }
     if (ms_tcl_get_numlist(interp, objv[1], "vecscale", "first argument", &a) != TCL_OK)
         return TCL_ERROR;
     if (ms_tcl_get_numlist(interp, objv[2], "vecscale", "second argument", &b) != TCL_OK) {
@@ -213,7 +197,7 @@ VEC_CMD(cmd_vecscale)
 VEC_CMD(cmd_vecdot)
 {
     tn_list a, b;
-    if (get_tnum_pair(interp, objc, objv, "vecdot", 1, &a, &b) != TCL_OK) return TCL_ERROR;
+    if (get_tnum_pair(interp, objv, "vecdot", 1, &a, &b) != TCL_OK) return TCL_ERROR;
     tnum sum = tn_int(0);
     for (int k = 0; k < a.n; k++) sum = tn_add(sum, tn_mul(a.v[k], b.v[k]));
     free(a.v);
@@ -225,7 +209,7 @@ VEC_CMD(cmd_vecdot)
 VEC_CMD(cmd_veccross)
 {
     tn_list a, b;
-    if (get_tnum_pair(interp, objc, objv, "veccross", 0, &a, &b) != TCL_OK) return TCL_ERROR;
+    if (get_tnum_pair(interp, objv, "veccross", 0, &a, &b) != TCL_OK) return TCL_ERROR;
     int ok = a.n >= 3 && b.n >= 3;
     tnum c[3];
     for (int k = 0; ok && k < 3; k++) {
@@ -239,13 +223,8 @@ VEC_CMD(cmd_veccross)
 }
 
 /* One list of numbers as the only argument. */
-static int one_vector(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], const char *cmd,
-                      ms_numlist *l)
+static int one_vector(Tcl_Interp *interp, Tcl_Obj *const objv[], const char *cmd, ms_numlist *l)
 {
-    if (objc != 2) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vector");
-        return TCL_ERROR;
-    }
     return ms_tcl_get_numlist(interp, objv[1], cmd, "vector", l);
 }
 
@@ -259,7 +238,7 @@ static double sum_squares(const ms_numlist *l)
 VEC_CMD(cmd_veclength)
 {
     ms_numlist l;
-    if (one_vector(interp, objc, objv, "veclength", &l) != TCL_OK) return TCL_ERROR;
+    if (one_vector(interp, objv, "veclength", &l) != TCL_OK) return TCL_ERROR;
     double s = sum_squares(&l);
     ms_numlist_free(&l);
     return set_double(interp, sqrt(s));
@@ -268,10 +247,6 @@ VEC_CMD(cmd_veclength)
 VEC_CMD(cmd_veclength2)
 {
     tn_list l;
-    if (objc != 2) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vector");
-        return TCL_ERROR;
-    }
     if (get_tnums(interp, objv[1], "veclength2", "vector", &l) != TCL_OK) return TCL_ERROR;
     tnum sum = tn_int(0);
     for (int k = 0; k < l.n; k++) sum = tn_add(sum, tn_mul(l.v[k], l.v[k]));
@@ -283,7 +258,7 @@ VEC_CMD(cmd_veclength2)
 VEC_CMD(cmd_vecnorm)
 {
     ms_numlist l;
-    if (one_vector(interp, objc, objv, "vecnorm", &l) != TCL_OK) return TCL_ERROR;
+    if (one_vector(interp, objv, "vecnorm", &l) != TCL_OK) return TCL_ERROR;
     double len = sqrt(sum_squares(&l));
     if (l.n > 0 && len == 0.0) {
         ms_numlist_free(&l);
@@ -298,10 +273,6 @@ VEC_CMD(cmd_vecnorm)
 VEC_CMD(cmd_vecdist)
 {
     ms_numlist a, b;
-    if (objc != 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vec1 vec2");
-        return TCL_ERROR;
-    }
     if (two_vectors(interp, objv, "vecdist", &a, &b) != TCL_OK) return TCL_ERROR;
     double s = 0.0;
     for (int i = 0; i < a.n; i++) s += (a.v[i] - b.v[i]) * (a.v[i] - b.v[i]);
@@ -313,10 +284,6 @@ VEC_CMD(cmd_vecdist)
 VEC_CMD(cmd_vecinvert)
 {
     tn_list l;
-    if (objc != 2) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vector");
-        return TCL_ERROR;
-    }
     if (get_tnums(interp, objv[1], "vecinvert", "vector", &l) != TCL_OK) return TCL_ERROR;
     for (int k = 0; k < l.n; k++) l.v[k] = tn_neg(l.v[k]);
     set_tnums(interp, l.v, l.n);
@@ -327,7 +294,7 @@ VEC_CMD(cmd_vecinvert)
 VEC_CMD(cmd_vecmul)
 {
     tn_list a, b;
-    if (get_tnum_pair(interp, objc, objv, "vecmul", 1, &a, &b) != TCL_OK) return TCL_ERROR;
+    if (get_tnum_pair(interp, objv, "vecmul", 1, &a, &b) != TCL_OK) return TCL_ERROR;
     for (int k = 0; k < a.n; k++) a.v[k] = tn_mul(a.v[k], b.v[k]);
     set_tnums(interp, a.v, a.n);
     free(a.v);
@@ -337,10 +304,6 @@ VEC_CMD(cmd_vecmul)
 
 VEC_CMD(cmd_veczero)
 {
-    if (objc != 1) {
-        Tcl_WrongNumArgs(interp, 1, objv, "");
-        return TCL_ERROR;
-    }
     Tcl_Obj *z[3] = {Tcl_NewIntObj(0), Tcl_NewIntObj(0), Tcl_NewIntObj(0)};
     Tcl_SetObjResult(interp, Tcl_NewListObj(3, z));
     return TCL_OK;
@@ -351,7 +314,7 @@ static int statistic(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], const 
                      int which)
 {
     ms_numlist l;
-    if (one_vector(interp, objc, objv, cmd, &l) != TCL_OK) return TCL_ERROR;
+    if (one_vector(interp, objv, cmd, &l) != TCL_OK) return TCL_ERROR;
     double sum = 0.0, var = 0.0;
     for (int i = 0; i < l.n; i++) sum += l.v[i];
     double mean = l.n ? sum / l.n : 0.0;
@@ -378,10 +341,6 @@ static int set_mat4(Tcl_Interp *interp, const double m[16])
 VEC_CMD(cmd_transmult)
 {
     double prod[16], m[16];
-    if (objc < 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "mx my ?m1? ?m2? ...");
-        return TCL_ERROR;
-    }
     if (ms_tcl_get_mat4(interp, objv[1], "transmult", prod) != TCL_OK) return TCL_ERROR;
     for (int i = 2; i < objc; i++) {
         if (ms_tcl_get_mat4(interp, objv[i], "transmult", m) != TCL_OK) return TCL_ERROR;
@@ -395,10 +354,6 @@ static int transvec_cmd(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], con
                         int inverse)
 {
     double v[3], m[16];
-    if (objc != 2) {
-        Tcl_WrongNumArgs(interp, 1, objv, "vector");
-        return TCL_ERROR;
-    }
     if (ms_tcl_get_vec3(interp, objv[1], cmd, "vector", v) != TCL_OK) return TCL_ERROR;
     if (inverse) ms_mat4d_transvecinv(m, v);
     else ms_mat4d_transvec(m, v);
@@ -411,18 +366,14 @@ VEC_CMD(cmd_transvecinv) { return transvec_cmd(interp, objc, objv, "transvecinv"
 VEC_CMD(cmd_transabout)
 {
     double axis[3], amount, m[16];
-    if (objc != 3 && objc != 4) {
-        Tcl_WrongNumArgs(interp, 1, objv, "axis amount ?deg|rad|pi?");
-        return TCL_ERROR;
-    }
     if (ms_tcl_get_vec3(interp, objv[1], "transabout", "axis", axis) != TCL_OK) return TCL_ERROR;
-    if (Tcl_GetDoubleFromObj(NULL, objv[2], &amount) != TCL_OK)
-        return ms_cmd_error(interp, "transabout: non-numeric angle '%s'", Tcl_GetString(objv[2]));
-    const char *unit = objc == 4 ? Tcl_GetString(objv[3]) : "deg";
-    if (!strcmp(unit, "deg")) amount *= M_PI / 180.0;
-    else if (!strcmp(unit, "pi")) amount *= M_PI;
-    else if (strcmp(unit, "rad"))
-        return ms_cmd_error(interp, "transabout: unit must be deg, rad or pi, not '%s'", unit);
+    static const char *const units[] = {"deg", "rad", "pi", NULL};
+    static const double unit_size[] = {M_PI / 180.0, 1.0, M_PI};
+    int unit = 0;
+    if (ms_arg_double(interp, objv[2], "angle", &amount) ||
+        (objc == 4 && ms_arg_choice(interp, objv[3], units, "unit", &unit)))
+        return TCL_ERROR;
+    amount *= unit_size[unit];
     ms_mat4d_rotate_about(m, axis, amount);
     return set_mat4(interp, m);
 }
@@ -430,10 +381,6 @@ VEC_CMD(cmd_transabout)
 VEC_CMD(cmd_transidentity)
 {
     double m[16];
-    if (objc != 1) {
-        Tcl_WrongNumArgs(interp, 1, objv, "");
-        return TCL_ERROR;
-    }
     ms_mat4d_identity(m);
     return set_mat4(interp, m);
 }
@@ -444,10 +391,6 @@ VEC_CMD(cmd_transtranspose)
     double m[16];
     Tcl_Obj **rows, **cols, *e[16];
     int nr, nc;
-    if (objc != 2) {
-        Tcl_WrongNumArgs(interp, 1, objv, "matrix");
-        return TCL_ERROR;
-    }
     if (ms_tcl_get_mat4(interp, objv[1], "transtranspose", m) != TCL_OK) return TCL_ERROR;
     Tcl_ListObjGetElements(NULL, objv[1], &nr, &rows);
     if (nr == 1) Tcl_ListObjGetElements(NULL, rows[0], &nr, &rows);
@@ -468,10 +411,6 @@ static int transform_cmd(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], co
 {
     double m[16], v[4] = {0, 0, 0, w3};
     ms_numlist l;
-    if (objc != 3) {
-        Tcl_WrongNumArgs(interp, 1, objv, "matrix vector");
-        return TCL_ERROR;
-    }
     if (ms_tcl_get_mat4(interp, objv[1], cmd, m) != TCL_OK ||
         ms_tcl_get_numlist(interp, objv[2], cmd, "vector", &l) != TCL_OK)
         return TCL_ERROR;
@@ -488,23 +427,30 @@ VEC_CMD(cmd_coordtrans) { return transform_cmd(interp, objc, objv, "coordtrans",
 
 void ms_cmd_vector_register(ms_app *app)
 {
-    static const struct {
-        const char *name;
-        Tcl_ObjCmdProc *fn;
-    } cmds[] = {
-        {"vecadd", cmd_vecadd},         {"vecsub", cmd_vecsub},
-        {"vecscale", cmd_vecscale},     {"vecdot", cmd_vecdot},
-        {"veccross", cmd_veccross},     {"veclength", cmd_veclength},
-        {"veclength2", cmd_veclength2}, {"vecnorm", cmd_vecnorm},
-        {"vecdist", cmd_vecdist},       {"vecinvert", cmd_vecinvert},
-        {"vecmul", cmd_vecmul},         {"veczero", cmd_veczero},
-        {"vecsum", cmd_vecsum},         {"vecmean", cmd_vecmean},
-        {"vecstddev", cmd_vecstddev},   {"transmult", cmd_transmult},
-        {"transvec", cmd_transvec},     {"transvecinv", cmd_transvecinv},
-        {"transabout", cmd_transabout}, {"transidentity", cmd_transidentity},
-        {"transtranspose", cmd_transtranspose},
-        {"vectrans", cmd_vectrans},     {"coordtrans", cmd_coordtrans},
+    static const ms_subcmd cmds[] = {
+        {"vecadd", cmd_vecadd, 2, MS_ARGS_ANY, "<vec1> <vec2> ?<vec3> ...?"},
+        {"vecsub", cmd_vecsub, 2, 2, "<vec1> <vec2>"},
+        {"vecscale", cmd_vecscale, 2, 2, "<scalar> <vector> | <vector> <scalar>"},
+        {"vecdot", cmd_vecdot, 2, 2, "<vec1> <vec2>"},
+        {"veccross", cmd_veccross, 2, 2, "<vec1> <vec2>"},
+        {"veclength", cmd_veclength, 1, 1, "<vector>"},
+        {"veclength2", cmd_veclength2, 1, 1, "<vector>"},
+        {"vecnorm", cmd_vecnorm, 1, 1, "<vector>"},
+        {"vecdist", cmd_vecdist, 2, 2, "<vec1> <vec2>"},
+        {"vecinvert", cmd_vecinvert, 1, 1, "<vector>"},
+        {"vecmul", cmd_vecmul, 2, 2, "<vec1> <vec2>"},
+        {"veczero", cmd_veczero, 0, 0, ""},
+        {"vecsum", cmd_vecsum, 1, 1, "<vector>"},
+        {"vecmean", cmd_vecmean, 1, 1, "<vector>"},
+        {"vecstddev", cmd_vecstddev, 1, 1, "<vector>"},
+        {"transmult", cmd_transmult, 2, MS_ARGS_ANY, "<m1> <m2> ?<m3> ...?"},
+        {"transvec", cmd_transvec, 1, 1, "<vector>"},
+        {"transvecinv", cmd_transvecinv, 1, 1, "<vector>"},
+        {"transabout", cmd_transabout, 2, 3, "<axis> <amount> ?deg|rad|pi?"},
+        {"transidentity", cmd_transidentity, 0, 0, ""},
+        {"transtranspose", cmd_transtranspose, 1, 1, "<matrix>"},
+        {"vectrans", cmd_vectrans, 2, 2, "<matrix> <vector>"},
+        {"coordtrans", cmd_coordtrans, 2, 2, "<matrix> <vector>"},
     };
-    for (size_t i = 0; i < MS_COUNTOF(cmds); i++)
-        Tcl_CreateObjCommand(app->interp, cmds[i].name, cmds[i].fn, app, NULL);
+    for (size_t i = 0; i < MS_COUNTOF(cmds); i++) ms_cmd_create(app, &cmds[i]);
 }

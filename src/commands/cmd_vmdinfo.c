@@ -4,8 +4,6 @@
 #include "config.h"
 #include "commands/commands.h"
 
-#include <string.h>
-#include <strings.h>
 #include <sys/utsname.h>
 
 #define MS_VMD_API_VERSION "1.9.4"
@@ -34,32 +32,34 @@ static const char *build_options(void)
         ;
 }
 
-static int cmd_vmdinfo(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+typedef enum { K_VERSION, K_VERSIONMSG, K_ARCH, K_OPTIONS, K_COMPILETIME, K_WWW, K_WWWHELP,
+               K_AUTHORS, K_PROGNAME } key;
+
+/* vmdinfo <key>: each key is a subcommand of no arguments */
+static int vmdinfo_key(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[]);
+
+static const ms_subcmd vmdinfo_table[] = {
+    {"version", vmdinfo_key, 0, 0, ""},     {"versionmsg", vmdinfo_key, 0, 0, ""},
+    {"arch", vmdinfo_key, 0, 0, ""},        {"options", vmdinfo_key, 0, 0, ""},
+    {"compiletime", vmdinfo_key, 0, 0, ""}, {"www", vmdinfo_key, 0, 0, ""},
+    {"wwwhelp", vmdinfo_key, 0, 0, ""},     {"authors", vmdinfo_key, 0, 0, ""},
+    {"progname", vmdinfo_key, 0, 0, ""},    {NULL, NULL, 0, 0, NULL}};
+
+static int vmdinfo_key(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    static const char *keys[] = {"version", "versionmsg", "arch", "options", "compiletime",
-                                 "www", "wwwhelp", "authors", "progname"};
-    if (objc != 2) {
-        Tcl_WrongNumArgs(interp, 1, objv, "version|versionmsg|arch|options|compiletime|www|authors");
-        return TCL_ERROR;
-    }
-    const char *k = Tcl_GetString(objv[1]);
     struct utsname u;
     Tcl_Obj *r = NULL;
-    if (!strcasecmp(k, "version")) r = Tcl_NewStringObj(MS_VMD_API_VERSION, -1);
-    else if (!strcasecmp(k, "versionmsg"))
+    switch ((key)ms_args_find(vmdinfo_table, sizeof *vmdinfo_table, Tcl_GetString(objv[1]))) {
+    case K_VERSION: r = Tcl_NewStringObj(MS_VMD_API_VERSION, -1); break;
+    case K_VERSIONMSG:
         r = Tcl_ObjPrintf("molscope %s (VMD %s Tcl API)", PACKAGE_VERSION, MS_VMD_API_VERSION);
-    else if (!strcasecmp(k, "arch")) r = Tcl_NewStringObj(uname(&u) == 0 ? u.machine : "unknown", -1);
-    else if (!strcasecmp(k, "options")) r = Tcl_NewStringObj(build_options(), -1);
-    else if (!strcasecmp(k, "compiletime")) r = Tcl_NewStringObj(__DATE__ " " __TIME__, -1);
-    else if (!strcasecmp(k, "www") || !strcasecmp(k, "wwwhelp")) r = Tcl_NewStringObj("https://molscope.org/", -1);
-    else if (!strcasecmp(k, "authors")) r = Tcl_NewStringObj("the molscope developers", -1);
-    else if (!strcasecmp(k, "progname")) r = Tcl_NewStringObj("molscope", -1);
-    if (!r) {
-        Tcl_Obj *msg = Tcl_ObjPrintf("vmdinfo: unknown key '%s': must be", k);
-        for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
-            Tcl_AppendPrintfToObj(msg, " %s", keys[i]);
-        Tcl_SetObjResult(interp, msg);
-        return TCL_ERROR;
+        break;
+    case K_ARCH: r = Tcl_NewStringObj(uname(&u) == 0 ? u.machine : "unknown", -1); break;
+    case K_OPTIONS: r = Tcl_NewStringObj(build_options(), -1); break;
+    case K_COMPILETIME: r = Tcl_NewStringObj(__DATE__ " " __TIME__, -1); break;
+    case K_WWW: case K_WWWHELP: r = Tcl_NewStringObj("https://molscope.org/", -1); break;
+    case K_AUTHORS: r = Tcl_NewStringObj("the molscope developers", -1); break;
+    case K_PROGNAME: r = Tcl_NewStringObj("molscope", -1); break;
     }
     Tcl_SetObjResult(interp, r);
     return TCL_OK;
@@ -67,5 +67,6 @@ static int cmd_vmdinfo(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *con
 
 void ms_cmd_vmdinfo_register(ms_app *app)
 {
-    Tcl_CreateObjCommand(app->interp, "vmdinfo", cmd_vmdinfo, app, NULL);
+    ms_cmdset_create(app, "vmdinfo", vmdinfo_table);
+    ms_cmdset_quiet(app, "vmdinfo");
 }

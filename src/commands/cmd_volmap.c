@@ -15,64 +15,39 @@
 #include "surf/qsurf.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
+
+typedef enum { COMBINE_AVG, COMBINE_MAX, COMBINE_MIN, COMBINE_STDEV } combine_how;
+static const char *const combine_names[] = {"avg", "max", "min", "stdev", NULL};
 
 typedef struct volmap_opts {
     ms_volmap_params p;
     Tcl_Obj *weight, *mol;
     const char *out;
     int allframes;
-    const char *combine;
+    int combine;              /* combine_how */
 } volmap_opts;
 
-static int parse_opts(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[],
-                      volmap_opts *o)
+#define VOFF(f) offsetof(volmap_opts, f)
+static const ms_opt volmap_options[] = {
+    {"-res", MS_OPT_FLOAT, VOFF(p.res), 0, 1e4, MS_OPT_ABOVE | MS_OPT_MAX, NULL},
+    {"-radscale", MS_OPT_FLOAT, VOFF(p.radscale), 0, 1e4, MS_OPT_ABOVE | MS_OPT_MAX, NULL},
+    {"-weight", MS_OPT_OBJ, VOFF(weight), 0, 0, 0, NULL},
+    {"-allframes", MS_OPT_FLAG, VOFF(allframes), 0, 0, 0, NULL},
+    {"-combine", MS_OPT_ENUM, VOFF(combine), 0, 0, 0, combine_names},
+    {"-quality", MS_OPT_INT, VOFF(p.quality), 0, 3, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"-o", MS_OPT_STRING, VOFF(out), 0, 0, 0, NULL},
+    {"-mol", MS_OPT_OBJ, VOFF(mol), 0, 0, 0, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
+
+static int parse_opts(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], volmap_opts *o)
 {
-    (void)app;
     memset(o, 0, sizeof *o);
     ms_volmap_params_default(&o->p);
-    o->combine = "avg";
-    for (int i = 3; i < objc; i++) {
-        const char *w = Tcl_GetString(objv[i]);
-        if (!strcasecmp(w, "-allframes")) {
-            o->allframes = 1;
-            continue;
-        }
-        if (i + 1 >= objc) return ms_cmd_error(interp, "volmap density: option %s has no value", w);
-        Tcl_Obj *v = objv[++i];
-        double d;
-        if (!strcasecmp(w, "-res") || !strcasecmp(w, "-radscale")) {
-            if (Tcl_GetDoubleFromObj(NULL, v, &d) != TCL_OK || !(d > 0) || d > 1e4)
-                return ms_cmd_error(interp, "volmap density: %s: expected a positive number, "
-                                    "got '%s'", w, Tcl_GetString(v));
-            if (!strcasecmp(w, "-res")) o->p.res = (float)d;
-            else o->p.radscale = (float)d;
-        } else if (!strcasecmp(w, "-quality")) {
-            int q;
-            if (Tcl_GetIntFromObj(NULL, v, &q) != TCL_OK || q < 0 || q > 3)
-                return ms_cmd_error(interp, "volmap density: -quality: expected 0 to 3, got '%s'",
-                                    Tcl_GetString(v));
-            o->p.quality = q;
-        } else if (!strcasecmp(w, "-weight")) {
-            o->weight = v;
-        } else if (!strcasecmp(w, "-o")) {
-            o->out = Tcl_GetString(v);
-        } else if (!strcasecmp(w, "-mol")) {
-            o->mol = v;
-        } else if (!strcasecmp(w, "-combine")) {
-            o->combine = Tcl_GetString(v);
-            if (strcasecmp(o->combine, "avg") && strcasecmp(o->combine, "max") &&
-                strcasecmp(o->combine, "min") && strcasecmp(o->combine, "stdev"))
-                return ms_cmd_error(interp, "volmap density: -combine: expected avg, max, min or "
-                                    "stdev, got '%s'", o->combine);
-        } else {
-            return ms_cmd_error(interp, "volmap density: unknown option '%s': must be -res, "
-                                "-radscale, -weight, -allframes, -combine, -quality, -o or -mol", w);
-        }
-    }
-    return TCL_OK;
+    o->combine = COMBINE_AVG;
+    return ms_args_options(interp, objc, objv, 3, volmap_options, o, NULL);
 }
 
 /* Per-atom weights (indexed like the molecule) from -weight; NULL for none. */
@@ -80,13 +55,13 @@ static int get_weights(Tcl_Interp *interp, const ms_molecule *m, Tcl_Obj *wobj,
                        const uint32_t *atoms, size_t n, float **out)
 {
     *out = NULL;
-    if (!wobj || !strcasecmp(Tcl_GetString(wobj), "none")) return TCL_OK;
+    if (!wobj || ms_word_eq(Tcl_GetString(wobj), "none")) return TCL_OK;
     const char *w = Tcl_GetString(wobj);
-    const float *src = !strcasecmp(w, "mass") ? m->atoms.mass
-                       : !strcasecmp(w, "charge") ? m->atoms.charge
-                       : !strcasecmp(w, "beta") ? m->atoms.beta
-                       : !strcasecmp(w, "occupancy") ? m->atoms.occupancy
-                       : !strcasecmp(w, "radius") ? m->atoms.radius : NULL;
+    static const char *const keywords[] = {"mass", "charge", "beta", "occupancy", "radius", NULL};
+    const float *const columns[] = {m->atoms.mass, m->atoms.charge, m->atoms.beta,
+                                    m->atoms.occupancy, m->atoms.radius};
+    int k = ms_args_find(keywords, sizeof *keywords, w);
+    const float *src = k < 0 ? NULL : columns[k];
     float *v = ms_calloc_array(m->atoms.n ? m->atoms.n : 1, sizeof *v);
     if (!v) return ms_cmd_error(interp, "volmap density: out of memory");
     if (src) {
@@ -127,13 +102,12 @@ static void frames_box(const ms_molecule *m, const uint32_t *atoms, size_t n, fl
 }
 
 /* Combine one frame's map into the accumulator (sums for avg and stdev). */
-static void combine_into(const char *how, float *acc, float *acc2, const float *v, size_t n,
-                         int first)
+static void combine_into(int how, float *acc, float *acc2, const float *v, size_t n, int first)
 {
     for (size_t i = 0; i < n; i++) {
         if (first) acc[i] = v[i], acc2[i] = v[i] * v[i];
-        else if (!strcasecmp(how, "max")) acc[i] = fmaxf(acc[i], v[i]);
-        else if (!strcasecmp(how, "min")) acc[i] = fminf(acc[i], v[i]);
+        else if (how == COMBINE_MAX) acc[i] = fmaxf(acc[i], v[i]);
+        else if (how == COMBINE_MIN) acc[i] = fminf(acc[i], v[i]);
         else acc[i] += v[i], acc2[i] += v[i] * v[i];
     }
 }
@@ -166,8 +140,8 @@ static int compute(const ms_molecule *m, long frame, const uint32_t *atoms, size
     size_t np = (size_t)vol->n[0] * (size_t)vol->n[1] * (size_t)vol->n[2];
     double nf = (double)m->nframes;
     for (size_t i = 0; i < np; i++) {
-        if (!strcasecmp(o->combine, "avg")) vol->data[i] = (float)(vol->data[i] / nf);
-        else if (!strcasecmp(o->combine, "stdev")) {
+        if (o->combine == COMBINE_AVG) vol->data[i] = (float)(vol->data[i] / nf);
+        else if (o->combine == COMBINE_STDEV) {
             double mean = vol->data[i] / nf, var = acc2[i] / nf - mean * mean;
             vol->data[i] = (float)sqrt(var > 0 ? var : 0);
         }
@@ -219,11 +193,8 @@ static int deliver(ms_app *app, Tcl_Interp *interp, ms_molecule *target, ms_qsur
 
 static int volmap_density(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc < 3)
-        return ms_cmd_error(interp, "volmap density: usage: volmap density <selection> ?-res r? "
-                            "?-radscale s? ?-weight w? ?-allframes? ?-combine c? ?-o file? ?-mol id?");
     volmap_opts o;
-    if (parse_opts(app, interp, objc, objv, &o)) return TCL_ERROR;
+    if (parse_opts(interp, objc, objv, &o)) return TCL_ERROR;
     if (!ms_cmd_sel_resolver)
         return ms_cmd_error(interp, "volmap density: atom selections are not available");
     int molid;
@@ -258,6 +229,10 @@ done:
     return rc;
 }
 
-static const ms_subcmd volmap_table[] = {{"density", volmap_density}, {NULL, NULL}};
+static const ms_subcmd volmap_table[] = {
+    {"density", volmap_density, 1, MS_ARGS_ANY,
+     "<selection> ?-res <r>? ?-radscale <s>? ?-weight <w>? ?-allframes? ?-combine "
+     "avg|max|min|stdev? ?-quality <0..3>? ?-o <file>? ?-mol <molid>?"},
+    {NULL, NULL, 0, 0, NULL}};
 
 void ms_cmd_volmap_register(ms_app *app) { ms_cmdset_create(app, "volmap", volmap_table); }

@@ -1,15 +1,17 @@
-/* cmdutil.c: subcommand dispatch, molecule ids and molspecs, errors, and the shared file
- * loading used by `mol new`, `mol addfile` and `animate read`. */
+/* cmdutil.c: commands made of subcommand tables (on the argument layer, args.c), molecule
+ * ids and molspecs, and the shared file loading used by `mol new`, `mol addfile` and
+ * `animate read`. */
 #include "config.h"
 #include "commands/commands.h"
 #include "fileio/load.h"
 #include "parallel/parallel.h"
 #include "select/atomsel.h"
 
+#include <limits.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 ms_sel_resolver ms_cmd_sel_resolver = NULL;
 void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m) = NULL;
@@ -18,29 +20,16 @@ void (*ms_cmd_volume_hook)(ms_app *app, ms_molecule *m) = NULL;
 struct ms_cmdset {
     char *name;
     ms_app *app;
-    ms_subcmd *items;
+    ms_subcmd *items;             /* n entries, then one with a NULL name */
     unsigned char *quiet_items;   /* per item: never changes the picture */
     size_t n, cap;
-    ms_subcmd_fn fallback;
-    int quiet;              /* no subcommand changes the picture */
+    ms_subcmd fallback;           /* fn NULL: none */
+    int quiet;                    /* no subcommand changes the picture */
 };
 
 #define MS_MAX_CMDSETS 32
 static ms_cmdset *cmdsets[MS_MAX_CMDSETS];
 static int ncmdsets;
-
-int ms_cmd_error(Tcl_Interp *interp, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    Tcl_Obj *msg = Tcl_NewObj();
-    char buf[2048];
-    vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    Tcl_AppendToObj(msg, buf, -1);
-    Tcl_SetObjResult(interp, msg);
-    return TCL_ERROR;
-}
 
 static ms_cmdset *find_set(const char *name)
 {
@@ -49,39 +38,17 @@ static ms_cmdset *find_set(const char *name)
     return NULL;
 }
 
-static Tcl_Obj *subcommand_list(const ms_cmdset *s)
-{
-    Tcl_Obj *o = Tcl_NewObj();
-    for (size_t i = 0; i < s->n; i++) {
-        if (i) Tcl_AppendToObj(o, i + 1 == s->n ? ", or " : ", ", -1);
-        Tcl_AppendToObj(o, s->items[i].name, -1);
-    }
-    return o;
-}
-
+/* The table's entry for objv[1] (or the fallback) gets the words; a missing or unknown word
+ * is the argument layer's error. */
 static int cmdset_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     ms_cmdset *s = cd;
-    if (objc < 2) {
-        Tcl_Obj *msg = Tcl_ObjPrintf("%s: missing subcommand: must be ", s->name);
-        Tcl_AppendObjToObj(msg, subcommand_list(s));
-        Tcl_SetObjResult(interp, msg);
-        return TCL_ERROR;
-    }
-    const char *word = Tcl_GetString(objv[1]);
-    for (size_t i = 0; i < s->n; i++)
-        if (ms_word_eq(word, s->items[i].name)) {
-            if (!s->quiet && !s->quiet_items[i]) s->app->scene_version++;
-            return s->items[i].fn(s->app, interp, objc, objv);
-        }
-    if (s->fallback) {
-        if (!s->quiet) s->app->scene_version++;
-        return s->fallback(s->app, interp, objc, objv);
-    }
-    Tcl_Obj *msg = Tcl_ObjPrintf("%s: unknown subcommand \"%s\": must be ", s->name, word);
-    Tcl_AppendObjToObj(msg, subcommand_list(s));
-    Tcl_SetObjResult(interp, msg);
-    return TCL_ERROR;
+    int k = objc > 1 ? ms_args_find(s->items, sizeof *s->items, Tcl_GetString(objv[1])) : -1;
+    if (k < 0 && (objc < 2 || !s->fallback.fn))
+        return ms_args_dispatch(s->app, interp, objc, objv, 1, s->items, NULL, s->name);
+    if (!s->quiet && (k < 0 || !s->quiet_items[k])) s->app->scene_version++;
+    if (k < 0) return ms_args_call(s->app, interp, objc, objv, 1, &s->fallback, s->name, 1);
+    return ms_args_call(s->app, interp, objc, objv, 2, &s->items[k], s->name, 0);
 }
 
 static int extend(const char *name, const ms_subcmd *table, int quiet)
@@ -90,7 +57,7 @@ static int extend(const char *name, const ms_subcmd *table, int quiet)
     if (!s) return -1;
     for (const ms_subcmd *t = table; t->name; t++) {
         size_t cap = s->cap;
-        if (ms_grow((void **)&s->items, &s->cap, s->n + 1, sizeof *s->items)) return -1;
+        if (ms_grow((void **)&s->items, &s->cap, s->n + 2, sizeof *s->items)) return -1;
         if (s->cap != cap) {
             unsigned char *q = realloc(s->quiet_items, s->cap);
             if (!q) return -1;
@@ -98,6 +65,7 @@ static int extend(const char *name, const ms_subcmd *table, int quiet)
         }
         s->quiet_items[s->n] = (unsigned char)quiet;
         s->items[s->n++] = *t;
+        memset(&s->items[s->n], 0, sizeof *s->items);
     }
     return 0;
 }
@@ -130,21 +98,25 @@ ms_cmdset *ms_cmdset_create(ms_app *app, const char *name, const ms_subcmd *tabl
 {
     if (ncmdsets >= MS_MAX_CMDSETS) return NULL;
     ms_cmdset *s = calloc(1, sizeof *s);
-    if (!s || !(s->name = ms_strdup(name))) {
+    if (!s || !(s->name = ms_strdup(name)) ||
+        ms_grow((void **)&s->items, &s->cap, 1, sizeof *s->items) ||
+        !(s->quiet_items = calloc(s->cap, 1))) {
+        if (s) free(s->items), free(s->name);
         free(s);
         return NULL;
     }
+    memset(s->items, 0, sizeof *s->items);   /* the table's end */
     s->app = app;
     cmdsets[ncmdsets++] = s;
-    if (table) ms_cmdset_extend(app, name, table);
+    if (table) extend(name, table, 0);
     Tcl_CreateObjCommand(app->interp, name, cmdset_proc, s, cmdset_delete);
     return s;
 }
 
-void ms_cmdset_fallback(ms_app *app, const char *name, ms_subcmd_fn fn)
+void ms_cmdset_fallback(ms_app *app, const char *name, const ms_subcmd *entry)
 {
     ms_cmdset *s = find_set(name);
-    if (s) s->fallback = fn;
+    if (s) s->fallback = *entry;
 }
 
 void ms_cmdset_quiet(ms_app *app, const char *name)
@@ -153,12 +125,36 @@ void ms_cmdset_quiet(ms_app *app, const char *name)
     if (s) s->quiet = 1;
 }
 
+/* ---------------------------------------------------------------- plain commands */
+
+typedef struct plain_cmd {
+    ms_app *app;
+    const ms_subcmd *spec;
+} plain_cmd;
+
+static int plain_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    const plain_cmd *c = cd;
+    return ms_args_call(c->app, interp, objc, objv, 1, c->spec, c->spec->name, 1);
+}
+
+static void plain_delete(ClientData cd) { free(cd); }
+
+void ms_cmd_create(ms_app *app, const ms_subcmd *spec)
+{
+    plain_cmd *c = malloc(sizeof *c);
+    if (!c) return;
+    c->app = app;
+    c->spec = spec;
+    Tcl_CreateObjCommand(app->interp, spec->name, plain_proc, c, plain_delete);
+}
+
 /* ---------------------------------------------------------------- molecules */
 
 ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const char *cmd)
 {
     const char *w = Tcl_GetString(word);
-    if (!strcasecmp(w, "top")) {
+    if (ms_word_eq(w, "top")) {
         ms_molecule *m = ms_molset_top(&app->mols);
         if (!m) ms_cmd_error(interp, "%s: no molecules are loaded (no top molecule)", cmd);
         return m;
@@ -173,19 +169,28 @@ ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const ch
     return m;
 }
 
-/* Does molecule m match a molspec word? -1 when the word is not a molspec keyword. */
-static int spec_match(const ms_molecule *m, const char *word, int top)
+/* The molspec words; the second spelling of a pair means the same. */
+typedef enum { SPEC_ALL, SPEC_NONE, SPEC_TOP, SPEC_ACTIVE, SPEC_INACTIVE, SPEC_DISPLAYED, SPEC_ON,
+               SPEC_OFF, SPEC_FIXED, SPEC_FREE, SPEC_UNFIX } spec_word;
+static const char *const spec_words[] = {"all", "none", "top", "active", "inactive",
+                                         "displayed", "on", "off", "fixed", "free", "unfix",
+                                         NULL};
+
+/* Does molecule m match molspec word k? */
+static int spec_match(const ms_molecule *m, spec_word k, int top)
 {
-    if (!strcasecmp(word, "all")) return 1;
-    if (!strcasecmp(word, "none")) return 0;
-    if (!strcasecmp(word, "top")) return m->id == top;
-    if (!strcasecmp(word, "active")) return m->active;
-    if (!strcasecmp(word, "inactive")) return !m->active;
-    if (!strcasecmp(word, "displayed") || !strcasecmp(word, "on")) return m->displayed;
-    if (!strcasecmp(word, "off")) return !m->displayed;
-    if (!strcasecmp(word, "fixed")) return m->fixed;
-    if (!strcasecmp(word, "free") || !strcasecmp(word, "unfix")) return !m->fixed;
-    return -1;
+    switch (k) {
+    case SPEC_ALL: return 1;
+    case SPEC_NONE: return 0;
+    case SPEC_TOP: return m->id == top;
+    case SPEC_ACTIVE: return m->active;
+    case SPEC_INACTIVE: return !m->active;
+    case SPEC_DISPLAYED: case SPEC_ON: return m->displayed;
+    case SPEC_OFF: return !m->displayed;
+    case SPEC_FIXED: return m->fixed;
+    case SPEC_FREE: case SPEC_UNFIX: return !m->fixed;
+    }
+    return 0;
 }
 
 int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char *cmd,
@@ -201,7 +206,6 @@ int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char
         rc = ms_cmd_error(interp, "%s: out of memory", cmd);
         goto done;
     }
-    static const ms_molecule probe = {0};
     char *save = NULL;
     for (char *w = strtok_r(copy, "|/: \t", &save); w; w = strtok_r(NULL, "|/: \t", &save)) {
         char *end;
@@ -213,12 +217,14 @@ int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char
                 goto done;
             }
             chosen[i] = 1;
-        } else if (spec_match(&probe, w, -1) < 0) {
-            rc = ms_cmd_error(interp, "%s: bad molecule specification '%s'", cmd, w);
-            goto done;
         } else {
+            int k = ms_args_find(spec_words, sizeof *spec_words, w);
+            if (k < 0) {
+                rc = ms_cmd_error(interp, "%s: bad molecule specification '%s'", cmd, w);
+                goto done;
+            }
             for (size_t i = 0; i < nm; i++)
-                if (spec_match(app->mols.mols[i], w, app->mols.top) > 0) chosen[i] = 1;
+                if (spec_match(app->mols.mols[i], (spec_word)k, app->mols.top)) chosen[i] = 1;
         }
     }
     for (size_t i = 0; i < nm; i++)
@@ -267,83 +273,47 @@ static void default_reset_view(ms_app *app)
 
 void (*ms_cmd_reset_view)(ms_app *app) = default_reset_view;
 
-int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out)
-{
-    Tcl_WideInt v;
-    if (Tcl_GetWideIntFromObj(NULL, obj, &v) != TCL_OK || v < 0 || v > max)
-        return ms_cmd_error(interp, "%s: expected a whole number from 0 to %ld, got '%s'", what,
-                            max, Tcl_GetString(obj));
-    *out = (long)v;
-    return TCL_OK;
-}
-
 /* ---------------------------------------------------------------- loading */
 
-static int get_long_opt(Tcl_Interp *interp, const char *cmd, const char *opt, Tcl_Obj *v,
-                        long lo, long *out)
-{
-    Tcl_WideInt w;
-    if (Tcl_GetWideIntFromObj(NULL, v, &w) != TCL_OK || w < lo || w > 2147483647)
-        return ms_cmd_error(interp, "%s: option %s: expected an integer >= %ld, got '%s'", cmd,
-                            opt, lo, Tcl_GetString(v));
-    *out = (long)w;
-    return TCL_OK;
-}
+/* VMD's load options; waitfor is a number or `all`, read after the table. */
+typedef struct load_args {
+    ms_load_opts o;
+    Tcl_Obj *waitfor;
+} load_args;
 
-static int get_bool_opt(Tcl_Interp *interp, const char *cmd, const char *opt, Tcl_Obj *v,
-                        int *out)
-{
-    if (Tcl_GetBooleanFromObj(NULL, v, out) != TCL_OK)
-        return ms_cmd_error(interp, "%s: option %s: expected 0 or 1, got '%s'", cmd, opt,
-                            Tcl_GetString(v));
-    return TCL_OK;
-}
+#define LOFF(f) offsetof(load_args, f)
+static const ms_opt load_options[] = {
+    {"type", MS_OPT_STRING, LOFF(o.type), 0, 0, 0, NULL},
+    {"first", MS_OPT_LONG, LOFF(o.first), 0, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"beg", MS_OPT_LONG, LOFF(o.first), 0, INT_MAX, MS_OPT_MIN | MS_OPT_MAX | MS_OPT_ALIAS, NULL},
+    {"last", MS_OPT_LONG, LOFF(o.last), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"end", MS_OPT_LONG, LOFF(o.last), -1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX | MS_OPT_ALIAS, NULL},
+    {"step", MS_OPT_LONG, LOFF(o.step), 1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX, NULL},
+    {"skip", MS_OPT_LONG, LOFF(o.step), 1, INT_MAX, MS_OPT_MIN | MS_OPT_MAX | MS_OPT_ALIAS, NULL},
+    {"waitfor", MS_OPT_OBJ, LOFF(waitfor), 0, 0, 0, NULL},
+    {"filebonds", MS_OPT_BOOL, LOFF(o.filebonds), 0, 0, 0, NULL},
+    {"autobonds", MS_OPT_BOOL, LOFF(o.autobonds), 0, 0, 0, NULL},
+    {"volsets", MS_OPT_IGNORE, 0, 0, 0, 0, NULL},   /* every data set of a volume file is read */
+    {"assembly", MS_OPT_STRING, LOFF(o.assembly), 0, 0, 0, NULL},
+    {"bcast", MS_OPT_BOOL, LOFF(o.bcast), 0, 0, 0, NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL}};
 
 int ms_cmd_parse_load_opts(Tcl_Interp *interp, const char *cmd, int objc, Tcl_Obj *const objv[],
                            int start, ms_load_opts *o, Tcl_Obj **molid_word)
 {
-    if (molid_word) *molid_word = NULL;
-    for (int i = start; i < objc; i += 2) {
-        const char *opt = Tcl_GetString(objv[i]);
-        if (i + 1 >= objc) {
-            if (molid_word) {
-                *molid_word = objv[i];
-                return TCL_OK;
-            }
-            return ms_cmd_error(interp, "%s: option '%s' has no value", cmd, opt);
-        }
-        Tcl_Obj *v = objv[i + 1];
-        if (!strcasecmp(opt, "type")) {
-            o->type = Tcl_GetString(v);
-        } else if (!strcasecmp(opt, "first") || !strcasecmp(opt, "beg")) {
-            if (get_long_opt(interp, cmd, opt, v, 0, &o->first)) return TCL_ERROR;
-        } else if (!strcasecmp(opt, "last") || !strcasecmp(opt, "end")) {
-            if (get_long_opt(interp, cmd, opt, v, -1, &o->last)) return TCL_ERROR;
-        } else if (!strcasecmp(opt, "step") || !strcasecmp(opt, "skip")) {
-            if (get_long_opt(interp, cmd, opt, v, 1, &o->step)) return TCL_ERROR;
-        } else if (!strcasecmp(opt, "waitfor")) {
-            if (!strcasecmp(Tcl_GetString(v), "all")) o->waitfor = -1;
-            else if (get_long_opt(interp, cmd, opt, v, -1, &o->waitfor)) return TCL_ERROR;
-        } else if (!strcasecmp(opt, "filebonds")) {
-            if (get_bool_opt(interp, cmd, opt, v, &o->filebonds)) return TCL_ERROR;
-        } else if (!strcasecmp(opt, "autobonds")) {
-            if (get_bool_opt(interp, cmd, opt, v, &o->autobonds)) return TCL_ERROR;
-        } else if (!strcasecmp(opt, "bcast")) {
-            if (get_bool_opt(interp, cmd, opt, v, &o->bcast)) return TCL_ERROR;
-        } else if (!strcasecmp(opt, "volsets")) {
-            /* accepted: every data set of a volume file is read */
-        } else if (!strcasecmp(opt, "assembly")) {
-            o->assembly = Tcl_GetString(v);
-        } else {
-            return ms_cmd_error(interp,
-                                "%s: unknown option '%s': must be type, first, last, step, "
-                                "waitfor, filebonds, autobonds, volsets, assembly or bcast", cmd,
-                                opt);
-        }
-    }
-    if (o->last >= 0 && o->last < o->first)
+    load_args a = {*o, NULL};
+    if (ms_args_options(interp, objc, objv, start, load_options, &a, molid_word) != TCL_OK)
+        return TCL_ERROR;
+    static const char *const all[] = {"all", NULL};
+    int k;
+    if (a.waitfor &&
+        ms_arg_long_or(interp, a.waitfor, "waitfor", all, -1, INT_MAX, &k, &a.o.waitfor))
+        return TCL_ERROR;
+    if (a.waitfor && k == 0) a.o.waitfor = -1;
+    if (a.o.last >= 0 && a.o.last < a.o.first)
         return ms_cmd_error(interp, "%s: last frame %ld comes before first frame %ld", cmd,
-                            o->last, o->first);
+                            a.o.last, a.o.first);
+    *o = a.o;
     return TCL_OK;
 }
 

@@ -1,6 +1,7 @@
-/* commands.h: the Tcl command bindings and what they share: subcommand tables that other
- * modules can extend (the representation module adds `mol addrep` ...), molecule id and
- * molspec parsing, and error messages that name the command and the object.
+/* commands.h: the Tcl command bindings and what they share: commands made of subcommand
+ * tables that other modules can extend (the representation module adds `mol addrep` ...),
+ * molecule id and molspec parsing, and the shared file loading. How arguments are declared,
+ * counted, read and refused: args.h.
  *
  * Each binding is thin: parse the arguments, call the core, set the result. */
 #ifndef MS_COMMANDS_H
@@ -9,34 +10,29 @@
 #include <tcl.h>
 
 #include "app/app.h"
+#include "commands/args.h"
 
-/* A subcommand: objv[0] is the command, objv[1] the subcommand word. */
-typedef int (*ms_subcmd_fn)(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[]);
-
-typedef struct ms_subcmd {
-    const char *name;
-    ms_subcmd_fn fn;
-} ms_subcmd;
-
-/* A command made of subcommands (mol, molinfo, animate, display, color ...). */
+/* A command made of subcommands (mol, molinfo, animate, display, color ...), dispatched by
+ * the argument layer (args.h). */
 typedef struct ms_cmdset ms_cmdset;
 
-/* Create the Tcl command `name` (and its aliases) dispatching over `table` (ended by a
- * {NULL, NULL} entry). Subcommand words match case-insensitively over 15 characters. */
+/* Create the Tcl command `name` dispatching over `table` (args.h: ended by a NULL name;
+ * the table must outlive the command's creation only: it is copied). */
 ms_cmdset *ms_cmdset_create(ms_app *app, const char *name, const ms_subcmd *table);
 /* Add subcommands to an existing command (from another module). */
 int ms_cmdset_extend(ms_app *app, const char *name, const ms_subcmd *table);
-/* Called for words that match no subcommand (molinfo <id> get ...): may be NULL. */
-void ms_cmdset_fallback(ms_app *app, const char *name, ms_subcmd_fn fn);
+/* The entry called for a word that matches no subcommand (molinfo <molid> get ...): its
+ * counts include that word, its usage starts with it ("<molid> get|set ..."). */
+void ms_cmdset_fallback(ms_app *app, const char *name, const ms_subcmd *entry);
 /* Every subcommand of a command bumps app->scene_version (the live view follows it) unless
  * it was added by ms_cmdset_extend_quiet (queries) or the whole command is marked quiet
  * (molinfo, measure ...: what they change, they bump themselves). */
 int ms_cmdset_extend_quiet(ms_app *app, const char *name, const ms_subcmd *table);
 void ms_cmdset_quiet(ms_app *app, const char *name);
 
-/* Set an error message "<fmt...>" and return TCL_ERROR. */
-int ms_cmd_error(Tcl_Interp *interp, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
+/* A command without subcommands (rotate, vecadd ...): spec->name is the command, its counts
+ * are of the words after it. spec must live as long as the command. */
+void ms_cmd_create(ms_app *app, const ms_subcmd *spec);
 
 /* A molecule named by id or "top"; NULL with an error naming cmd and the word. */
 ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const char *cmd);
@@ -44,9 +40,6 @@ ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const ch
  * off, fixed, free/unfix, joined with | / or :. *out is malloc'd. */
 int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char *cmd,
                    int **out, int *n);
-
-/* Parse a non-negative count with an upper bound, naming what it is on error. */
-int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out);
 
 /* A selection object (atomselectN) resolved for commands that take one (`animate write ...
  * sel`, `measure`): the selection module installs this; NULL until then. Returns TCL_OK with

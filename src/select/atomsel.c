@@ -69,12 +69,8 @@ void ms_atomsel_untie(Tcl_Interp *interp, const char *name)
 }
 
 /* ::molscope::upproc_tie name: tie name to the frame this runs in (via uplevel). */
-static int cmd_tie(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int cmd_tie(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 2) {
-        Tcl_WrongNumArgs(interp, 1, objv, "name");
-        return TCL_ERROR;
-    }
     return ms_atomsel_tie(interp, Tcl_GetString(objv[1]));
 }
 
@@ -99,9 +95,8 @@ int ms_atomsel_retie(Tcl_Interp *interp, Tcl_Obj *level, const char *name)
 }
 
 /* upproc level name: VMD's helper, for scripts that call it themselves. */
-static int cmd_upproc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int cmd_upproc(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return ms_cmd_error(interp, "upproc: usage: upproc <level> <procname>");
     return ms_atomsel_retie(interp, objv[1], Tcl_GetString(objv[2]));
 }
 
@@ -193,35 +188,28 @@ long ms_atomsel_frame(ms_app *app, const ms_atomsel *s)
     return m ? ms_sel_resolve_frame(m, s->frame) : -1;
 }
 
-int ms_atomsel_parse_frame(Tcl_Interp *interp, Tcl_Obj *word, const char *what, long *frame)
+int ms_atomsel_parse_frame(Tcl_Interp *interp, Tcl_Obj *word, long *frame)
 {
-    const char *w = Tcl_GetString(word);
-    Tcl_WideInt v;
-    if (!strcasecmp(w, "now")) *frame = MS_ATOMSEL_NOW;
-    else if (!strcasecmp(w, "last")) *frame = MS_ATOMSEL_LAST;
-    else if (!strcasecmp(w, "first")) *frame = 0;
-    else if (Tcl_GetWideIntFromObj(NULL, word, &v) == TCL_OK && v >= 0 && v <= 2147483647L)
-        *frame = (long)v;
-    else
-        return ms_cmd_error(interp, "%s: bad frame '%s': must be a number >= 0, first, last or now",
-                            what, w);
+    static const char *const words[] = {"now", "last", "first", NULL};
+    static const long word_frames[] = {MS_ATOMSEL_NOW, MS_ATOMSEL_LAST, 0};
+    int k;
+    if (ms_arg_long_or(interp, word, "frame", words, 0, 2147483647L, &k, frame)) return TCL_ERROR;
+    if (k >= 0) *frame = word_frames[k];
     return TCL_OK;
 }
 
 /* ---------------------------------------------------------------- atomselect <mol> <text> */
 
-static int atomsel_create(atomsel_state *st, Tcl_Interp *interp, int objc,
-                          Tcl_Obj *const objv[])
+static int atomsel_create(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_app *app = st->app;
+    static const char *const frame_word[] = {"frame", NULL};
+    atomsel_state *st = Tcl_GetAssocData(interp, "ms_atomsel", NULL);
     long frame = MS_ATOMSEL_NOW;
-    if (objc == 5 && ms_word_eq(Tcl_GetString(objv[3]), "frame")) {
-        if (ms_atomsel_parse_frame(interp, objv[4], "atomselect", &frame)) return TCL_ERROR;
-    } else if (objc != 3) {
-        return ms_cmd_error(interp, "atomselect: usage: atomselect <molid> <selection text> "
-                                    "?frame <n|first|last|now>?, or atomselect list|keywords|"
-                                    "symboltable|macro|delmacro");
-    }
+    int k;
+    if (objc == 4) return ms_args_usage(interp);
+    if (objc == 5 && (ms_arg_choice(interp, objv[3], frame_word, NULL, &k) ||
+                      ms_atomsel_parse_frame(interp, objv[4], &frame)))
+        return TCL_ERROR;
     ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "atomselect");
     if (!m) return TCL_ERROR;
     ms_error err = {{0}};
@@ -246,7 +234,7 @@ static int atomsel_create(atomsel_state *st, Tcl_Interp *interp, int objc,
 
 /* ---------------------------------------------------------------- atomselect list/keywords */
 
-static int list_selections(Tcl_Interp *interp)
+static int list_selections(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     if (Tcl_Eval(interp, "lsort -dictionary [info commands {atomselect[0-9]*}]") != TCL_OK)
         return TCL_ERROR;
@@ -279,8 +267,9 @@ static void append_macro_symbol(void *ud, const char *name, const char *text)
 }
 
 /* keywords: every name; symboltable: {name name int|float|string keyword|boolean|...}. */
-static int list_keywords(Tcl_Interp *interp, int symbols)
+static int list_keywords(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
+    int symbols = ms_word_eq(Tcl_GetString(objv[1]), "symboltable");
     static const char *is[] = {"int", "float", "string", "int", "float", "string"};
     static const char *takes[] = {"keyword", "keyword", "keyword", "boolean", "function",
                                   "sfunction"};
@@ -303,7 +292,7 @@ static int list_keywords(Tcl_Interp *interp, int symbols)
     return TCL_OK;
 }
 
-static int macro_cmd(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int macro_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     ms_error err = {{0}};
     if (objc == 2) {
@@ -325,29 +314,17 @@ static int macro_cmd(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
         free(buf);
         return TCL_OK;
     }
-    if (objc != 4)
-        return ms_cmd_error(interp, "atomselect macro: usage: atomselect macro ?name ?definition??");
     if (ms_sel_macro_define(name, Tcl_GetString(objv[3]), &err))
         return ms_cmd_error(interp, "atomselect macro: %s", err.msg);
     return TCL_OK;
 }
 
-static int atomselect_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int delmacro_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    atomsel_state *st = cd;
-    const char *w = objc > 1 ? Tcl_GetString(objv[1]) : "";
     ms_error err = {{0}};
-    if (objc == 2 && ms_word_eq(w, "list")) return list_selections(interp);
-    if (objc == 2 && ms_word_eq(w, "keywords")) return list_keywords(interp, 0);
-    if (objc == 2 && ms_word_eq(w, "symboltable")) return list_keywords(interp, 1);
-    if (objc >= 2 && ms_word_eq(w, "macro")) return macro_cmd(interp, objc, objv);
-    if (objc >= 2 && ms_word_eq(w, "delmacro")) {
-        if (objc != 3) return ms_cmd_error(interp, "atomselect delmacro: usage: atomselect delmacro <name>");
-        if (ms_sel_macro_delete(Tcl_GetString(objv[2]), &err))
-            return ms_cmd_error(interp, "atomselect delmacro: %s", err.msg);
-        return TCL_OK;
-    }
-    return atomsel_create(st, interp, objc, objv);
+    if (ms_sel_macro_delete(Tcl_GetString(objv[2]), &err))
+        return ms_cmd_error(interp, "atomselect delmacro: %s", err.msg);
+    return TCL_OK;
 }
 
 /* ---------------------------------------------------------------- $sel <method> ... */
@@ -356,26 +333,25 @@ static int atomsel_obj_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj 
 {
     ms_atomsel *s = cd;
     atomsel_state *st = Tcl_GetAssocData(interp, "ms_atomsel", NULL);
-    const char *w = objc > 1 ? Tcl_GetString(objv[1]) : "";
-    const struct ms_atomsel_method *m = NULL;
-    for (int i = 0; ms_atomsel_methods[i].name && !m; i++)
-        if (ms_word_eq(w, ms_atomsel_methods[i].name)) m = &ms_atomsel_methods[i];
-    if (!m && objc > 1 && !strncasecmp(w, "write", 5) && w[5]) m = &ms_atomsel_methods[0];
-    if (!m) {
-        Tcl_Obj *msg = Tcl_ObjPrintf("%s: %s method '%s': must be ", s->name,
-                                     objc > 1 ? "unknown" : "missing", w);
-        for (int i = 1; ms_atomsel_methods[i].name; i++)
-            Tcl_AppendPrintfToObj(msg, "%s, ", ms_atomsel_methods[i].name);
-        Tcl_AppendToObj(msg, "or write<type>", -1);
-        Tcl_SetObjResult(interp, msg);
-        return TCL_ERROR;
+    const size_t stride = sizeof *ms_atomsel_methods;
+    const char *w = objc > 1 ? Tcl_GetString(objv[1]) : NULL;
+    if (!w) return ms_args_unknown(interp, s->name, "method", NULL, ms_atomsel_methods, stride);
+    int k = ms_args_find(ms_atomsel_methods, stride, w), typed = 0;
+    /* write<type>: writepdb, writexyz ... (a prefix, the one word not matched whole) */
+    if (k < 0 && !strncasecmp(w, "write", 5) && w[5]) {
+        k = ms_args_find(ms_atomsel_methods, stride, "write<type>");
+        typed = 1;
     }
-    int extra = objc - 2;
-    if (m->nargs >= 0 ? extra != m->nargs : extra > 1)
-        return ms_cmd_error(interp, "%s %s: usage: %s %s", s->name, w, s->name, m->usage);
-    /* set*, move*: atoms or bonds change, and with them what the reps draw */
-    if (!strncmp(m->name, "set", 3) || strstr(m->name, "move")) st->app->scene_version++;
-    return m->fn(st->app, interp, s, objc, objv);
+    if (k < 0) return ms_args_unknown(interp, s->name, "method", w, ms_atomsel_methods, stride);
+    const struct ms_atomsel_method *m = &ms_atomsel_methods[k];
+    ms_args_frame call;
+    if (ms_args_enter(&call, interp, s->name, typed ? w : m->name, m->usage, objc - 2, m->min,
+                      m->max))
+        return TCL_ERROR;
+    if (m->changes) st->app->scene_version++;   /* atoms or bonds change, and the reps */
+    int rc = m->fn(st->app, interp, s, objc, objv);
+    ms_args_leave(&call);
+    return rc;
 }
 
 /* ---------------------------------------------------------------- registration */
@@ -403,10 +379,23 @@ void ms_atomsel_register(ms_app *app)
     atomsel_state *st = calloc(1, sizeof *st);
     if (!st) return;
     st->app = app;
+    static const ms_subcmd table[] = {
+        {"list", list_selections, 0, 0, ""},
+        {"keywords", list_keywords, 0, 0, ""},
+        {"symboltable", list_keywords, 0, 0, ""},
+        {"macro", macro_cmd, 0, 2, "?<name> ?<definition>??"},
+        {"delmacro", delmacro_cmd, 1, 1, "<name>"},
+        {NULL, NULL, 0, 0, NULL}};
+    static const ms_subcmd create = {"<molid>", atomsel_create, 2, 4,
+                                     "<molid> <selection text> ?frame <n|first|last|now>?"};
+    static const ms_subcmd cmds[] = {
+        {"upproc", cmd_upproc, 2, 2, "<level> <procname>"},
+        {"::molscope::upproc_tie", cmd_tie, 1, 1, "<name>"}};
     Tcl_SetAssocData(app->interp, "ms_atomsel", state_free, st);
-    Tcl_CreateObjCommand(app->interp, "atomselect", atomselect_cmd, st, NULL);
-    Tcl_CreateObjCommand(app->interp, "upproc", cmd_upproc, NULL, NULL);
+    ms_cmdset_create(app, "atomselect", table);
+    ms_cmdset_fallback(app, "atomselect", &create);
+    ms_cmdset_quiet(app, "atomselect");
     Tcl_Eval(app->interp, "namespace eval ::molscope {}");
-    Tcl_CreateObjCommand(app->interp, "::molscope::upproc_tie", cmd_tie, NULL, NULL);
+    for (size_t i = 0; i < MS_COUNTOF(cmds); i++) ms_cmd_create(app, &cmds[i]);
     ms_cmd_sel_resolver = resolve;
 }

@@ -191,9 +191,12 @@ int ms_atomsel_set(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, int objc,
     if (!m) return TCL_ERROR;
     Tcl_Obj **keys, **vals;
     int nk, nv;
-    if (Tcl_ListObjGetElements(NULL, objv[2], &nk, &keys) != TCL_OK || nk == 0 ||
-        Tcl_ListObjGetElements(NULL, objv[3], &nv, &vals) != TCL_OK)
-        return ms_atomsel_error(interp, s, "set", "usage: %s set <keywords> <values>", s->name);
+    if (Tcl_ListObjGetElements(NULL, objv[2], &nk, &keys) != TCL_OK || nk == 0)
+        return ms_atomsel_error(interp, s, "set", "bad keyword list '%.100s'",
+                                Tcl_GetString(objv[2]));
+    if (Tcl_ListObjGetElements(NULL, objv[3], &nv, &vals) != TCL_OK)
+        return ms_atomsel_error(interp, s, "set", "bad value list '%.100s'",
+                                Tcl_GetString(objv[3]));
     setcol *cols = ms_calloc_array((size_t)nk, sizeof *cols);
     if (!cols) return ms_atomsel_error(interp, s, "set", "out of memory");
     int rc = check_keys(interp, s, keys, nk, cols);

@@ -20,8 +20,9 @@ ms_molecule *ms_atomsel_fresh(ms_app *app, Tcl_Interp *interp, ms_atomsel *s,
                               const char *method);
 /* Evaluate the selection again on its frame (the `update` method). */
 int ms_atomsel_update(ms_app *app, ms_atomsel *s, ms_error *err);
-/* Parse a frame word: a number >= 0, first, last or now. */
-int ms_atomsel_parse_frame(Tcl_Interp *interp, Tcl_Obj *word, const char *what, long *frame);
+/* Parse a frame word: a number >= 0, first, last or now (the error names the command
+ * running, commands/args.h). */
+int ms_atomsel_parse_frame(Tcl_Interp *interp, Tcl_Obj *word, long *frame);
 /* An error "<sel> <method>: <message>". */
 int ms_atomsel_error(Tcl_Interp *interp, const ms_atomsel *s, const char *method,
                      const char *fmt, ...) __attribute__((format(printf, 4, 5)));
@@ -38,11 +39,13 @@ int ms_atomsel_get(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, int objc,
                    Tcl_Obj *const objv[]);
 int ms_atomsel_set(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, int objc,
                    Tcl_Obj *const objv[]);
+/* The methods, as a table of the argument layer's kind (commands/args.h). */
 extern const struct ms_atomsel_method {
     const char *name;
     ms_atomsel_method_fn fn;
-    int nargs;               /* words after the method; -1 = 0 or 1 (frame) */
-    const char *usage;
+    int min, max;            /* words after the method */
+    const char *usage;       /* those words */
+    int changes;             /* changes atoms or bonds (and with them what reps draw) */
 } ms_atomsel_methods[];
 
 #endif

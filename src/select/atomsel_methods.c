@@ -56,11 +56,7 @@ static int m_type(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, int objc, Tcl_
  * `update`, as in VMD). */
 static int m_frame(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, int objc, Tcl_Obj *const objv[])
 {
-    if (objc == 3) {
-        char what[64];
-        snprintf(what, sizeof what, "%s frame", s->name);
-        return ms_atomsel_parse_frame(interp, objv[2], what, &s->frame);
-    }
+    if (objc == 3) return ms_atomsel_parse_frame(interp, objv[2], &s->frame);
     if (s->frame == MS_ATOMSEL_NOW) Tcl_SetObjResult(interp, Tcl_NewStringObj("now", -1));
     else if (s->frame == MS_ATOMSEL_LAST) Tcl_SetObjResult(interp, Tcl_NewStringObj("last", -1));
     else Tcl_SetObjResult(interp, Tcl_NewWideIntObj(s->frame));
@@ -453,30 +449,30 @@ static int m_write(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, int objc, Tcl
 }
 
 const struct ms_atomsel_method ms_atomsel_methods[] = {
-    {"write<type>", m_write, 1, "write<type> <file>"},   /* entry 0: writepdb, writexyz... */
-    {"num", m_num, 0, "num"},
-    {"list", m_list, 0, "list"},
-    {"molid", m_molid, 0, "molid"},
-    {"molindex", m_molid, 0, "molindex"},
-    {"text", m_text, 0, "text"},
-    {"type", m_type, 0, "type"},
-    {"frame", m_frame, -1, "frame ?<n|first|last|now>?"},
-    {"update", m_update, 0, "update"},
-    {"get", ms_atomsel_get, 1, "get <keywords>"},
-    {"set", ms_atomsel_set, 2, "set <keywords> <values>"},
-    {"getbonds", m_getbonds, 0, "getbonds"},
-    {"setbonds", m_setbonds, 1, "setbonds <bond lists>"},
-    {"getbondorders", m_getbondorders, 0, "getbondorders"},
-    {"setbondorders", m_setbondorders, 1, "setbondorders <order lists>"},
-    {"getbondtypes", m_getbondtypes, 0, "getbondtypes"},
-    {"setbondtypes", m_setbondtypes, 1, "setbondtypes <type lists>"},
-    {"moveby", m_moveby, 1, "moveby {x y z}"},
-    {"moveto", m_moveto, 1, "moveto {x y z}"},
-    {"lmoveby", m_lmoveby, 1, "lmoveby {{x y z} ...}"},
-    {"lmoveto", m_lmoveto, 1, "lmoveto {{x y z} ...}"},
-    {"move", m_move, 1, "move <4x4 matrix>"},
-    {"delete", m_delete, 0, "delete"},
-    {"global", m_global, 0, "global"},
-    {"uplevel", m_uplevel, 1, "uplevel <level>"},
-    {NULL, NULL, 0, NULL},
+    {"num", m_num, 0, 0, "", 0},
+    {"list", m_list, 0, 0, "", 0},
+    {"molid", m_molid, 0, 0, "", 0},
+    {"molindex", m_molid, 0, 0, "", 0},
+    {"text", m_text, 0, 0, "", 0},
+    {"type", m_type, 0, 0, "", 0},
+    {"frame", m_frame, 0, 1, "?<n|first|last|now>?", 0},
+    {"update", m_update, 0, 0, "", 0},
+    {"get", ms_atomsel_get, 1, 1, "<keywords>", 0},
+    {"set", ms_atomsel_set, 2, 2, "<keywords> <values>", 1},
+    {"getbonds", m_getbonds, 0, 0, "", 0},
+    {"setbonds", m_setbonds, 1, 1, "<bond lists>", 1},
+    {"getbondorders", m_getbondorders, 0, 0, "", 0},
+    {"setbondorders", m_setbondorders, 1, 1, "<order lists>", 1},
+    {"getbondtypes", m_getbondtypes, 0, 0, "", 0},
+    {"setbondtypes", m_setbondtypes, 1, 1, "<type lists>", 1},
+    {"moveby", m_moveby, 1, 1, "{x y z}", 1},
+    {"moveto", m_moveto, 1, 1, "{x y z}", 1},
+    {"lmoveby", m_lmoveby, 1, 1, "{{x y z} ...}", 1},
+    {"lmoveto", m_lmoveto, 1, 1, "{{x y z} ...}", 1},
+    {"move", m_move, 1, 1, "<4x4 matrix>", 1},
+    {"delete", m_delete, 0, 0, "", 0},
+    {"global", m_global, 0, 0, "", 0},
+    {"uplevel", m_uplevel, 1, 1, "<level>", 0},
+    {"write<type>", m_write, 1, 1, "<file>", 0},   /* writepdb, writexyz ... */
+    {NULL, NULL, 0, 0, NULL, 0},
 };

@@ -25,8 +25,10 @@
  * The collective forms are refused inside a `parallel for` callback: the other ranks are
  * not at the same point, so they could never complete. */
 #include "config.h"
+#include "commands/args.h"
 #include "parallel/parallel.h"
 
+#include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,23 +40,10 @@
 /* Set on the interpreter while a `parallel for` runs (also read by `mol new ... bcast`). */
 #define BUSY_KEY "molscope::parallel::busy"
 
-static int par_error(Tcl_Interp *interp, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
-static int par_error(Tcl_Interp *interp, const char *fmt, ...)
-{
-    char buf[1200];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    Tcl_SetObjResult(interp, Tcl_NewStringObj(buf, -1));
-    return TCL_ERROR;
-}
-
 static int refuse_in_for(Tcl_Interp *interp, const char *sub)
 {
     if (!Tcl_GetAssocData(interp, BUSY_KEY, NULL)) return TCL_OK;
-    return par_error(interp, "parallel %s: not allowed inside a parallel for callback (the "
+    return ms_cmd_error(interp, "parallel %s: not allowed inside a parallel for callback (the "
                              "other ranks are not at the same point)", sub);
 }
 
@@ -72,16 +61,15 @@ static int call_prefix(Tcl_Interp *interp, Tcl_Obj *prefix, Tcl_Obj *a, Tcl_Obj 
 
 /* ---------------------------------------------------------------- the simple forms */
 
-static int par_allgather(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int par_allgather(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 3) return par_error(interp, "parallel allgather: usage: parallel allgather <value>");
     if (refuse_in_for(interp, "allgather")) return TCL_ERROR;
     int len;
     const char *s = Tcl_GetStringFromObj(objv[2], &len);
     ms_error err = {{0}};
     ms_par_parts parts;
     if (ms_par_allgather(s, (size_t)len, &parts, &err))
-        return par_error(interp, "parallel allgather: %s", err.msg);
+        return ms_cmd_error(interp, "parallel allgather: %s", err.msg);
     Tcl_Obj *list = Tcl_NewListObj(0, NULL);
     for (int r = 0; r < parts.n; r++)
         Tcl_ListObjAppendElement(NULL, list,
@@ -111,10 +99,8 @@ static int fold_on_rank0(Tcl_Interp *interp, Tcl_Obj *proc, const ms_par_parts *
     return TCL_OK;
 }
 
-static int par_allreduce(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int par_allreduce(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 4)
-        return par_error(interp, "parallel allreduce: usage: parallel allreduce <proc> <value>");
     if (refuse_in_for(interp, "allreduce")) return TCL_ERROR;
     if (ms_par_size() == 1) {
         Tcl_SetObjResult(interp, objv[3]);
@@ -125,7 +111,7 @@ static int par_allreduce(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
     ms_error err = {{0}};
     ms_par_parts parts;
     if (ms_par_gather0(s, (size_t)len, &parts, &err))
-        return par_error(interp, "parallel allreduce: %s", err.msg);
+        return ms_cmd_error(interp, "parallel allreduce: %s", err.msg);
     int32_t rc = TCL_OK;
     if (ms_par_rank() == 0) rc = fold_on_rank0(interp, objv[2], &parts);
     ms_par_parts_free(&parts);
@@ -168,21 +154,17 @@ static int for_item(void *ctx, long i, ms_error *err)
     return -1;
 }
 
-static int par_for(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+static int par_for(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc != 6)
-        return par_error(interp, "parallel for: usage: parallel for <start> <end> <proc> "
-                                 "<userdata>");
     if (refuse_in_for(interp, "for")) return TCL_ERROR;
-    Tcl_WideInt first, last;
-    if (Tcl_GetWideIntFromObj(NULL, objv[2], &first) != TCL_OK ||
-        Tcl_GetWideIntFromObj(NULL, objv[3], &last) != TCL_OK)
-        return par_error(interp, "parallel for: expected integer start and end, got '%s' '%s'",
-                         Tcl_GetString(objv[2]), Tcl_GetString(objv[3]));
+    long first, last;
+    if (ms_arg_long(interp, objv[2], "start", LONG_MIN, LONG_MAX, &first) ||
+        ms_arg_long(interp, objv[3], "end", LONG_MIN, LONG_MAX, &last))
+        return TCL_ERROR;
     for_ctx c = {interp, objv[4], objv[5]};
     ms_error err = {{0}};
     Tcl_SetAssocData(interp, BUSY_KEY, NULL, (ClientData)1);
-    int rc = ms_par_for((long)first, (long)last, for_item, &c, &err);
+    int rc = ms_par_for(first, last, for_item, &c, &err);
     Tcl_DeleteAssocData(interp, BUSY_KEY);
     if (rc) return TCL_ERROR; /* one rank: the proc's error is the result */
     Tcl_ResetResult(interp);
@@ -191,34 +173,46 @@ static int par_for(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 
 /* ---------------------------------------------------------------- the command */
 
+static int par_nodename(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_par_nodename(), -1));
+    return TCL_OK;
+}
+
+static int par_noderank(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(ms_par_rank()));
+    return TCL_OK;
+}
+
+static int par_nodecount(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(ms_par_size()));
+    return TCL_OK;
+}
+
+static int par_barrier(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    ms_error err = {{0}};
+    if (refuse_in_for(interp, "barrier")) return TCL_ERROR;
+    if (ms_par_barrier(&err)) return ms_cmd_error(interp, "parallel barrier: %s", err.msg);
+    return TCL_OK;
+}
+
+static const ms_subcmd parallel_table[] = {
+    {"nodename", par_nodename, 0, 0, ""},
+    {"noderank", par_noderank, 0, 0, ""},
+    {"nodecount", par_nodecount, 0, 0, ""},
+    {"barrier", par_barrier, 0, 0, ""},
+    {"allgather", par_allgather, 1, 1, "<value>"},
+    {"allreduce", par_allreduce, 2, 2, "<proc> <value>"},
+    {"for", par_for, 4, 4, "<start> <end> <proc> <userdata>"},
+    {NULL, NULL, 0, 0, NULL}};
+
+/* The package has no application: the handlers get none. */
 static int cmd_parallel(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    (void)cd;
-    static const char *usage = "parallel: usage: parallel nodename|noderank|nodecount|"
-                               "barrier|allgather|allreduce|for ...";
-    if (objc < 2) return par_error(interp, "%s", usage);
-    const char *sub = Tcl_GetString(objv[1]);
-    if (ms_word_eq(sub, "for")) return par_for(interp, objc, objv);
-    if (ms_word_eq(sub, "allgather")) return par_allgather(interp, objc, objv);
-    if (ms_word_eq(sub, "allreduce")) return par_allreduce(interp, objc, objv);
-    if (objc != 2)
-        return par_error(interp, "parallel %s: takes no arguments", sub);
-    if (ms_word_eq(sub, "nodename")) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_par_nodename(), -1));
-    } else if (ms_word_eq(sub, "noderank")) {
-        Tcl_SetObjResult(interp, Tcl_NewIntObj(ms_par_rank()));
-    } else if (ms_word_eq(sub, "nodecount")) {
-        Tcl_SetObjResult(interp, Tcl_NewIntObj(ms_par_size()));
-    } else if (ms_word_eq(sub, "barrier")) {
-        ms_error err = {{0}};
-        if (refuse_in_for(interp, "barrier")) return TCL_ERROR;
-        if (ms_par_barrier(&err)) return par_error(interp, "parallel barrier: %s", err.msg);
-    } else {
-        return par_error(interp, "parallel: unknown subcommand \"%s\": must be nodename, "
-                                 "noderank, nodecount, barrier, allgather, allreduce, or for",
-                         sub);
-    }
-    return TCL_OK;
+    return ms_args_dispatch(NULL, interp, objc, objv, 1, parallel_table, NULL, "parallel");
 }
 
 /* ---------------------------------------------------------------- loading */
@@ -249,7 +243,7 @@ int Molscope_parallel_Init(Tcl_Interp *interp)
     static int started;
     ms_error err = {{0}};
     if (ms_par_init(NULL, NULL, &err))
-        return par_error(interp, "parallel: cannot start MPI: %s", err.msg);
+        return ms_cmd_error(interp, "parallel: cannot start MPI: %s", err.msg);
     if (!started && ms_par_owner()) {
         Tcl_SetExitProc(par_exit_proc);
         if (ms_par_rank() == 0 && ms_par_size() > 1)
