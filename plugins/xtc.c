@@ -340,6 +340,7 @@ static int decode(const xtc_head *h, const unsigned char *data, size_t len, long
     recip rs[LASTIDX], rfull[3];
     for (int k = FIRSTIDX; k < LASTIDX; k++) rs[k] = recip_of((uint32_t)magicints[k]);
     for (int d = 0; d < 3; d++) rfull[d] = recip_of(sizeint[d]);
+    if (!len) return ms_perr_set(err, "no compressed coordinates for %ld atoms", natoms);
     float inv = (float)(1.0 / (double)h->precision);
     int smaller = magicints[smallidx - 1 > FIRSTIDX ? smallidx - 1 : FIRSTIDX] / 2;
     int smallnum = magicints[smallidx] / 2;
