@@ -691,8 +691,13 @@ static void *xtc_open_read(const char *path, long *natoms, ms_perr *err)
         goto fail;
     }
     /* Every atom takes at least a few bits: refuse counts the file cannot hold. */
-    if (n < 1 || (double)n > 8.0 * (double)r->size + 16) {
+    if (n < 1) {
         ms_perr_set(err, "frame 0: bad atom count %d", (int)n);
+        goto fail;
+    }
+    if ((double)n > 8.0 * (double)r->size + 16) {
+        ms_perr_set(err, "frame 0: the header declares %d atoms, more than the file's %lld "
+                    "bytes can hold (a few bits each, at the least)", (int)n, r->size);
         goto fail;
     }
     rewind(r->fp);
