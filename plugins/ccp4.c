@@ -132,8 +132,10 @@ static int parse_header(ccp4_reader *r, const unsigned char *h, long long size, 
     double points = (double)n[0] * (double)n[1] * (double)n[2];
     double need = (double)r->data_at + points * mode_size(r->mode);
     if ((double)size < need)
-        return ms_perr_set(err, "truncated: the file has %lld bytes, the header promises %.0f",
-                           size, need);
+        return ms_perr_set(err, "header: declares %ld x %ld x %ld points of %d bytes (mode %d) "
+                           "after %lld header bytes, %.0f bytes in all, but the file holds "
+                           "only %lld", n[0], n[1], n[2], mode_size(r->mode), r->mode,
+                           r->data_at, need, size);
     if (cell_axes(h, swap, nxyz, r->meta.delta, err) != MS_PLUGIN_OK) return MS_PLUGIN_ERROR;
     double o[3] = {word_f(h, 49, swap), word_f(h, 50, swap), word_f(h, 51, swap)};
     int use_mrc = (o[0] != 0 || o[1] != 0 || o[2] != 0) && !s[0] && !s[1] && !s[2] &&

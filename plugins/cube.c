@@ -85,6 +85,10 @@ static int find_data(cube_reader *r, ms_perr *err)
     ms_lines *in = &r->in;
     r->atoms_at = ms_lines_tell_next(in);
     r->atoms_line = in->line_no;
+    /* An atom line is five numbers: at least 10 bytes. */
+    if (ms_check_room(err, (double)r->natoms, 10, ms_lines_left(in), "atoms",
+                      "line 3: the header declares %ld atoms", r->natoms))
+        return MS_PLUGIN_ERROR;
     for (long i = 0; i < r->natoms; i++)
         if (!ms_lines_next(in))
             return ms_perr_set(err, "line %ld: the file ends after %ld of %ld atoms", in->line_no,
@@ -98,6 +102,14 @@ static int find_data(cube_reader *r, ms_perr *err)
     }
     r->data_at = ms_lines_tell_next(in);
     r->data_line = in->line_no;
+    /* A value is at least a digit and a separator: the file bounds grid times sets. */
+    double points = (double)r->meta.n[0] * (double)r->meta.n[1] * (double)r->meta.n[2];
+    char sets[48] = "";
+    if (r->nsets > 1) snprintf(sets, sizeof sets, " of %ld values each", r->nsets);
+    if (ms_check_room(err, points * (double)r->nsets, 2, ms_lines_left(in), "values",
+                      "lines 4-6: the header declares %ld x %ld x %ld points%s", r->meta.n[0],
+                      r->meta.n[1], r->meta.n[2], sets))
+        return MS_PLUGIN_ERROR;
     return MS_PLUGIN_OK;
 }
 

@@ -18,6 +18,7 @@
 
 #define DCD_PI 3.14159265358979323846
 #define DCD_MAX_UNCHECKED_ATOMS (1L << 24)
+#define DCD_HOST_BYTES 64.0   /* memory per atom of a molecule */
 
 typedef struct dcd_reader {
     int fd;
@@ -188,6 +189,24 @@ static long long frame_size(const dcd_reader *r, long n)
     return (r->has_cell ? 2LL * r->mk + 48 : 0) + (r->four_d ? 4 : 3) * rec;
 }
 
+/* A file with no frame cannot bound its atom count: refuse one that would make a huge empty
+ * molecule out of a few hundred bytes (a structure file never needs it): more than
+ * DCD_MAX_UNCHECKED_ATOMS, or more than memory holds (the host keeps about DCD_HOST_BYTES
+ * per atom). */
+static int check_unvouched(const dcd_reader *r, ms_perr *err)
+{
+    if (r->natoms > DCD_MAX_UNCHECKED_ATOMS)
+        return ms_perr_set(err, "header: declares %ld atoms, but the file holds no frame to "
+                           "vouch for them (at most %ld are taken on trust)", r->natoms,
+                           DCD_MAX_UNCHECKED_ATOMS);
+    long long avail = ms_plugin_mem_available();
+    double need = (double)r->natoms * DCD_HOST_BYTES;
+    if (avail < 0 || need <= (double)avail) return MS_PLUGIN_OK;
+    return ms_perr_set(err, "header: declares %ld atoms, but the file holds no frame to vouch "
+                       "for them, and they would need about %.0f MB, more than the %.0f MB of "
+                       "memory available", r->natoms, need / 1048576, (double)avail / 1048576);
+}
+
 /* Count the frames the file holds; an incomplete first frame is an error now, a later one
  * when it is reached. */
 static int count_frames(dcd_reader *r, ms_perr *err)
@@ -195,11 +214,7 @@ static int count_frames(dcd_reader *r, ms_perr *err)
     r->first_bytes = frame_size(r, r->natoms);
     r->frame_bytes = frame_size(r, r->nfree);
     long long rest = r->size - r->data_start;
-    /* No frame vouches for the atom count: refuse one that would make a huge empty
-     * molecule out of a few hundred bytes (a structure file never needs it). */
-    if (rest <= 0 && r->natoms > DCD_MAX_UNCHECKED_ATOMS)
-        return ms_perr_set(err, "header: %ld atoms, but the file holds no frame", r->natoms);
-    if (rest <= 0) return MS_PLUGIN_OK;
+    if (rest <= 0) return check_unvouched(r, err);
     if (rest < r->first_bytes)
         return ms_perr_set(err, "frame 0: truncated: the file ends %lld bytes into it (a frame "
                            "of %ld atoms is %lld bytes)", rest, r->natoms, r->first_bytes);

@@ -53,7 +53,7 @@ static int read_header(dx_reader *r, ms_perr *err)
 {
     ms_lines *in = &r->in;
     int have_counts = 0, have_origin = 0, ndelta = 0;
-    long items = -1;
+    long items = -1, counts_line = 0;
     const char *l;
     while ((l = ms_lines_next(in))) {
         const char *p = l + strspn(l, " \t");
@@ -65,6 +65,7 @@ static int read_header(dx_reader *r, ms_perr *err)
                 return ms_perr_set(err, "line %ld: bad gridpositions counts", in->line_no);
             for (int d = 0; d < 3; d++) r->meta.n[d] = (long)v[d];
             have_counts = 1;
+            counts_line = in->line_no;
         } else if (!strncmp(p, "origin", 6)) {
             if (header_numbers(p, "origin", r->meta.origin, 3) != 3)
                 return ms_perr_set(err, "line %ld: bad origin", in->line_no);
@@ -98,6 +99,13 @@ static int read_header(dx_reader *r, ms_perr *err)
     if (items >= 0 && (double)items != total)
         return ms_perr_set(err, "line %ld: %ld items, but the grid has %.0f points", in->line_no,
                            items, total);
+    /* A value is at least a digit and a separator: the file bounds the grid. */
+    long long left = ms_lines_left(in);
+    if (left >= 0 && r->rest) left += (long long)strlen(r->rest);
+    if (ms_check_room(err, total, 2, left, "values",
+                      "line %ld: the header declares %ld x %ld x %ld points", counts_line,
+                      r->meta.n[0], r->meta.n[1], r->meta.n[2]))
+        return MS_PLUGIN_ERROR;
     r->data_at = ms_lines_tell_next(in);
     r->data_line = in->line_no;
     return MS_PLUGIN_OK;

@@ -170,7 +170,11 @@ static int gro_read_structure(void *h, ms_struct_sink *sink, ms_perr *err)
     int rc = read_head(r, &f, err);
     if (rc == MS_PLUGIN_EOF) return ms_perr_set(err, "empty file");
     if (rc != MS_PLUGIN_OK) return rc;
-    long long most = r->size / 20 + 16; /* an atom line is at least 20 bytes */
+    /* an atom line is at least 20 bytes: the file bounds the count */
+    if (ms_check_room(err, (double)f.n, 20, ms_lines_left(&r->in), "atoms",
+                      "line %ld: the header declares %ld atoms", r->in.line_no, f.n))
+        return MS_PLUGIN_ERROR;
+    long long most = r->size / 20 + 16;
     sink->reserve(sink, (size_t)(f.n < most ? f.n : most));
     for (long k = 0; k < f.n; k++) {
         ms_atom_in a;

@@ -52,6 +52,13 @@ static int read_molecule(mol2_reader *r, long *natoms, long *nbonds, ms_perr *er
     if (nt < 1 || ms_parse_long(tok[0], strlen(tok[0]), natoms) < 0 || *natoms < 1 ||
         (nt > 1 && (ms_parse_long(tok[1], strlen(tok[1]), nbonds) < 0 || *nbonds < 0)))
         return ms_perr_set(err, "line %ld: bad MOLECULE counts line", in->line_no);
+    /* An atom line is at least six fields (12 bytes), a bond line four (8 bytes). */
+    long long left = ms_lines_left(in);
+    if (ms_check_room(err, (double)*natoms, 12, left, "atoms",
+                      "line %ld: the MOLECULE record declares %ld atoms", in->line_no, *natoms) ||
+        ms_check_room(err, (double)*nbonds, 8, left, "bonds",
+                      "line %ld: the MOLECULE record declares %ld bonds", in->line_no, *nbonds))
+        return MS_PLUGIN_ERROR;
     while ((l = ms_lines_next(in)) && !is_section(l, "ATOM")) {}
     if (!l) return ms_perr_set(err, "line %ld: no @<TRIPOS>ATOM section", in->line_no);
     return MS_PLUGIN_OK;

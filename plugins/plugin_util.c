@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -120,6 +121,41 @@ int ms_lines_seek(ms_lines *r, long long offset, long line_no)
     r->eof = r->error = 0;
     r->line_no = line_no;
     return 0;
+}
+
+long long ms_lines_left(const ms_lines *r)
+{
+    struct stat sb;
+    if (!r->fp || fstat(fileno(r->fp), &sb) != 0 || !S_ISREG(sb.st_mode)) return -1;
+    long long left = (long long)sb.st_size - ms_lines_tell_next(r);
+    return left > 0 ? left : 0;
+}
+
+/* ---------------------------------------------------------------- declared sizes */
+
+int ms_check_room(ms_perr *err, double count, double min_bytes, long long left,
+                  const char *unit, const char *claim, ...)
+{
+    if (left < 0 || count * min_bytes <= (double)left + 1) return MS_PLUGIN_OK;
+    char what[384];
+    va_list ap;
+    va_start(ap, claim);
+    vsnprintf(what, sizeof what, claim, ap);
+    va_end(ap);
+    return ms_perr_set(err, "%s but the file holds only %lld bytes after it (room for at most "
+                       "%.0f %s)", what, left, floor(((double)left + 1) / min_bytes), unit);
+}
+
+long long ms_plugin_mem_available(void)
+{
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (!f) return -1;
+    char line[256];
+    long long kb = -1;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "MemAvailable: %lld kB", &kb) == 1) break;
+    fclose(f);
+    return kb < 0 ? -1 : kb * 1024;
 }
 
 /* ---------------------------------------------------------------- fields */

@@ -41,6 +41,28 @@ long long ms_lines_tell_next(const ms_lines *r);
  * line_no. */
 int ms_lines_seek(ms_lines *r, long long offset, long line_no);
 
+/* Bytes of the file after the line last returned (from the file's size when it was opened
+ * and what has been read), or -1 when the size is unknown (not a regular file). */
+long long ms_lines_left(const ms_lines *r);
+
+/* ---------------------------------------------------------------- declared sizes */
+
+/* A header declares `count` items (atoms, bonds, grid values) that the rest of the file
+ * must hold, each taking at least min_bytes there (the last may lack its newline, so one
+ * byte of slack). MS_PLUGIN_OK when left (bytes after the header; < 0: unknown) has room,
+ * else MS_PLUGIN_ERROR with the message "<claim> but the file holds only <left> bytes after
+ * it (room for at most <n> <unit>)", claim being a printf format ("line 2: the header
+ * declares %ld atoms"). Readers call it before they (or the host) allocate for the count. */
+int ms_check_room(ms_perr *err, double count, double min_bytes, long long left,
+                  const char *unit, const char *claim, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 6, 7)))
+#endif
+    ;
+/* Memory the system can still give (MemAvailable), in bytes; -1 when unknown. For sizes a
+ * file cannot bound (a trajectory header with no frame to vouch for its atom count). */
+long long ms_plugin_mem_available(void);
+
 /* ---------------------------------------------------------------- fields */
 
 /* Copy columns [c0, c1) (0-based, end exclusive) of a line of length len into out (size

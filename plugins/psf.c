@@ -189,7 +189,11 @@ static int parse_atom_line(psf_reader *r, ms_struct_sink *sink, ms_perr *err)
 static int read_atoms(psf_reader *r, ms_struct_sink *sink, long count, ms_perr *err)
 {
     ms_lines *in = &r->in;
-    /* An atom line is at least 40 bytes: the file size bounds the hint. */
+    /* An atom line is at least eight fields (16 bytes): the file bounds the count. */
+    if (ms_check_room(err, (double)count, 16, ms_lines_left(in), "atoms",
+                      "line %ld: !NATOM declares %ld atoms", in->line_no, count))
+        return MS_PLUGIN_ERROR;
+    /* A usual atom line is at least 40 bytes: the file size bounds the hint. */
     long long most = r->size / 40 + 16;
     sink->reserve(sink, (size_t)(count < most ? count : most));
     for (long k = 0; k < count; k++) {
@@ -243,6 +247,10 @@ static int read_bonds(psf_reader *r, ms_struct_sink *sink, ms_perr *err)
     }
     if (in->error) return ms_perr_set(err, "read error after line %ld", in->line_no);
     if (count < 0) return MS_PLUGIN_OK; /* the file ends after the atoms */
+    /* A bond is two numbers, each a digit and a separator at the least. */
+    if (ms_check_room(err, (double)count, 4, ms_lines_left(in), "bonds",
+                      "line %ld: !NBOND declares %ld bonds", in->line_no, count))
+        return MS_PLUGIN_ERROR;
     long found = 0, pending = -1;
     while (found < count) {
         if (!(l = ms_lines_next(in))) {

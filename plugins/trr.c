@@ -115,8 +115,10 @@ static void *trr_open_read(const char *path, long *natoms, ms_perr *err)
     int rc = read_head(r, &h, err);
     if (rc == MS_PLUGIN_EOF) ms_perr_set(err, "not a TRR file: empty");
     if (rc != MS_PLUGIN_OK) goto fail;
-    if ((double)h.s[S_NATOMS] * 12.0 > (double)r->size && h.s[S_X]) {
-        ms_perr_set(err, "frame 0: %d atoms do not fit in a %lld-byte file", (int)h.s[S_NATOMS],
+    /* A frame with positions (the only kind kept) takes at least 12 bytes per atom. */
+    if ((double)h.s[S_NATOMS] * 12.0 > (double)r->size) {
+        ms_perr_set(err, "frame 0: the header declares %d atoms, but their positions (12 bytes "
+                    "each or more) do not fit in the file's %lld bytes", (int)h.s[S_NATOMS],
                     r->size);
         goto fail;
     }
@@ -133,6 +135,9 @@ static int read_block(trr_reader *r, size_t bytes, int dbl, float *out, float sc
                       ms_perr *err)
 {
     if (!bytes) return MS_PLUGIN_OK;
+    if ((long long)bytes > r->size)
+        return ms_perr_set(err, "truncated: a data block of %zu bytes in a %lld-byte file", bytes,
+                           r->size);
     if (!out) return fseeko(r->fp, (off_t)bytes, SEEK_CUR) == 0 ? MS_PLUGIN_OK
                                                                 : ms_perr_set(err, "seek failed");
     if (bytes > r->buf_cap) {

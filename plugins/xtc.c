@@ -340,6 +340,7 @@ static int decode(const xtc_head *h, const unsigned char *data, size_t len, long
     recip rs[LASTIDX], rfull[3];
     for (int k = FIRSTIDX; k < LASTIDX; k++) rs[k] = recip_of((uint32_t)magicints[k]);
     for (int d = 0; d < 3; d++) rfull[d] = recip_of(sizeint[d]);
+    if (!len) return ms_perr_set(err, "no compressed coordinates for %ld atoms", natoms);
     float inv = (float)(1.0 / (double)h->precision);
     int smaller = magicints[smallidx - 1 > FIRSTIDX ? smallidx - 1 : FIRSTIDX] / 2;
     int smallnum = magicints[smallidx] / 2;
@@ -690,8 +691,13 @@ static void *xtc_open_read(const char *path, long *natoms, ms_perr *err)
         goto fail;
     }
     /* Every atom takes at least a few bits: refuse counts the file cannot hold. */
-    if (n < 1 || (double)n > 8.0 * (double)r->size + 16) {
+    if (n < 1) {
         ms_perr_set(err, "frame 0: bad atom count %d", (int)n);
+        goto fail;
+    }
+    if ((double)n > 8.0 * (double)r->size + 16) {
+        ms_perr_set(err, "frame 0: the header declares %d atoms, more than the file's %lld "
+                    "bytes can hold (a few bits each, at the least)", (int)n, r->size);
         goto fail;
     }
     rewind(r->fp);

@@ -105,7 +105,11 @@ static int xyz_read_structure(void *h, ms_struct_sink *sink, ms_perr *err)
     int rc = read_count(r, &n, err);
     if (rc == MS_PLUGIN_EOF) return ms_perr_set(err, "empty file");
     if (rc != MS_PLUGIN_OK) return rc;
-    long long most = r->size / 8 + 16; /* an atom line is at least 8 bytes */
+    /* an atom line ("C 0 0 0") is at least 8 bytes: the file bounds the count */
+    if (ms_check_room(err, (double)n, 8, ms_lines_left(&r->in), "atoms",
+                      "line %ld: the header declares %ld atoms", r->in.line_no - 1, n))
+        return MS_PLUGIN_ERROR;
+    long long most = r->size / 8 + 16;
     sink->reserve(sink, (size_t)(n < most ? n : most));
     for (long k = 0; k < n; k++) {
         char name[64], sym[4];

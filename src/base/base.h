@@ -45,6 +45,9 @@ int ms_word_eq(const char *word, const char *name);
 
 /* Resident-set peak of this process in bytes (from getrusage). */
 size_t ms_peak_rss(void);
+/* Memory the system can still give, in bytes (MemAvailable in /proc/meminfo); 0 when
+ * unknown. For sizes no file bounds: check them before allocating. */
+size_t ms_mem_available(void);
 
 #define MS_MIN(a, b) ((a) < (b) ? (a) : (b))
 #define MS_MAX(a, b) ((a) > (b) ? (a) : (b))

@@ -55,6 +55,26 @@ static void list_ids(const ms_asm_plan *all, char *buf, size_t cap)
     }
 }
 
+/* A few operators over a file's atoms may ask for more atoms than memory holds (no file
+ * size bounds that): refuse before anything is copied. An atom costs its per-atom arrays
+ * and its first-frame coordinates and velocities. */
+static int check_memory(ms_asm_plan *p, const char *id, ms_error *err)
+{
+    size_t per_atom = 24, avail = ms_mem_available(), elsize;
+    ms_atoms none = {0};
+    for (size_t k = 0; k < ms_atoms_field_count(); k++) {
+        ms_atoms_field(&none, k, &elsize);
+        per_atom += elsize;
+    }
+    double need = (double)ms_asm_natoms(p) * (double)per_atom;
+    if (!avail || need <= (double)avail) return 0;
+    ms_error_set(err, "assembly '%s' has %zu atoms (from %zu in the file), which need about "
+                 "%.0f MB, more than the %.0f MB of memory available", id, ms_asm_natoms(p),
+                 p->nfile, need / 1048576, (double)avail / 1048576);
+    ms_asm_plan_free(p);
+    return -1;
+}
+
 int ms_asm_select(const ms_asm_plan *all, const char *id, size_t nfile, ms_asm_plan *out,
                   ms_error *err)
 {
@@ -87,7 +107,7 @@ int ms_asm_select(const ms_asm_plan *all, const char *id, size_t nfile, ms_asm_p
         ms_asm_plan_free(out);
         return -1;
     }
-    return 0;
+    return check_memory(out, id, err);
 }
 
 size_t ms_asm_natoms(const ms_asm_plan *p)

@@ -49,7 +49,7 @@ static triple *merge(tbuf *bufs, int nb, size_t *n, ms_error *err)
     triple *all = failed ? NULL : ms_alloc_array(total, sizeof *all);
     size_t at = 0;
     for (int t = 0; t < nb; t++) {
-        if (all) memcpy(all + at, bufs[t].items, bufs[t].n * sizeof *all);
+        if (all && bufs[t].n) memcpy(all + at, bufs[t].items, bufs[t].n * sizeof *all);
         at += bufs[t].n;
         free(bufs[t].items);
     }

@@ -1,5 +1,5 @@
 /* frames.c: a movie's frame files: their names, the check that a file is a whole PNG of the
- * movie's size, the list of frames still to render, and the clean-up of what a killed job
+ * movie's size that decodes (every row, every checksum), the list of frames still to render, and the clean-up of what a killed job
  * left behind. */
 #include "config.h"
 #include "movie/movie.h"
@@ -8,6 +8,8 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <png.h>
+#include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,6 +52,45 @@ static int png_chunks_ok(FILE *f, long long size, int w, int h)
     }
 }
 
+static void decode_error(png_structp png, png_const_charp msg)
+{
+    (void)msg;
+    png_longjmp(png, 1);
+}
+
+static void decode_warning(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+
+/* Decode the whole PNG at the start of f with libpng, every row and the chunks after them,
+ * with a CRC error in any chunk an error: 1 when it decodes, 0 when not. A file whose
+ * chunks are intact can still hold a damaged byte of pixel data. */
+static int png_decodes(FILE *f)
+{
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, decode_error,
+                                             decode_warning);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    png_bytep row = NULL;
+    int ok = 0;
+    if (!png || !info) goto done;
+    if (setjmp(png_jmpbuf(png))) goto done;
+    png_set_crc_action(png, PNG_CRC_ERROR_QUIT, PNG_CRC_ERROR_QUIT);
+    rewind(f);
+    png_init_io(png, f);
+    png_read_info(png, info);
+    if (png_get_interlace_type(png, info) != PNG_INTERLACE_NONE) png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    png_uint_32 h = png_get_image_height(png, info);
+    int passes = png_get_interlace_type(png, info) != PNG_INTERLACE_NONE ? 7 : 1;
+    if (!(row = malloc(png_get_rowbytes(png, info)))) goto done;
+    for (int pass = 0; pass < passes; pass++)
+        for (png_uint_32 y = 0; y < h; y++) png_read_row(png, row, NULL);
+    png_read_end(png, NULL);
+    ok = 1;
+done:
+    free(row);
+    png_destroy_read_struct(png ? &png : NULL, info ? &info : NULL, NULL);
+    return ok;
+}
+
 int ms_movie_frame_ok(const char *path, int width, int height)
 {
     FILE *f = fopen(path, "rb");
@@ -58,7 +99,7 @@ int ms_movie_frame_ok(const char *path, int width, int height)
     unsigned char sig[8];
     int ok = fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) &&
              fread(sig, 1, 8, f) == 8 && !memcmp(sig, "\x89PNG\r\n\x1a\n", 8) &&
-             png_chunks_ok(f, (long long)sb.st_size, width, height);
+             png_chunks_ok(f, (long long)sb.st_size, width, height) && png_decodes(f);
     fclose(f);
     return ok;
 }

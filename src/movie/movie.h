@@ -7,8 +7,8 @@
  *              PNG of the movie's size, so a file under a final name is always a whole frame
  *              (frames.c, run.c)
  *   resuming   before rendering, rank 0 lists the frames that are missing or not a complete
- *              PNG of the right size, removes the temporary files a killed job left, and
- *              only those frames are rendered (frames.c, run.c)
+ *              PNG of the right size that decodes, removes the temporary files a killed job
+ *              left, and only those frames are rendered (frames.c, run.c)
  *   the loop   the missing frames are handed out dynamically by rank 0 (ms_par_for_observed)
  *              and rank 0 learns as each one completes, on any rank (run.c)
  *   encoding   rank 0 pipes the frames, in order and as soon as the next one in order is
@@ -38,7 +38,9 @@
 char *ms_movie_frame_path(const char *basename, long i);
 /* Whether path is a complete PNG of width x height: the signature, an IHDR of that size,
  * then chunks whose lengths lead exactly to an IEND chunk at the end of the file (a
- * truncated or overlong file fails; pixel checksums are not read). 1 yes, 0 no. */
+ * truncated or overlong file fails), and it decodes: libpng reads every row and the chunks
+ * after them, a CRC error in any chunk failing it (a damaged byte of pixel data). 1 yes,
+ * 0 no. */
 int ms_movie_frame_ok(const char *path, int width, int height);
 /* Remove what a killed job left in the frames' folder: the temporary files of frames
  * <basename>.<digits>.png (ms_ofile_is_temp; those of a renderer writing one included) and

@@ -11,6 +11,7 @@
 #endif
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -215,12 +216,24 @@ static int flatten(orc_world *w, const orc_bnode *root, ms_error *err)
 }
 
 #ifdef MS_HAVE_EMBREE
+/* Embree's RTCBuildPrimitive is declared 32-byte aligned, and the builder reads it with
+ * aligned loads: an array of n of them aligned so (aligned_alloc wants a size that is a
+ * multiple of the alignment); NULL when out of memory or too large. */
+static struct RTCBuildPrimitive *build_prims_alloc(size_t n)
+{
+    size_t bytes, align = 32;
+    if (ms_mul_size(n ? n : 1, sizeof(struct RTCBuildPrimitive), &bytes) ||
+        bytes > SIZE_MAX - align)
+        return NULL;
+    return aligned_alloc(align, (bytes + align - 1) / align * align);
+}
+
 /* Embree's builder over p[0..n), flattened into w. */
 static int embree_build(orc_world *w, const orc_bprim *p, size_t n, ms_error *err)
 {
     RTCDevice dev = rt_device(err);
     if (!dev) return -1;
-    struct RTCBuildPrimitive *prims = ms_alloc_array(n, sizeof *prims);
+    struct RTCBuildPrimitive *prims = build_prims_alloc(n);
     RTCBVH bvh = prims ? rtcNewBVH(dev) : NULL;
     if (!bvh) {
         free(prims);

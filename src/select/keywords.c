@@ -79,11 +79,33 @@ static const ms_selkw keywords[] = {
     IVOL(0), IVOL(1), IVOL(2), IVOL(3), IVOL(4), IVOL(5), IVOL(6), IVOL(7),
 };
 
+/* The keywords sorted by name, for lookups by binary search (the parser looks up every word
+ * of a selection and of every macro it expands). Built once. */
+static const ms_selkw *by_name[MS_COUNTOF(keywords)];
+static pthread_once_t by_name_once = PTHREAD_ONCE_INIT;
+
+static int cmp_kw(const void *a, const void *b)
+{
+    return strcmp((*(const ms_selkw *const *)a)->name, (*(const ms_selkw *const *)b)->name);
+}
+
+static void sort_by_name(void)
+{
+    for (size_t i = 0; i < MS_COUNTOF(keywords); i++) by_name[i] = &keywords[i];
+    qsort(by_name, MS_COUNTOF(by_name), sizeof by_name[0], cmp_kw);
+}
+
+static int cmp_name_kw(const void *key, const void *elem)
+{
+    return strcmp(key, (*(const ms_selkw *const *)elem)->name);
+}
+
 const ms_selkw *ms_selkw_find(const char *name)
 {
-    for (size_t i = 0; i < MS_COUNTOF(keywords); i++)
-        if (!strcmp(keywords[i].name, name)) return &keywords[i];
-    return NULL;
+    pthread_once(&by_name_once, sort_by_name);
+    const ms_selkw *const *k = bsearch(name, by_name, MS_COUNTOF(by_name), sizeof by_name[0],
+                                       cmp_name_kw);
+    return k ? *k : NULL;
 }
 
 /* ---------------------------------------------------------------- public lookups */

@@ -73,7 +73,8 @@ static struct {
 static long find_locked(const char *name)
 {
     for (size_t i = 0; i < table.n; i++)
-        if (!strcmp(table.items[i].name, name)) return (long)i;
+        if (table.items[i].name[0] == name[0] && !strcmp(table.items[i].name, name))
+            return (long)i;
     return -1;
 }
 
@@ -184,7 +185,7 @@ int ms_sel_macro_define(const char *name, const char *text, ms_error *err)
     /* It must compile, and must not refer to itself, directly or through other macros. */
     const char *stack[1] = {name};
     ms_error e = {{0}};
-    ms_selnode *tree = ms_sel_parse_text(text, stack, 1, 0, NULL, &e);
+    ms_selnode *tree = ms_sel_parse_text(text, stack, 1, 0, NULL, NULL, &e);
     if (!tree) {
         ms_error_set(err, "macro '%s': %s", name, e.msg);
         return -1;

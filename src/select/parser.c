@@ -15,6 +15,19 @@
 
 #define MAX_DEPTH 1000       /* nesting of parentheses, expressions and macros */
 
+/* What one compilation spends on macros, shared by the nested parses of macro texts. A
+ * macro's first use costs nothing (its text bounds what it builds); every later use parses
+ * its text again, and the nodes and keyword values those repeated uses build count against
+ * MS_SEL_MACRO_NODES. So macros that use the one below twice, level after level, cannot
+ * grow a tree (and the time to build it) exponentially. */
+struct ms_selbudget {
+    char **seen;             /* the macros used so far */
+    size_t nseen, cap;
+    size_t units;            /* nodes and values built by repeated uses */
+    int repeated;            /* > 0 while inside a repeated use */
+    int exceeded;            /* the limit was passed: the error is set */
+};
+
 typedef struct parser {
     const char *text;
     ms_tok *t;
@@ -22,6 +35,7 @@ typedef struct parser {
     int depth;
     const char **macros;     /* names being expanded (recursion check) */
     int nmacros;
+    ms_selbudget *budget;
     ms_error *err;
     size_t errpos;           /* position of the error in err */
     int uses_coords;
@@ -68,13 +82,37 @@ static void *syntax_error(parser *p)
 
 static void *oom(parser *p)
 {
-    ms_error_set(p->err, "out of memory compiling the selection");
+    if (!p->budget->exceeded) ms_error_set(p->err, "out of memory compiling the selection");
     p->errpos = (size_t)-1;
     return NULL;
 }
 
+/* The macro limit was passed: like running out of memory, this ends the compilation (no
+ * retry of another reading) and the message is passed up unchanged. */
+static void *too_large(parser *p)
+{
+    p->budget->exceeded = 1;
+    ms_error_set(p->err, "selection too large after macro expansion (more than %d nodes)",
+                 MS_SEL_MACRO_NODES);
+    p->errpos = (size_t)-1;
+    return NULL;
+}
+
+/* Count n more nodes or values; -1 (error set) when a repeated macro use passes the limit. */
+static int spend(parser *p, size_t n)
+{
+    ms_selbudget *b = p->budget;
+    if (b->exceeded) return -1;
+    if (!b->repeated) return 0;
+    b->units += n;
+    if (b->units <= MS_SEL_MACRO_NODES) return 0;
+    too_large(p);
+    return -1;
+}
+
 static ms_selnode *node_new(parser *p, ms_node_kind k)
 {
+    if (spend(p, 1)) return NULL;
     ms_selnode *n = calloc(1, sizeof *n);
     if (!n) return oom(p);
     n->kind = k;
@@ -242,6 +280,10 @@ static ms_selnode *parse_values(parser *p, ms_selnode *n)
     size_t cap = 0;
     do {
         const ms_tok *lo = tok(p), *hi = NULL;
+        if (spend(p, 1)) {
+            ms_selnode_free(n);
+            return NULL;
+        }
         p->i++;
         if (kind(p) == TK_THROUGH) {
             p->i++;
@@ -386,9 +428,10 @@ static ms_selnode *expand_rasmol(parser *p, ms_selnode *vals)
         }
         ms_error e = {{0}};
         ms_selnode *sub = ms_sel_parse_text(text, p->macros, p->nmacros, p->depth,
-                                            &p->uses_coords, &e);
+                                            &p->uses_coords, p->budget, &e);
         if (!sub) {
             ms_selnode_free(result);
+            if (p->budget->exceeded) return too_large(p);
             return fail_at(p, tok(p)->pos, "rasmol: cannot understand '%s': %s",
                            vals->vals[i].lo, e.msg);
         }
@@ -414,6 +457,45 @@ static ms_selnode *parse_sfunc(parser *p, const ms_selkw *k)
 
 /* ---------------------------------------------------------------- macros */
 
+/* Has this compilation used macro `name` before? Remembers it when not; -1 when out of
+ * memory. */
+static int used_before(ms_selbudget *b, const char *name)
+{
+    for (size_t i = 0; i < b->nseen; i++)
+        if (!strcmp(b->seen[i], name)) return 1;
+    char *copy = ms_strdup(name);
+    if (!copy || ms_grow((void **)&b->seen, &b->cap, b->nseen + 1, sizeof *b->seen)) {
+        free(copy);
+        return -1;
+    }
+    b->seen[b->nseen++] = copy;
+    return 0;
+}
+
+/* Parse a macro's text in place of its name, with the name on the recursion stack. */
+static ms_selnode *parse_macro_text(parser *p, const ms_tok *t, const char *text,
+                                    ms_error *e)
+{
+    const char **stack = malloc((size_t)(p->nmacros + 1) * sizeof *stack);
+    int again = used_before(p->budget, t->str);
+    if (!stack || again < 0) {
+        free(stack);
+        return oom(p);
+    }
+    if (p->nmacros) memcpy(stack, p->macros, (size_t)p->nmacros * sizeof *stack);
+    stack[p->nmacros] = t->str;
+    ms_selnode *n = NULL;
+    p->budget->repeated += again;
+    if (p->nmacros + 1 > 64)
+        ms_error_set(e, "macros nested too deeply");
+    else
+        n = ms_sel_parse_text(text, stack, p->nmacros + 1, p->depth, &p->uses_coords,
+                              p->budget, e);
+    p->budget->repeated -= again;
+    free(stack);
+    return n;
+}
+
 static ms_selnode *expand_macro(parser *p, const ms_tok *t)
 {
     for (int i = 0; i < p->nmacros; i++)
@@ -421,26 +503,14 @@ static ms_selnode *expand_macro(parser *p, const ms_tok *t)
             return fail_at(p, t->pos, "macro '%s' refers to itself", t->str);
     char *text = ms_sel_macro_text(t->str);
     if (!text) return oom(p);
-    const char **stack = malloc((size_t)(p->nmacros + 1) * sizeof *stack);
-    if (!stack) {
-        free(text);
-        return oom(p);
-    }
-    if (p->nmacros) memcpy(stack, p->macros, (size_t)p->nmacros * sizeof *stack);
-    stack[p->nmacros] = t->str;
     ms_error e = {{0}};
-    ms_selnode *n = NULL;
-    if (p->nmacros + 1 > 64)
-        ms_error_set(&e, "macros nested too deeply");
-    else
-        n = ms_sel_parse_text(text, stack, p->nmacros + 1, p->depth, &p->uses_coords, &e);
-    free(stack);
+    ms_selnode *n = parse_macro_text(p, t, text, &e);
     free(text);
-    if (!n) {
-        if (strstr(e.msg, "refers to itself")) return fail_at(p, t->pos, "%s", e.msg);
-        return fail_at(p, t->pos, "in macro '%s': %s", t->str, e.msg);
-    }
-    return n;
+    if (n) return n;
+    if (p->budget->exceeded) return too_large(p);
+    if (p->errpos == (size_t)-1) return NULL;
+    if (strstr(e.msg, "refers to itself")) return fail_at(p, t->pos, "%s", e.msg);
+    return fail_at(p, t->pos, "in macro '%s': %s", t->str, e.msg);
 }
 
 /* ---------------------------------------------------------------- selections */
@@ -780,11 +850,18 @@ static ms_selnode *parse_compare(parser *p)
 
 /* ---------------------------------------------------------------- entry points */
 
-ms_selnode *ms_sel_parse_text(const char *text, const char **macros, int nmacros, int depth,
-                              int *uses_coords, ms_error *err)
+static void budget_free(ms_selbudget *b)
 {
+    for (size_t i = 0; i < b->nseen; i++) free(b->seen[i]);
+    free(b->seen);
+}
+
+ms_selnode *ms_sel_parse_text(const char *text, const char **macros, int nmacros, int depth,
+                              int *uses_coords, ms_selbudget *budget, ms_error *err)
+{
+    ms_selbudget own = {0};
     parser p = {.text = text, .macros = macros, .nmacros = nmacros, .depth = depth,
-                .err = err};
+                .budget = budget ? budget : &own, .err = err};
     err->msg[0] = '\0';
     long n = ms_sel_lex(text, &p.t, err);
     if (n < 0) return NULL;
@@ -799,6 +876,7 @@ ms_selnode *ms_sel_parse_text(const char *text, const char **macros, int nmacros
         syntax_error(&p);
     }
     ms_sel_free_tokens(p.t, p.ntok);
+    budget_free(&own);
     if (root && uses_coords) *uses_coords |= p.uses_coords;
     return root;
 }
@@ -814,7 +892,7 @@ ms_selexpr *ms_sel_compile(const char *text, ms_error *err)
         ms_error_set(err, "out of memory compiling the selection");
         return NULL;
     }
-    e->root = ms_sel_parse_text(text, NULL, 0, 0, &e->uses_coords, err);
+    e->root = ms_sel_parse_text(text, NULL, 0, 0, &e->uses_coords, NULL, err);
     if (!e->root) {
         ms_sel_free(e);
         return NULL;

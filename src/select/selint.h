@@ -146,10 +146,15 @@ struct ms_selexpr {
 };
 
 void ms_selnode_free(ms_selnode *n);
+/* The most nodes and keyword values that repeated uses of macros may add to one selection
+ * (parser.c: a macro's first use is not counted; doc/commands.md states the limit). */
+#define MS_SEL_MACRO_NODES 100000
+typedef struct ms_selbudget ms_selbudget;
 /* Parse text into a tree; macros[0..nmacros) are being expanded (a recursion check) and
- * depth is the nesting already used. Sets *uses_coords when coordinates are read. */
+ * depth is the nesting already used. Sets *uses_coords when coordinates are read. budget is
+ * what the whole compilation has spent on macros (NULL: this text starts a compilation). */
 ms_selnode *ms_sel_parse_text(const char *text, const char **macros, int nmacros, int depth,
-                              int *uses_coords, ms_error *err);
+                              int *uses_coords, ms_selbudget *budget, ms_error *err);
 /* Compile a regular expression the way VMD's selections do: POSIX extended syntax plus \d
  * and \D; anchored as ^(...)$ when asked. err names the pattern and the problem. */
 int ms_sel_regcomp(regex_t *re, const char *pattern, int anchored, int nosub, ms_error *err);

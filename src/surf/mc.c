@@ -421,6 +421,7 @@ static int make_room(ex_job *j, size_t rows, ms_error *err)
         mc->vrow[r] = (uint32_t)nv, mc->trow[r] = (uint32_t)nt;
         nv += cv, nt += ct;
     }
+    if (ms_qsurf_mesh_fits(mc, nv, nt, err) < 0) return -1;
     if (ms_qsurf_mesh_resize(mc->mesh, nv, nt) < 0) {
         ms_error_set(err, "out of memory for a mesh of %zu vertices and %zu triangles", nv, nt);
         return -1;

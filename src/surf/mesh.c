@@ -1,5 +1,5 @@
 /* mesh.c: the QuickSurf mesh: exact-size growth (realloc, which for large blocks remaps
- * pages instead of copying), release, memory and area; and the advice that large buffers
+ * pages instead of copying) within the surface's memory budget, release, memory and area; and the advice that large buffers
  * be backed by huge pages, which spares most of their page faults. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
@@ -36,6 +36,18 @@ int ms_qsurf_mesh_resize(ms_qsurf_mesh *m, size_t nv, size_t nt)
         return -1;
     m->nv = nv, m->nt = nt;
     return 0;
+}
+
+int ms_qsurf_mesh_fits(ms_qsurf_extract *mc, size_t nv, size_t nt, ms_error *err)
+{
+    double bytes = (double)nv * MS_QSURF_VERTEX_BYTES + (double)nt * 3 * sizeof(uint32_t);
+    if (!mc->budget || bytes <= (double)mc->mesh_room) return 0;
+    mc->over_budget = 1;
+    ms_error_set(err, "the mesh needs %.1f MB (%zu vertices and %zu triangles so far), more "
+                 "than the %.1f MB the memory budget of %.1f MB leaves it beside the density "
+                 "slabs (MOLSCOPE_QUICKSURF_MEMLIMIT)", bytes / 1048576, nv, nt,
+                 (double)mc->mesh_room / 1048576, (double)mc->budget / 1048576);
+    return -1;
 }
 
 void ms_qsurf_mesh_free(ms_qsurf_mesh *m)

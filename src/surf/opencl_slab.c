@@ -253,6 +253,7 @@ static int extract(ms_qsurf_cl *cl, const ms_qsurf_slab *s, ms_qsurf_extract *mc
         ms_error_set(err, "the surface has more than %u vertices or triangles", UINT32_MAX);
         return -1;
     }
+    if (ms_qsurf_mesh_fits(mc, m->nv + total[0], m->nt + total[1], err) < 0) return -1;
     if (grow_mesh(cl, total[0], total[1], err) < 0) return -1;
     e = vertices(cl, mc, &sh, (cl_uint)m->nv);
     if (e == CL_SUCCESS) e = triangles(cl, &sh);

@@ -1,8 +1,10 @@
-/* plan.c: the memory planner. Before anything is allocated, a surface's working set is
- * sized: the atom table and cell grid, the slab buffers (density and colour texture with
- * the planes around the slab), and the extractor's per-point scratch. The slab is the
- * whole volume when it fits the budget, else the largest multiple of 8 cell layers that
- * does; when not even 8 fit, the surface fails with a message saying what it needed. */
+/* plan.c: the memory planner. The budget bounds a surface's whole working set, mesh
+ * included. Before anything is allocated, the slabs' part is sized: the atom table and
+ * cell grid, the slab buffers (density and colour texture with the planes around the
+ * slab), and the extractor's per-point scratch; it may take half the budget, the mesh
+ * (whose size is known only as it grows) the rest. The slab is the whole volume when it
+ * fits, else the largest multiple of 8 cell layers that does; when not even 8 fit, the
+ * surface fails with a message saying what it needed. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 
@@ -49,7 +51,7 @@ size_t ms_qsurf_budget(const ms_qsurf_params *p)
     if (p && p->memlimit) return p->memlimit;
     size_t env = ms_qsurf_parse_bytes(getenv("MOLSCOPE_QUICKSURF_MEMLIMIT"));
     if (env) return env;
-    return available_memory() / 2;
+    return available_memory();
 }
 
 size_t ms_qsurf_slab_bytes(int nx, int ny, int planes, int colored)
@@ -79,9 +81,10 @@ size_t ms_qsurf_plan_bytes(const ms_qsurf_grid *g, int colored, int layers)
 static int plan_within(const ms_qsurf_grid *g, int colored, size_t budget, int maxlayers,
                        ms_qsurf_plan *pl, ms_error *err);
 
-int ms_qsurf_plan_slabs(const ms_qsurf_grid *g, int colored, size_t budget, int maxlayers,
+int ms_qsurf_plan_slabs(const ms_qsurf_grid *g, int colored, size_t whole, int maxlayers,
                         ms_qsurf_plan *pl, ms_error *err)
 {
+    size_t budget = whole / 2;      /* the other half is the mesh's */
     size_t preferred = ms_qsurf_atomgrid_bytes(g, colored) + SLAB_TARGET;
     if (preferred < budget) {
         if (plan_within(g, colored, preferred, maxlayers, pl, NULL) == 0) return 0;
@@ -112,8 +115,9 @@ static int plan_within(const ms_qsurf_grid *g, int colored, size_t budget, int m
     if (layers == 0) {
         int want = MS_MIN(8, total);
         ms_error_set(err, "a slab of %d layers of %d x %d voxels needs %zu bytes, more than "
-                     "the memory budget of %zu bytes (MOLSCOPE_QUICKSURF_MEMLIMIT)",
-                     want, g->n[0], g->n[1], ms_qsurf_plan_bytes(g, colored, want), budget);
+                     "half the memory budget of %zu bytes (MOLSCOPE_QUICKSURF_MEMLIMIT; the "
+                     "other half is kept for the mesh)", want, g->n[0], g->n[1],
+                     ms_qsurf_plan_bytes(g, colored, want), 2 * budget);
         return -1;
     }
     pl->layers = layers;

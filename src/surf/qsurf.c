@@ -245,8 +245,13 @@ static int prepare(run *r, ms_error *err)
     ms_error e = {{0}};
     if (r->cl && ms_qsurf_cl_upload(r->cl, &r->ag, g->n[0], g->n[1], r->plan.layers, &e) < 0)
         drop_device(r, e.msg);
-    return ms_qsurf_extract_begin(&r->mc, g->n, g->origin, axis, g->isovalue, r->colored,
-                                  r->a->solid, r->plan.layers, r->mc.mesh, err);
+    if (ms_qsurf_extract_begin(&r->mc, g->n, g->origin, axis, g->isovalue, r->colored,
+                               r->a->solid, r->plan.layers, r->mc.mesh, err) < 0)
+        return -1;
+    /* the mesh grows within what the planned slabs leave of the budget */
+    r->mc.budget = r->st->budget;
+    r->mc.mesh_room = r->st->budget > r->plan.bytes ? r->st->budget - r->plan.bytes : 0;
+    return 0;
 }
 
 /* Move the planes the next slab [z0, z1) shares with the current one to the start of the
@@ -267,8 +272,9 @@ static void next_slab(ms_qsurf_slab *s, int z0, int z1, int nz)
 
 /* Slab [z0, z1) on the OpenCL device: 1 when done there. When the device fails it is
  * dropped and the host takes the slab over (0): all of its density, since the planes
- * shared with the slab before were on the device. */
-static int device_slab(run *r, int z0, int z1)
+ * shared with the slab before were on the device. A mesh past the memory budget fails the
+ * surface (-1, err set): the host could not hold it either. */
+static int device_slab(run *r, int z0, int z1, ms_error *err)
 {
     ms_error e = {{0}};
     double t[2];
@@ -276,6 +282,10 @@ static int device_slab(run *r, int z0, int z1)
         r->st->opencl++;
         r->st->t_density += t[0], r->st->t_mc += t[1];
         return 1;
+    }
+    if (r->mc.over_budget) {
+        ms_error_set(err, "%s", e.msg);
+        return -1;
     }
     drop_device(r, e.msg);
     r->slab.cz = r->slab.zb;
@@ -289,8 +299,9 @@ static int slabs(run *r, ms_error *err)
         z1 = MS_MIN(z0 + r->plan.layers, nz - 1);
         next_slab(&r->slab, z0, z1, nz);
         r->st->nslabs++;
-        int on_device = r->cl != NULL;
-        if (on_device && device_slab(r, z0, z1)) continue;
+        int on_device = r->cl != NULL, done = on_device ? device_slab(r, z0, z1, err) : 0;
+        if (done < 0) return -1;
+        if (done) continue;
         double t = ms_now();
         if (r->slab.cz <= r->slab.ze) ms_qsurf_density_cpu(&r->ag, &r->slab);
         double t2 = ms_now();

@@ -12,7 +12,9 @@
  * density), marching cubes on any float grid (Isosurface), and the bead reduction (one
  * particle per residue) for cellular-scale systems.
  *
- * Environment: MOLSCOPE_QUICKSURF_MEMLIMIT=bytes (K, M, G suffixes) sets the memory budget,
+ * Environment: MOLSCOPE_QUICKSURF_MEMLIMIT=bytes (K, M, G suffixes) sets the memory budget
+ * (the whole working set: the slabs are planned within half of it, the mesh must fit the
+ * rest or the surface fails saying so),
  * MOLSCOPE_NOOPENCL turns the OpenCL path off, MOLSCOPE_OPENCL_DEVICE=index|name picks a
  * device, MOLSCOPE_NOSIMD forces the plain C density loops,
  * MOLSCOPE_QUICKSURF_KERNEL=gather|scatter picks the CPU density loop (for measurements). */
@@ -151,7 +153,8 @@ typedef struct ms_qsurf_params {
     float gridspacing;       /* 1.0 */
     int quality;             /* 0..3: gausslim 2.0 2.5 3.0 4.0 (others 2.0) */
     int backend;             /* MS_QSURF_AUTO, _CPU or _OPENCL */
-    size_t memlimit;         /* bytes; 0 = MOLSCOPE_QUICKSURF_MEMLIMIT, else half the free memory */
+    size_t memlimit;         /* bytes of the whole working set, mesh included; 0 =
+                              * MOLSCOPE_QUICKSURF_MEMLIMIT, else the available memory */
     /* Where a fallback from OpenCL to the CPU is reported (once per process); NULL =
      * stderr. */
     ms_qsurf_notice_fn notice;
@@ -250,7 +253,8 @@ int ms_qsurf_surface(const ms_qsurf_atoms *a, const ms_qsurf_params *p, ms_qsurf
                      ms_qsurf_stats *stats, ms_error *err);
 
 /* Bytes the surface's working set needs (atom table, cell grid, slab buffers) with slabs of
- * `layers` cell layers, for a grid from ms_qsurf_grid_setup. */
+ * `layers` cell layers, for a grid from ms_qsurf_grid_setup. A memory budget of twice this
+ * plans slabs of that many layers (the mesh has the other half). */
 size_t ms_qsurf_plan_bytes(const ms_qsurf_grid *g, int colored, int layers);
 
 /* ---------------------------------------------------------------- beads

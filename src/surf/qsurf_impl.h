@@ -162,8 +162,10 @@ void ms_qsurf_inside_bits_avx2(const float *d, int n, float iso, uint64_t *out);
 
 /* ---------------------------------------------------------------- memory planner */
 
-/* The budget: p->memlimit, else MOLSCOPE_QUICKSURF_MEMLIMIT, else half the available
- * memory (/proc/meminfo, or sysinfo). */
+/* The budget of the whole working set (atom table, slabs, extractor scratch and the mesh):
+ * p->memlimit, else MOLSCOPE_QUICKSURF_MEMLIMIT, else the available memory (/proc/meminfo,
+ * or sysinfo). The slabs are planned within half of it (ms_qsurf_plan_slabs), so the mesh
+ * has the other half at least. */
 size_t ms_qsurf_budget(const ms_qsurf_params *p);
 /* Parse a byte count with an optional K/M/G suffix; 0 when malformed. */
 size_t ms_qsurf_parse_bytes(const char *s);
@@ -174,9 +176,9 @@ typedef struct ms_qsurf_plan {
     size_t bytes;            /* planned working set */
 } ms_qsurf_plan;
 
-/* Largest slab (at most maxlayers, 0 = no limit) whose working set fits the budget, kept
- * near 192 MB when the budget is larger. Fails with a message giving the bytes an 8-layer
- * slab needs when even that does not fit. */
+/* Largest slab (at most maxlayers, 0 = no limit) whose working set fits half the budget
+ * (the rest is the mesh's), kept near 192 MB when the budget is larger. Fails with a
+ * message giving the bytes an 8-layer slab needs when even that does not fit. */
 int ms_qsurf_plan_slabs(const ms_qsurf_grid *g, int colored, size_t budget, int maxlayers,
                         ms_qsurf_plan *pl, ms_error *err);
 /* Bytes of the slab buffers alone (density, colour texture) holding `planes` planes. */
@@ -224,6 +226,9 @@ typedef struct ms_qsurf_extract {
     uint32_t *vrow, *trow;   /* per row (+1): vertex and triangle counts, then first indices */
     int next_z0;             /* the slab expected next */
     ms_qsurf_mesh *mesh;
+    size_t budget;           /* the surface's memory budget; 0: the mesh may grow freely */
+    size_t mesh_room;        /* what the budget leaves the mesh, after the planned slabs */
+    int over_budget;         /* the mesh did not fit mesh_room: the surface fails */
 } ms_qsurf_extract;
 
 int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float origin[3],
@@ -244,6 +249,9 @@ size_t ms_qsurf_extract_bytes(int nx, int ny, int layers);
 /* Resize the mesh arrays to nv vertices and nt triangles (contents kept). On failure the
  * mesh keeps its old sizes and stays valid. */
 int ms_qsurf_mesh_resize(ms_qsurf_mesh *m, size_t nv, size_t nt);
+/* Can the extractor's mesh grow to nv vertices and nt triangles within mc->mesh_room? -1
+ * (err naming the budget, mc->over_budget set) when not. */
+int ms_qsurf_mesh_fits(ms_qsurf_extract *mc, size_t nv, size_t nt, ms_error *err);
 /* Ask for huge pages under the 2 MB-aligned part of a large buffer (a hint; no error). */
 void ms_qsurf_advise_huge(void *p, size_t bytes);
 

@@ -3,7 +3,8 @@ check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_
 	tests/unit/test_volumes tests/unit/test_image tests/unit/test_serialize \
 	tests/unit/test_select tests/unit/test_ss tests/unit/test_measure tests/unit/test_scene \
 	tests/unit/test_rep tests/unit/test_gl tests/unit/test_qsurf tests/unit/test_rt \
-	tests/unit/test_xtc tests/unit/test_live tests/unit/test_oclrt tests/unit/test_safewrite
+	tests/unit/test_xtc tests/unit/test_live tests/unit/test_oclrt tests/unit/test_safewrite \
+	tests/unit/test_limits
 
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h
 tests_unit_test_base_LDADD = $(TEST_LIBS)
@@ -31,6 +32,8 @@ tests_unit_test_rep_SOURCES = tests/unit/test_rep.c tests/unit/ms_test.h
 tests_unit_test_rep_LDADD = $(TEST_LIBS)
 tests_unit_test_gl_SOURCES = tests/unit/test_gl.c tests/unit/ms_test.h
 tests_unit_test_gl_LDADD = $(TEST_LIBS)
+tests_unit_test_limits_SOURCES = tests/unit/test_limits.c tests/unit/ms_test.h
+tests_unit_test_limits_LDADD = $(TEST_LIBS)
 tests_unit_test_xtc_SOURCES = tests/unit/test_xtc.c tests/unit/ms_test.h
 tests_unit_test_xtc_LDADD = $(TEST_LIBS)
 tests_unit_test_qsurf_SOURCES = tests/unit/test_qsurf.c tests/unit/ms_test.h

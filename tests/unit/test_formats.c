@@ -419,7 +419,7 @@ static void test_xyz(const float *pdb)
              "8 -> O, 1 -> H");
         ms_mol_free(m);
     }
-    m = load(write_text("xyz", "3\ncomment\nO 0 0 0\nH 1 0 0\n"), &err);
+    m = load(write_text("xyz", "3\ncomment\nO 0.000 0.000 0.000\nH 1.000 0.000 0.000\n"), &err);
     t_ok(!m && strstr(err.msg, "line 4: the file ends after 2 of 3 atoms"), "truncated (%s)",
          err.msg);
     ms_mol_free(m);

@@ -60,9 +60,10 @@ int main(void)
          "an unknown extension is an error (%s)", err.msg);
     t_ok(count_files(out_dir(), "img.xyz") == 0 && count_files(out_dir(), "img_rt.tmp-") == 0,
          "no partial or temporary file is left");
-    t_ok(ms_image_alloc(&img, 0, 10, &err) == -1 && strstr(err.msg, "out of range"),
+    ms_image bad;
+    t_ok(ms_image_alloc(&bad, 0, 10, &err) == -1 && strstr(err.msg, "out of range"),
          "a zero size is an error (%s)", err.msg);
-    t_ok(ms_image_alloc(&img, 100000, 100000, &err) == -1 && strstr(err.msg, "out of range"),
+    t_ok(ms_image_alloc(&bad, 100000, 100000, &err) == -1 && strstr(err.msg, "out of range"),
          "an absurd size is an error, not an allocation (%s)", err.msg);
     /* A full disk: /dev/full accepts the open and fails the writes. */
     if (access("/dev/full", W_OK) == 0) {

@@ -395,9 +395,9 @@ static void test_1tii_slabs(const sys *s)
     t_ok(mesh_defects(&ref) == 0, "1tii: closed, every edge shared by two triangles, oriented");
     t_ok(signed_volume(&ref) > 0.0, "1tii: triangles face outwards (volume %.0f A^3)",
          signed_volume(&ref));
-    /* A budget that holds exactly 8 layers per slab. */
+    /* A budget that holds exactly 8 layers per slab (in its half for the slabs). */
     char limit[64];
-    snprintf(limit, sizeof limit, "%zu", ms_qsurf_plan_bytes(&st.grid, 1, 8));
+    snprintf(limit, sizeof limit, "%zu", 2 * ms_qsurf_plan_bytes(&st.grid, 1, 8));
     setenv("MOLSCOPE_QUICKSURF_MEMLIMIT", limit, 1);
     if (surface(s, MS_QSURF_CPU, &m, &st) == 0) {
         int want = (st.grid.n[2] - 1 + 7) / 8;
@@ -405,7 +405,7 @@ static void test_1tii_slabs(const sys *s)
              "of 8 layers (%d)", limit, st.nslabs, want);
         compare("in 8-layer slabs", &ref, &m);
     }
-    snprintf(limit, sizeof limit, "%zu", ms_qsurf_plan_bytes(&st.grid, 1, 8) - 1);
+    snprintf(limit, sizeof limit, "%zu", 2 * ms_qsurf_plan_bytes(&st.grid, 1, 8) - 2);
     setenv("MOLSCOPE_QUICKSURF_MEMLIMIT", limit, 1);
     ms_qsurf_params p;
     ms_error err = {{0}};
@@ -459,7 +459,7 @@ static void device_failure(const sys *s, const ms_qsurf_mesh *ref, int stage, co
     ms_qsurf_grid g;
     ms_qsurf_grid_setup(&s->a, &p, &g, &err);
     p.backend = MS_QSURF_OPENCL, p.notice = note, p.notice_ctx = said;
-    p.memlimit = ms_qsurf_plan_bytes(&g, 1, 8);
+    p.memlimit = 2 * ms_qsurf_plan_bytes(&g, 1, 8);
     ms_qsurf_cl_fail_after = 2, ms_qsurf_cl_fail_stage = stage;
     int rc = ms_qsurf_surface(&s->a, &p, &m, &st, &err);
     ms_qsurf_cl_fail_after = -1;
@@ -499,7 +499,7 @@ static void test_1tii_opencl(const sys *s)
     ms_qsurf_params p;
     ms_error err = {{0}};
     ms_qsurf_params_default(&p);
-    p.backend = MS_QSURF_OPENCL, p.memlimit = ms_qsurf_plan_bytes(&st.grid, 1, 8);
+    p.backend = MS_QSURF_OPENCL, p.memlimit = 2 * ms_qsurf_plan_bytes(&st.grid, 1, 8);
     int rc = ms_qsurf_surface(&s->a, &p, &m, &st, &err);
     if (t_ok(rc == 0 && st.nslabs > 4 && st.opencl == st.nslabs, "1tii on OpenCL in %d slabs "
              "of %d layers, all on the device (%s)", st.nslabs, st.slab_layers, err.msg))
@@ -718,12 +718,98 @@ static void test_1tii_beads(const sys *s)
     ms_qsurf_beads_free(&b);
 }
 
+/* A size line of /proc/self/status ("VmRSS", "VmHWM") in bytes. */
+static size_t status_bytes(const char *key)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    unsigned long long kb = 0;
+    size_t n = strlen(key);
+    while (f && fgets(line, sizeof line, f))
+        if (!strncmp(line, key, n) && line[n] == ':') kb = strtoull(line + n + 1, NULL, 10);
+    if (f) fclose(f);
+    return (size_t)kb * 1024u;
+}
+
+/* Reset VmHWM to the current resident set. */
+static void reset_peak(void)
+{
+    FILE *f = fopen("/proc/self/clear_refs", "w");
+    if (f) {
+        fputs("5", f);
+        fclose(f);
+    }
+}
+
+/* The memory budget covers the mesh too. 1tii stacked six times along z: each slab of 8
+ * layers stays the size of one copy's, the mesh grows with the copies. A budget whose half
+ * holds the 8-layer slabs but whose rest cannot hold the mesh fails, saying so, and leaves
+ * no mesh; one that holds both makes the same mesh as no budget, and the memory the surface
+ * added stays within it. */
+static void test_1tii_mesh_budget(const sys *one)
+{
+    enum { K = 6 };
+    size_t n = one->a.n;
+    float *pos = malloc(3 * K * n * sizeof *pos), *rad = malloc(K * n * sizeof *rad);
+    float *rgb = malloc(3 * K * n * sizeof *rgb), zlo = INFINITY, zhi = -INFINITY;
+    if (!pos || !rad || !rgb) goto done;
+    for (size_t i = 0; i < n; i++)
+        zlo = MS_MIN(zlo, one->a.pos[3 * i + 2]), zhi = MS_MAX(zhi, one->a.pos[3 * i + 2]);
+    for (size_t k = 0; k < K; k++)
+        for (size_t i = 0; i < n; i++) {
+            for (int d = 0; d < 3; d++) pos[3 * (k * n + i) + d] = one->a.pos[3 * i + d];
+            pos[3 * (k * n + i) + 2] += (float)k * (zhi - zlo + 12.0f);
+            rad[k * n + i] = one->a.radius[i];
+            memcpy(rgb + 3 * (k * n + i), one->rgb + 3 * i, 3 * sizeof *rgb);
+        }
+    ms_qsurf_atoms a = {.n = K * n, .pos = pos, .radius = rad, .rgb = rgb,
+                        .minrad = one->a.minrad, .maxrad = one->a.maxrad};
+    ms_qsurf_params p;
+    ms_qsurf_params_default(&p);
+    p.backend = MS_QSURF_CPU;
+    ms_qsurf_mesh ref = {0}, m = {0};
+    ms_qsurf_stats st;
+    ms_error err = {{0}};
+    if (!t_ok(ms_qsurf_surface(&a, &p, &ref, &st, &err) == 0, "1tii x%d: a surface (%s)", K,
+              err.msg))
+        goto done;
+    size_t plan8 = ms_qsurf_plan_bytes(&st.grid, 1, 8), mesh = ms_qsurf_mesh_bytes(&ref);
+    t_ok(mesh > plan8, "1tii x%d: the mesh (%zu bytes) outgrows an 8-layer slab (%zu)", K, mesh,
+         plan8);
+    p.memlimit = 2 * plan8;
+    int rc = ms_qsurf_surface(&a, &p, &m, &st, &err);
+    t_ok(rc < 0 && st.slab_layers == 8 && strstr(err.msg, "the mesh needs") &&
+             strstr(err.msg, "memory budget") && m.nv == 0 && m.pos == NULL,
+         "a budget whose rest cannot hold the mesh fails, naming it (%s)", err.msg);
+    p.memlimit = 2 * (plan8 + mesh);
+    size_t base = status_bytes("VmRSS");
+    reset_peak();
+    rc = ms_qsurf_surface(&a, &p, &m, &st, &err);
+    size_t peak = status_bytes("VmHWM"), added = peak > base ? peak - base : 0;
+    t_ok(rc == 0 && same_mesh(&ref, &m), "a budget that holds slabs and mesh: the same mesh "
+         "(%s)", rc ? err.msg : "");
+#ifdef __SANITIZE_ADDRESS__
+    (void)added;   /* AddressSanitizer's shadow memory and quarantine add to every peak */
+    t_skip("the peak within the budget", "built with AddressSanitizer");
+#else
+    t_ok(rc == 0 && added <= p.memlimit, "the surface added %.1f MB at its peak, within the "
+         "budget of %.1f MB", added / 1048576.0, p.memlimit / 1048576.0);
+#endif
+    ms_qsurf_mesh_free(&ref);
+    ms_qsurf_mesh_free(&m);
+done:
+    free(pos);
+    free(rad);
+    free(rgb);
+}
+
 static void test_1tii(void)
 {
     sys s;
     t_suite = "qsurf";
     if (load_1tii(&s) < 0) return;
     test_1tii_slabs(&s);
+    test_1tii_mesh_budget(&s);
     test_1tii_opencl(&s);
     test_1tii_resume(&s);
     test_1tii_density(&s);

@@ -261,11 +261,13 @@ static void test_errors(void)
     t_suite = "errors";
     expect_error("e.dx", "object 1 class gridpositions counts 2 2 2\norigin 0 0 0\n"
                  "delta 1 0 0\ndelta 0 1 0\ndelta 0 0 1\n"
-                 "object 3 class array type double rank 0 items 8 data follows\n1 2 3\n4 x 6\n",
+                 "object 3 class array type double rank 0 items 8 data follows\n1 2 3\n4 x 6\n"
+                 "7 8\n",
                  "line 8: bad value 'x'");
     expect_error("t.dx", "object 1 class gridpositions counts 2 2 2\norigin 0 0 0\n"
                  "delta 1 0 0\ndelta 0 1 0\ndelta 0 0 1\n"
-                 "object 3 class array type double rank 0 items 8 data follows\n1 2 3\n",
+                 "object 3 class array type double rank 0 items 8 data follows\n"
+                 "1.0000 2.0000 3.0000\n",
                  "after 3 of 8 values");
     expect_error("e.cif", "data_x\nloop_\n_atom_site.id\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n"
                  "_atom_site.Cartn_z\n1 1.0 2.0 3.0\n2 1.0 2.x 3.0\n",
