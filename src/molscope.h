@@ -66,6 +66,6 @@
 #include "live/live.h"
 #include "app/app.h"
 #include "commands/commands.h"
-#include "select/atomsel.h"
+#include "commands/atomsel.h"
 
 #endif

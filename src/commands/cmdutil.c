@@ -4,14 +4,13 @@
 #include "commands/commands.h"
 #include "fileio/load.h"
 #include "parallel/parallel.h"
-#include "select/atomsel.h"
+#include "commands/atomsel.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
-ms_sel_resolver ms_cmd_sel_resolver = NULL;
 void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m) = NULL;
 void (*ms_cmd_volume_hook)(ms_app *app, ms_molecule *m) = NULL;
 

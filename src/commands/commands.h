@@ -48,15 +48,6 @@ int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char
 /* Parse a non-negative count with an upper bound, naming what it is on error. */
 int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out);
 
-/* A selection object (atomselectN) resolved for commands that take one (`animate write ...
- * sel`, `measure`): the selection module installs this; NULL until then. Returns TCL_OK with
- * the molecule id, the resolved frame (-1 when the molecule has none) and malloc'd
- * ascending atom indices; TCL_ERROR with a message naming cmd and the word otherwise. */
-typedef int (*ms_sel_resolver)(ms_app *app, Tcl_Interp *interp, const char *name,
-                               const char *cmd, int *molid, long *frame, uint32_t **atoms,
-                               size_t *natoms);
-extern ms_sel_resolver ms_cmd_sel_resolver;
-
 /* Move every molecule's view so the given molecule fills the screen (VMD's resetview
  * centre and scale); the view module may replace this. */
 extern void (*ms_cmd_reset_view)(ms_app *app);

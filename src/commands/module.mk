@@ -6,6 +6,10 @@ src_libmscore_la_SOURCES += \
 	src/commands/tclvec.h src/commands/tclvec.c src/commands/cmd_vector.c \
 	src/commands/cmd_measure.c src/commands/cmd_measure_geom.c src/commands/cmd_ss.c \
 	src/commands/cmd_volmap.c src/commands/cmd_movie.c
+# atomselect and its selection objects (atomsel.h)
+src_libmscore_la_SOURCES += \
+	src/commands/atomsel.h src/commands/atomsel_int.h src/commands/atomsel.c \
+	src/commands/atomsel_getset.c src/commands/atomsel_methods.c
 # the scene-side commands (scenecmds.h)
 src_libmscore_la_SOURCES += \
 	src/commands/scenecmds.h src/commands/cmd_scene.c src/commands/cmd_color.c \

@@ -11,7 +11,7 @@
  * `$sel global` and `$sel uplevel L` move the variable. The object's methods are in
  * atomsel_getset.c and atomsel_methods.c. */
 #include "config.h"
-#include "select/atomsel_int.h"
+#include "commands/atomsel_int.h"
 #include "commands/commands.h"
 
 #include <stdio.h>
@@ -380,9 +380,8 @@ static int atomsel_obj_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj 
 
 /* ---------------------------------------------------------------- registration */
 
-/* For `animate write ... sel $sel` and others that take a selection by name. */
-static int resolve(ms_app *app, Tcl_Interp *interp, const char *name, const char *cmd,
-                   int *molid, long *frame, uint32_t **atoms, size_t *natoms)
+int ms_atomsel_resolve(ms_app *app, Tcl_Interp *interp, const char *name, const char *cmd,
+                       int *molid, long *frame, uint32_t **atoms, size_t *natoms)
 {
     ms_atomsel *s = ms_atomsel_lookup(app, interp, name, cmd);
     if (!s || !ms_atomsel_fresh(app, interp, s, cmd)) return TCL_ERROR;
@@ -408,5 +407,4 @@ void ms_atomsel_register(ms_app *app)
     Tcl_CreateObjCommand(app->interp, "upproc", cmd_upproc, NULL, NULL);
     Tcl_Eval(app->interp, "namespace eval ::molscope {}");
     Tcl_CreateObjCommand(app->interp, "::molscope::upproc_tie", cmd_tie, NULL, NULL);
-    ms_cmd_sel_resolver = resolve;
 }
