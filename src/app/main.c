@@ -71,7 +71,7 @@ static void choose_dispdev(ms_app *app, const char *dev)
     ms_gl *g = ms_gl_display_current();
     snprintf(app->dispdev, sizeof app->dispdev, "%s", ms_gl_kind_name(ms_gl_kind_of(g)));
     if (i >= 4 && talk) fprintf(stderr, "molscope: -dispdev %s: using %s\n", dev, msg);
-    if (app->view) app->view->depthcue = 1;
+    if (app->view) app->view->settings.depthcue = 1;
 }
 
 /* Run one startup stage; in batch mode an error ends the program. Returns 0 to continue,

@@ -35,35 +35,35 @@ static const char *positive(const ms_view *v, float x) { return x > 0 ? NULL : "
 static const char *nonneg(const ms_view *v, float x) { return x >= 0 ? NULL : "must not be negative"; }
 static const char *not_eye(const ms_view *v, float x)
 {
-    return x != v->cam.eye[2] ? NULL : "puts the screen at the eye";
+    return x != v->settings.cam.eye[2] ? NULL : "puts the screen at the eye";
 }
 static const char *cue_start(const ms_view *v, float x)
 {
-    return x < 0 ? "must not be negative" : x >= v->cue_end ? "must be less than cueend" : NULL;
+    return x < 0 ? "must not be negative" : x >= v->settings.cue_end ? "must be less than cueend" : NULL;
 }
 static const char *cue_end(const ms_view *v, float x)
 {
-    return x > v->cue_start ? NULL : "must be greater than cuestart";
+    return x > v->settings.cue_start ? NULL : "must be greater than cuestart";
 }
 
 #define VOFF(f) offsetof(ms_view, f)
 static const setting settings[] = {
-    {"height", S_FLOAT, VOFF(cam.height), positive},
-    {"distance", S_FLOAT, VOFF(cam.distance), not_eye},
-    {"eyesep", S_FLOAT, VOFF(cam.eyesep), nonneg},
-    {"focallength", S_FLOAT, VOFF(cam.focal_length), positive},
-    {"cuestart", S_FLOAT, VOFF(cue_start), cue_start},
-    {"cueend", S_FLOAT, VOFF(cue_end), cue_end},
-    {"cuedensity", S_FLOAT, VOFF(cue_density), nonneg},
-    {"aoambient", S_FLOAT, VOFF(ao_ambient), nonneg},
-    {"aodirect", S_FLOAT, VOFF(ao_direct), nonneg},
-    {"dof_fnumber", S_FLOAT, VOFF(cam.dof_fnumber), positive},
-    {"dof_focaldist", S_FLOAT, VOFF(cam.dof_focaldist), positive},
-    {"depthcue", S_BOOL, VOFF(depthcue), NULL},
-    {"shadows", S_BOOL, VOFF(shadows), NULL},
-    {"ambientocclusion", S_BOOL, VOFF(ao), NULL},
-    {"dof", S_BOOL, VOFF(cam.dof), NULL},
-    {"backgroundgradient", S_BOOL, VOFF(bg_gradient), NULL},
+    {"height", S_FLOAT, VOFF(settings.cam.height), positive},
+    {"distance", S_FLOAT, VOFF(settings.cam.distance), not_eye},
+    {"eyesep", S_FLOAT, VOFF(settings.cam.eyesep), nonneg},
+    {"focallength", S_FLOAT, VOFF(settings.cam.focal_length), positive},
+    {"cuestart", S_FLOAT, VOFF(settings.cue_start), cue_start},
+    {"cueend", S_FLOAT, VOFF(settings.cue_end), cue_end},
+    {"cuedensity", S_FLOAT, VOFF(settings.cue_density), nonneg},
+    {"aoambient", S_FLOAT, VOFF(settings.ao_ambient), nonneg},
+    {"aodirect", S_FLOAT, VOFF(settings.ao_direct), nonneg},
+    {"dof_fnumber", S_FLOAT, VOFF(settings.cam.dof_fnumber), positive},
+    {"dof_focaldist", S_FLOAT, VOFF(settings.cam.dof_focaldist), positive},
+    {"depthcue", S_BOOL, VOFF(settings.depthcue), NULL},
+    {"shadows", S_BOOL, VOFF(settings.shadows), NULL},
+    {"ambientocclusion", S_BOOL, VOFF(settings.ao), NULL},
+    {"dof", S_BOOL, VOFF(settings.cam.dof), NULL},
+    {"backgroundgradient", S_BOOL, VOFF(settings.bg_gradient), NULL},
     {"antialias", S_BOOL, VOFF(antialias), NULL},
     {"culling", S_BOOL, VOFF(culling), NULL},
     {"stereoswap", S_BOOL, VOFF(stereoswap), NULL},
@@ -121,21 +121,21 @@ static Tcl_Obj *get_word(ms_app *app, const char *w)
     const ms_view *v = app->view;
     static const char *const projs[] = {"Perspective", "Orthographic"};
     static const char *const cues[] = {"Linear", "Exp", "Exp2"};
-    if (ms_word_eq(w, "projection")) return Tcl_NewStringObj(ms_projection_name(v->cam.projection), -1);
+    if (ms_word_eq(w, "projection")) return Tcl_NewStringObj(ms_projection_name(v->settings.cam.projection), -1);
     if (ms_word_eq(w, "projections")) return list_of(projs, 2);
-    if (ms_word_eq(w, "cuemode")) return Tcl_NewStringObj(ms_cuemode_name(v->cuemode), -1);
+    if (ms_word_eq(w, "cuemode")) return Tcl_NewStringObj(ms_cuemode_name(v->settings.cuemode), -1);
     if (ms_word_eq(w, "cuemodes")) return list_of(cues, 3);
-    if (ms_word_eq(w, "nearclip")) return ms_cmd_float_obj(v->cam.near_clip);
-    if (ms_word_eq(w, "farclip")) return ms_cmd_float_obj(v->cam.far_clip);
+    if (ms_word_eq(w, "nearclip")) return ms_cmd_float_obj(v->settings.cam.near_clip);
+    if (ms_word_eq(w, "farclip")) return ms_cmd_float_obj(v->settings.cam.far_clip);
     if (ms_word_eq(w, "stereo")) return Tcl_NewStringObj(v->stereo, -1);
     if (ms_word_eq(w, "stereomodes")) return list_of(stereo_modes, 8);
     if (ms_word_eq(w, "rendermode")) return Tcl_NewStringObj(v->rendermode, -1);
     if (ms_word_eq(w, "rendermodes")) return list_of(render_modes, 8);
     if (ms_word_eq(w, "cachemode")) return Tcl_NewStringObj(v->cachemode, -1);
     if (ms_word_eq(w, "cachemodes")) return list_of(cache_modes, 8);
-    if (ms_word_eq(w, "eyepos")) return vec_obj(v->cam.eye);
-    if (ms_word_eq(w, "eyedir")) return vec_obj(v->cam.dir);
-    if (ms_word_eq(w, "eyeup")) return vec_obj(v->cam.up);
+    if (ms_word_eq(w, "eyepos")) return vec_obj(v->settings.cam.eye);
+    if (ms_word_eq(w, "eyedir")) return vec_obj(v->settings.cam.dir);
+    if (ms_word_eq(w, "eyeup")) return vec_obj(v->settings.cam.up);
     if (ms_word_eq(w, "size")) {
         Tcl_Obj *e[2] = {Tcl_NewIntObj(app->width), Tcl_NewIntObj(app->height)};
         return Tcl_NewListObj(2, e);
@@ -187,12 +187,12 @@ static int disp_choice(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
         if ((i = ms_projection_from_name(val)) < 0)
             return ms_cmd_error(interp, "display projection: unknown projection '%s': must be "
                                         "Perspective or Orthographic", val);
-        v->cam.projection = (ms_projection)i;
+        v->settings.cam.projection = (ms_projection)i;
     } else if (ms_word_eq(w, "cuemode")) {
         if ((i = ms_cuemode_from_name(val)) < 0)
             return ms_cmd_error(interp, "display cuemode: unknown cue mode '%s': must be Linear, "
                                         "Exp or Exp2", val);
-        v->cuemode = (ms_cuemode)i;
+        v->settings.cuemode = (ms_cuemode)i;
     } else {
         const char *const *modes = ms_word_eq(w, "stereo") ? stereo_modes
                                    : ms_word_eq(w, "rendermode") ? render_modes : cache_modes;
@@ -211,7 +211,7 @@ static int disp_clip(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 {
     const char *w = Tcl_GetString(objv[1]);
     int near = ms_word_eq(w, "nearclip");
-    ms_camera *c = &app->view->cam;
+    ms_camera *c = &app->view->settings.cam;
     if (objc == 2) {
         Tcl_SetObjResult(interp, ms_cmd_float_obj(near ? c->near_clip : c->far_clip));
         return TCL_OK;
@@ -376,7 +376,7 @@ static int light_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
                                     "unhighlight|status | light <n> rot <axis> <deg> | light <n> pos ?{x y z}|default?");
     if (n < 0 || n >= MS_SCENE_LIGHTS)
         return ms_cmd_error(interp, "light: no light %d (lights are 0 to %d)", n, MS_SCENE_LIGHTS - 1);
-    ms_light *l = &v->lights[n];
+    ms_light *l = &v->settings.lights[n];
     const char *w = Tcl_GetString(objv[2]);
     if (objc == 3) {
         if (ms_word_eq(w, "on") || ms_word_eq(w, "off")) l->on = ms_word_eq(w, "on");

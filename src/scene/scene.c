@@ -82,7 +82,7 @@ static float screen_dist(const ms_camera *c)
 
 int ms_scene_project(const ms_scene *s, const float world[3], float *px, float *py, float *depth)
 {
-    const ms_camera *c = &s->cam;
+    const ms_camera *c = &s->settings.cam;
     float right[3] = {c->dir[1] * c->up[2] - c->dir[2] * c->up[1],
                       c->dir[2] * c->up[0] - c->dir[0] * c->up[2],
                       c->dir[0] * c->up[1] - c->dir[1] * c->up[0]};
@@ -108,7 +108,7 @@ int ms_scene_project(const ms_scene *s, const float world[3], float *px, float *
 
 float ms_scene_pixel_size(const ms_scene *s, float depth)
 {
-    const ms_camera *c = &s->cam;
+    const ms_camera *c = &s->settings.cam;
     if (c->projection == MS_PROJ_ORTHOGRAPHIC) return c->height / 2.0f / (float)s->height;
     return c->height * depth / (screen_dist(c) * (float)s->height);
 }
@@ -126,21 +126,10 @@ static void copy_settings(ms_app *app, ms_scene *s)
     const ms_view *v = app->view;
     s->width = app->width;
     s->height = app->height;
-    s->cam = v->cam;
-    memcpy(s->lights, v->lights, sizeof s->lights);
+    s->settings = v->settings;
     display_color(app->colors, "Background", s->background);
     display_color(app->colors, "BackgroundTop", s->bg_top);
     display_color(app->colors, "BackgroundBot", s->bg_bottom);
-    s->bg_gradient = v->bg_gradient;
-    s->depthcue = v->depthcue;
-    s->cuemode = v->cuemode;
-    s->cue_start = v->cue_start;
-    s->cue_end = v->cue_end;
-    s->cue_density = v->cue_density;
-    s->shadows = v->shadows;
-    s->ao = v->ao;
-    s->ao_ambient = v->ao_ambient;
-    s->ao_direct = v->ao_direct;
 }
 
 static int add_decorations(ms_app *app, ms_scene *s, ms_error *err)

@@ -40,6 +40,20 @@ typedef struct ms_light {
     float color[3];
 } ms_light;
 
+/* How a scene is drawn: the camera and lights, background gradient, depth cueing, shadows and
+ * ambient occlusion (VMD's `display` and `light` settings). The view (view/view.h) keeps one
+ * and a built scene takes it whole. */
+typedef struct ms_scene_settings {
+    ms_camera cam;
+    ms_light lights[MS_SCENE_LIGHTS];
+    int bg_gradient;
+    int depthcue;
+    ms_cuemode cuemode;
+    float cue_start, cue_end, cue_density;
+    int shadows, ao;
+    float ao_ambient, ao_direct;
+} ms_scene_settings;
+
 /* One display list placed in the world. */
 typedef struct ms_scene_item {
     const ms_displaylist *dl;
@@ -49,16 +63,9 @@ typedef struct ms_scene_item {
 
 typedef struct ms_scene {
     int width, height;
-    ms_camera cam;
-    ms_light lights[MS_SCENE_LIGHTS];
+    ms_scene_settings settings;
     float background[3];
-    int bg_gradient;
     float bg_top[3], bg_bottom[3];
-    int depthcue;
-    ms_cuemode cuemode;
-    float cue_start, cue_end, cue_density;
-    int shadows, ao;
-    float ao_ambient, ao_direct;
     int aa_samples, ao_samples;      /* filled in by the renderer that draws it */
     ms_scene_item *items;
     size_t nitems, capitems;

@@ -52,7 +52,7 @@ ms_view *ms_view_new(void)
 {
     ms_view *v = calloc(1, sizeof *v);
     if (!v) return NULL;
-    ms_camera *c = &v->cam;
+    ms_camera *c = &v->settings.cam;
     c->projection = MS_PROJ_PERSPECTIVE;
     c->eye[2] = 2.0f;
     c->dir[2] = -1.0f;
@@ -66,16 +66,16 @@ ms_view *ms_view_new(void)
     c->dof_fnumber = 64.0f;
     c->dof_focaldist = 0.7f;
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
-        v->lights[i].on = i < 2;
-        memcpy(v->lights[i].pos, light_pos[i], sizeof light_pos[i]);
-        v->lights[i].color[0] = v->lights[i].color[1] = v->lights[i].color[2] = 1.0f;
+        v->settings.lights[i].on = i < 2;
+        memcpy(v->settings.lights[i].pos, light_pos[i], sizeof light_pos[i]);
+        v->settings.lights[i].color[0] = v->settings.lights[i].color[1] = v->settings.lights[i].color[2] = 1.0f;
     }
-    v->cuemode = MS_CUE_EXP2;
-    v->cue_start = 0.5f;
-    v->cue_end = 10.0f;
-    v->cue_density = 0.32f;
-    v->ao_ambient = 0.8f;
-    v->ao_direct = 0.3f;
+    v->settings.cuemode = MS_CUE_EXP2;
+    v->settings.cue_start = 0.5f;
+    v->settings.cue_end = 10.0f;
+    v->settings.cue_density = 0.32f;
+    v->settings.ao_ambient = 0.8f;
+    v->settings.ao_direct = 0.3f;
     v->update = 1;
     strcpy(v->stereo, "Off");
     strcpy(v->rendermode, "Normal");

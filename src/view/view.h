@@ -26,15 +26,8 @@ typedef enum ms_stage_loc {
 } ms_stage_loc;
 
 typedef struct ms_view {
-    ms_camera cam;
-    ms_light lights[MS_SCENE_LIGHTS];
+    ms_scene_settings settings;  /* what a scene built now is drawn with */
     int light_highlight[MS_SCENE_LIGHTS];
-    int depthcue;
-    ms_cuemode cuemode;
-    float cue_start, cue_end, cue_density;
-    int shadows, ao;
-    float ao_ambient, ao_direct;
-    int bg_gradient;
     int antialias, culling, fps, stereoswap, update;
     char stereo[16], rendermode[16], cachemode[16];
     ms_axes_loc axes;
