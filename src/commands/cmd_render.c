@@ -10,7 +10,7 @@
  *   render formats <method>;  render format <method> ?fmt? */
 #include "config.h"
 #include "commands/scenecmds.h"
-#include "render/render.h"
+#include "assemble/devices.h"
 
 #include <stdlib.h>
 #include <string.h>

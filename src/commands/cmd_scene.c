@@ -3,8 +3,7 @@
  * molecules, and registering the scene commands. Also the argument parsers they share. */
 #include "config.h"
 #include "commands/scenecmds.h"
-#include "gl/gl.h"
-#include "render/render.h"
+#include "assemble/devices.h"
 #include "scene/color.h"
 #include "scene/material.h"
 #include "scene/scene.h"
@@ -108,7 +107,6 @@ void ms_cmd_scene_register(ms_app *app)
     app->colors = ms_colors_new(&err);
     app->materials = ms_materials_new(&err);
     app->view = ms_view_new();
-    ms_gl_register_snapshot();     /* first in `render list`, as in VMD */
     app->renderers = ms_renderers_new();
     if (!app->colors || !app->materials || !app->view || !app->renderers) {
         fprintf(stderr, "molscope: cannot create the scene state (out of memory)\n");

@@ -4,8 +4,8 @@
  * replaces the last; and the view changes the page sends, checked and applied. */
 #include "config.h"
 #include "live/live.h"
+#include "assemble/devices.h"
 #include "gl/gl.h"
-#include "render/render.h"
 #include "scene/color.h"
 #include "scene/material.h"
 #include "view/view.h"
