@@ -11,8 +11,6 @@
 #include <string.h>
 #include <strings.h>
 
-void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m) = NULL;
-void (*ms_cmd_volume_hook)(ms_app *app, ms_molecule *m) = NULL;
 
 struct ms_cmdset {
     char *name;
@@ -375,9 +373,9 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
             return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
         }
         if (m->nframes) ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
-        if (m->atoms.n && ms_cmd_structure_hook) ms_cmd_structure_hook(app, m);
+        if (m->atoms.n) ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, m, NULL);
         if (m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES, m, NULL);
-        if (!m->atoms.n && m->nvolumes && ms_cmd_volume_hook) ms_cmd_volume_hook(app, m);
+        if (!m->atoms.n && m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES_LOADED, m, NULL);
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
         if (m->pending) ms_app_schedule_loading(app);
         else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, m, path);
@@ -391,12 +389,12 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
     if (atoms_before == 0 && into->atoms.n > 0) {
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE, into, NULL);
-        if (ms_cmd_structure_hook) ms_cmd_structure_hook(app, into);
+        ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, into, NULL);
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
     }
     if (into->nvolumes != volumes_before) ms_molset_emit(&app->mols, MS_EV_VOLUMES, into, NULL);
-    if (into->atoms.n == 0 && volumes_before == 0 && into->nvolumes && ms_cmd_volume_hook) {
-        ms_cmd_volume_hook(app, into);
+    if (into->atoms.n == 0 && volumes_before == 0 && into->nvolumes) {
+        ms_molset_emit(&app->mols, MS_EV_VOLUMES_LOADED, into, NULL);
         if (ms_cmd_reset_view) ms_cmd_reset_view(app);
     }
     if (into->nframes != frames_before) {

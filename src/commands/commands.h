@@ -52,14 +52,6 @@ int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *wha
  * centre and scale); the view module may replace this. */
 extern void (*ms_cmd_reset_view)(ms_app *app);
 
-/* Called by ms_cmd_load when a file gives a molecule its first atoms (a new molecule, or
- * addfile into an empty one), before the view is reset: the rep commands add VMD's default
- * rep there. NULL: nothing happens. */
-extern void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m);
-/* Called by ms_cmd_load when a file gives a molecule with no atoms its first volumetric
- * data sets, before the view is reset: the rep commands add VMD's Isosurface rep there. */
-extern void (*ms_cmd_volume_hook)(ms_app *app, ms_molecule *m);
-
 /* Register every command of this module. */
 void ms_commands_register(ms_app *app);
 void ms_cmd_mol_register(ms_app *app);
