@@ -1,8 +1,8 @@
 /* rep_int.h: what the files of src/rep share and nothing outside reads: the input a drawing
  * method's builder gets, reusable scratch memory, the helpers several methods use (atom
  * spheres, the bonds drawn, half-bond cylinders and lines, pair search through a cell grid,
- * polymer backbones, splines, the ribbon extrusion), the per-rep cache and the per-molecule
- * and per-application state. */
+ * polymer backbones, splines, the ribbon extrusion), the per-rep cache, the per-molecule rep
+ * lists and the module's state. */
 #ifndef MS_REP_INT_H
 #define MS_REP_INT_H
 
