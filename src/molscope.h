@@ -53,7 +53,7 @@
 #include "scene/material.h"
 #include "scene/graphics.h"
 #include "scene/scene.h"
-#include "view/view.h"
+#include "assemble/view.h"
 #include "render/render.h"
 #include "rep/rep.h"
 #include "vecmath/vecmath.h"

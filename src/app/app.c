@@ -5,7 +5,6 @@
 #include "commands/commands.h"
 #include "fileio/load.h"
 #include "gl/gl.h"
-#include "live/live.h"
 
 #include <limits.h>
 #include <stdio.h>
@@ -72,7 +71,6 @@ ms_app *ms_app_new(const char *argv0)
     if (n > 0) app->exe_path[n] = '\0';
     else snprintf(app->exe_path, sizeof app->exe_path, "%s", argv0);
     strcpy(app->dispdev, "text");
-    app->width = app->height = 512;
     ms_molset_init(&app->mols);
     ms_registry_init(&app->plugins);
     find_tcllib(app);
@@ -85,7 +83,13 @@ ms_app *ms_app_new(const char *argv0)
         /* Tcl works without its own script library, with fewer conveniences. */
     }
     Tcl_SetVar2(app->interp, "env", "MOLSCOPE_TCLLIB", app->tcllib_dir, TCL_GLOBAL_ONLY);
-    ms_app_register(app);
+    ms_app_register(app);      /* first: the trace variables are set before others hear */
+    ms_error err = {{0}};
+    if (ms_world_init(&app->world, &app->mols, &err)) {
+        fprintf(stderr, "molscope: cannot create the scene state: %s\n", err.msg);
+        ms_app_free(app);
+        return NULL;
+    }
     ms_commands_register(app);
     return app;
 }
@@ -96,13 +100,13 @@ void ms_app_free(ms_app *app)
     if (app->idle_scheduled) Tcl_CancelIdleCall(idle_load, app);
     for (size_t i = 0; i < app->mols.n; i++) ms_loader_cancel(app->mols.mols[i]);
     if (app->interp) {
-        ms_live_stop(app);                /* before the display lists it may hold go */
         Tcl_SetVar(app->interp, "vmd_quit", "1", TCL_GLOBAL_ONLY);
-        ms_molset_free(&app->mols);
+        /* Whatever lives on the interpreter ends with it (the live view stops there),
+         * before the molecules and the display lists it may hold go. */
         Tcl_DeleteInterp(app->interp);
-    } else {
-        ms_molset_free(&app->mols);
     }
+    ms_molset_free(&app->mols);
+    ms_world_free(&app->world);
     ms_registry_free(&app->plugins);
     ms_gl_display_close();
     free(app);
@@ -187,7 +191,7 @@ static void on_mol_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *
 {
     ms_app *app = ud;
     char buf[32];
-    app->scene_version++;
+    app->world.scene_version++;
     switch (ev) {
     case MS_EV_MOL_NEW:
         set_trace_var(app, "vmd_initialize_structure", m->id, "1");

@@ -10,7 +10,7 @@
 #include "app/shell.h"
 #include "parallel/parallel.h"
 #include "gl/gl.h"
-#include "view/view.h"
+#include "assemble/view.h"
 
 #include <malloc.h>
 #include <stdint.h>
@@ -71,7 +71,7 @@ static void choose_dispdev(ms_app *app, const char *dev)
     ms_gl *g = ms_gl_display_current();
     snprintf(app->dispdev, sizeof app->dispdev, "%s", ms_gl_kind_name(ms_gl_kind_of(g)));
     if (i >= 4 && talk) fprintf(stderr, "molscope: -dispdev %s: using %s\n", dev, msg);
-    if (app->view) app->view->settings.depthcue = 1;
+    if (app->world.view) app->world.view->settings.depthcue = 1;
 }
 
 /* Run one startup stage; in batch mode an error ends the program. Returns 0 to continue,
@@ -190,8 +190,8 @@ int main(int argc, char **argv)
     app->interactive = isatty(0) && ms_par_size() == 1;
     choose_dispdev(app, o.dispdev);
     if (o.width) {
-        app->width = o.width;
-        app->height = o.height;
+        app->world.width = o.width;
+        app->world.height = o.height;
     }
     set_tcl_argv(app, argv[0], &o);
 

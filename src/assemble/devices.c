@@ -145,22 +145,22 @@ char *ms_render_expand_cmd(const char *cmd, const char *path, int w, int h)
     return out;
 }
 
-int ms_render(ms_app *app, const ms_render_device *dev, const char *path, const char *post_cmd,
+int ms_render(ms_world *w, const ms_render_device *dev, const char *path, const char *post_cmd,
               ms_error *err)
 {
-    ms_render_setting *set = ms_render_setting_of(app->renderers, dev);
+    ms_render_setting *set = ms_render_setting_of(w->renderers, dev);
     if (!set) {
         ms_error_set(err, "out of memory");
         return -1;
     }
     ms_scene scene;
-    if (ms_scene_build(app, &scene, err)) return -1;
+    if (ms_world_build_scene(w, &scene, err)) return -1;
     scene.aa_samples = set->aasamples;
     scene.ao_samples = set->aosamples;
     int rc = dev->write(&scene, path, err);
     ms_scene_free(&scene);
     if (rc || !post_cmd || !*post_cmd) return rc;
-    char *cmd = ms_render_expand_cmd(post_cmd, path, app->width, app->height);
+    char *cmd = ms_render_expand_cmd(post_cmd, path, w->width, w->height);
     if (!cmd) {
         ms_error_set(err, "out of memory");
         return -1;

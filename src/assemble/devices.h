@@ -12,7 +12,7 @@
 #ifndef MS_ASSEMBLE_DEVICES_H
 #define MS_ASSEMBLE_DEVICES_H
 
-#include "app/app.h"
+#include "assemble/world.h"
 #include "render/render.h"
 
 /* The devices, in `render list` order. */
@@ -46,8 +46,8 @@ int ms_render_set_samples(ms_render_setting *set, int aasamples, int aosamples);
  * it, as VMD does. -1 when the device has no such format (or no memory). */
 int ms_render_set_format(ms_render_setting *set, const char *name);
 
-/* Render the current scene with a device to a file, then run post_cmd (may be NULL). */
-int ms_render(ms_app *app, const ms_render_device *dev, const char *path, const char *post_cmd,
+/* Render the world's scene with a device to a file, then run post_cmd (may be NULL). */
+int ms_render(ms_world *w, const ms_render_device *dev, const char *path, const char *post_cmd,
               ms_error *err);
 /* The post-render command with %s, %w, %h replaced (malloc'd; NULL on no memory). */
 char *ms_render_expand_cmd(const char *cmd, const char *path, int w, int h);

@@ -374,7 +374,7 @@ static int atomsel_obj_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj 
     if (m->nargs >= 0 ? extra != m->nargs : extra > 1)
         return ms_cmd_error(interp, "%s %s: usage: %s %s", s->name, w, s->name, m->usage);
     /* set*, move*: atoms or bonds change, and with them what the reps draw */
-    if (!strncmp(m->name, "set", 3) || strstr(m->name, "move")) st->app->scene_version++;
+    if (!strncmp(m->name, "set", 3) || strstr(m->name, "move")) st->app->world.scene_version++;
     return m->fn(st->app, interp, s, objc, objv);
 }
 

@@ -15,7 +15,7 @@
 #include "config.h"
 #include "commands/scenecmds.h"
 #include "scene/mat4.h"
-#include "view/view.h"
+#include "assemble/view.h"
 
 #include <stddef.h>
 #include <string.h>
@@ -85,7 +85,7 @@ static int set_value(ms_app *app, Tcl_Interp *interp, const setting *s, Tcl_Obj 
 {
     char what[64];
     snprintf(what, sizeof what, "display %s", s->name);
-    char *p = (char *)app->view + s->off;
+    char *p = (char *)app->world.view + s->off;
     if (s->type == S_BOOL) {
         int b;
         if (ms_cmd_get_bool(interp, val, &b, what)) return TCL_ERROR;
@@ -94,7 +94,7 @@ static int set_value(ms_app *app, Tcl_Interp *interp, const setting *s, Tcl_Obj 
     }
     float x;
     if (ms_cmd_get_float(interp, val, &x, what)) return TCL_ERROR;
-    const char *bad = s->check ? s->check(app->view, x) : NULL;
+    const char *bad = s->check ? s->check(app->world.view, x) : NULL;
     if (bad) return ms_cmd_error(interp, "%s: %g %s", what, x, bad);
     *(float *)p = x;
     return TCL_OK;
@@ -118,7 +118,7 @@ static Tcl_Obj *vec_obj(const float v[3])
 
 static Tcl_Obj *get_word(ms_app *app, const char *w)
 {
-    const ms_view *v = app->view;
+    const ms_view *v = app->world.view;
     static const char *const projs[] = {"Perspective", "Orthographic"};
     static const char *const cues[] = {"Linear", "Exp", "Exp2"};
     if (ms_word_eq(w, "projection")) return Tcl_NewStringObj(ms_projection_name(v->settings.cam.projection), -1);
@@ -137,12 +137,12 @@ static Tcl_Obj *get_word(ms_app *app, const char *w)
     if (ms_word_eq(w, "eyedir")) return vec_obj(v->settings.cam.dir);
     if (ms_word_eq(w, "eyeup")) return vec_obj(v->settings.cam.up);
     if (ms_word_eq(w, "size")) {
-        Tcl_Obj *e[2] = {Tcl_NewIntObj(app->width), Tcl_NewIntObj(app->height)};
+        Tcl_Obj *e[2] = {Tcl_NewIntObj(app->world.width), Tcl_NewIntObj(app->world.height)};
         return Tcl_NewListObj(2, e);
     }
     const setting *s = find_setting(w);
     if (!s) return NULL;
-    const char *p = (const char *)app->view + s->off;
+    const char *p = (const char *)app->world.view + s->off;
     if (s->type == S_BOOL) return Tcl_NewStringObj(*(const int *)p ? "on" : "off", -1);
     return ms_cmd_float_obj(*(const float *)p);
 }
@@ -175,7 +175,7 @@ static int disp_setting(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 static int disp_choice(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *w = Tcl_GetString(objv[1]);
-    ms_view *v = app->view;
+    ms_view *v = app->world.view;
     if (objc == 2) {
         Tcl_SetObjResult(interp, get_word(app, ms_word_eq(w, "proj") ? "projection" : w));
         return TCL_OK;
@@ -211,7 +211,7 @@ static int disp_clip(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 {
     const char *w = Tcl_GetString(objv[1]);
     int near = ms_word_eq(w, "nearclip");
-    ms_camera *c = &app->view->settings.cam;
+    ms_camera *c = &app->world.view->settings.cam;
     if (objc == 2) {
         Tcl_SetObjResult(interp, ms_cmd_float_obj(near ? c->near_clip : c->far_clip));
         return TCL_OK;
@@ -243,8 +243,8 @@ static int disp_resize(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
             return ms_cmd_error(interp, "display resize: %s: expected a whole number from 1 to "
                                         "32768, got '%s'", k ? "height" : "width",
                                 Tcl_GetString(objv[2 + k]));
-    app->width = wh[0];
-    app->height = wh[1];
+    app->world.width = wh[0];
+    app->world.height = wh[1];
     return TCL_OK;
 }
 
@@ -268,21 +268,21 @@ static int disp_size(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 static int disp_resetview(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     if (objc != 2) return ms_cmd_error(interp, "display resetview: takes no arguments");
-    ms_view_reset(app);
+    ms_view_reset(&app->world);
     return TCL_OK;
 }
 
 static int disp_update(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     if (objc == 2) {
-        ms_view_rock_step(app);   /* a redraw advances rocking, as VMD's display loop does */
+        ms_view_rock_step(&app->world);   /* a redraw advances rocking, as VMD's display loop does */
         return TCL_OK;
     }
     const char *w = objc == 3 ? Tcl_GetString(objv[2]) : "";
     int b;
-    if (!strcmp(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->view->update));
+    if (!strcmp(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->world.view->update));
     else if (!strcmp(w, "ui")) return TCL_OK;
-    else if (objc == 3 && Tcl_GetBooleanFromObj(NULL, objv[2], &b) == TCL_OK) app->view->update = b;
+    else if (objc == 3 && Tcl_GetBooleanFromObj(NULL, objv[2], &b) == TCL_OK) app->world.view->update = b;
     else return ms_cmd_error(interp, "display update: usage: display update ?on|off|status|ui?");
     return TCL_OK;
 }
@@ -292,7 +292,7 @@ static int disp_update(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
 static int axes_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *w = objc > 1 ? Tcl_GetString(objv[1]) : "";
-    ms_view *v = app->view;
+    ms_view *v = app->world.view;
     if (objc == 2 && ms_word_eq(w, "locations")) {
         Tcl_Obj *l = Tcl_NewListObj(0, NULL);
         for (int i = 0; i < MS_AXES_NLOCS; i++)
@@ -316,7 +316,7 @@ static int axes_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 static int stage_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *w = objc > 1 ? Tcl_GetString(objv[1]) : "";
-    ms_view *v = app->view;
+    ms_view *v = app->world.view;
     if (objc == 2 && ms_word_eq(w, "locations")) {
         Tcl_Obj *l = Tcl_NewListObj(0, NULL);
         for (int i = 0; i < MS_STAGE_NLOCS; i++)
@@ -365,7 +365,7 @@ static int stage_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int light_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_view *v = app->view;
+    ms_view *v = app->world.view;
     if (objc == 2 && ms_word_eq(Tcl_GetString(objv[1]), "num")) {
         Tcl_SetObjResult(interp, Tcl_NewIntObj(MS_SCENE_LIGHTS));
         return TCL_OK;
@@ -416,19 +416,19 @@ static int light_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int axes_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ((ms_app *)cd)->scene_version++;
+    ((ms_app *)cd)->world.scene_version++;
     return axes_cmd(cd, interp, objc, objv);
 }
 
 static int stage_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ((ms_app *)cd)->scene_version++;
+    ((ms_app *)cd)->world.scene_version++;
     return stage_cmd(cd, interp, objc, objv);
 }
 
 static int light_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ((ms_app *)cd)->scene_version++;
+    ((ms_app *)cd)->world.scene_version++;
     return light_cmd(cd, interp, objc, objv);
 }
 

@@ -133,7 +133,7 @@ static int add_shape(gctx *c, int objc, Tcl_Obj *const objv[])
         if (get_points(c, np, objv + 3, &it)) return TCL_ERROR;
         if (it.kind == MS_UG_TRICOLOR) {
             for (int k = 0; k < 3; k++) {
-                it.iv[k] = ms_color_index(c->app->colors, Tcl_GetString(objv[9 + k]));
+                it.iv[k] = ms_color_index(c->app->world.colors, Tcl_GetString(objv[9 + k]));
                 if (it.iv[k] < 0)
                     return ms_cmd_error(c->interp, "%s: unknown color '%s'", c->what, Tcl_GetString(objv[9 + k]));
             }
@@ -169,13 +169,13 @@ static int add_state(gctx *c, int objc, Tcl_Obj *const objv[])
     const char *v = Tcl_GetString(objv[3]);
     if (!strcasecmp(c->shape, "color") || !strcasecmp(c->shape, "colour")) {
         it.kind = MS_UG_COLOR;
-        if ((it.iv[0] = ms_color_index(c->app->colors, v)) < 0)
+        if ((it.iv[0] = ms_color_index(c->app->world.colors, v)) < 0)
             return ms_cmd_error(c->interp, "%s: unknown color '%s'", c->what, v);
     } else if (!strcasecmp(c->shape, "material")) {
         it.kind = MS_UG_MATERIAL;
-        int i = ms_material_index(c->app->materials, v);
+        int i = ms_material_index(c->app->world.materials, v);
         if (i < 0) return ms_cmd_error(c->interp, "%s: unknown material '%s'", c->what, v);
-        it.iv[0] = c->app->materials->list[i].id;
+        it.iv[0] = c->app->world.materials->list[i].id;
     } else {
         it.kind = MS_UG_MATERIALS;
         if (ms_cmd_get_bool(c->interp, objv[3], &it.iv[0], c->what)) return TCL_ERROR;
@@ -219,7 +219,7 @@ static int manage(gctx *c, int objc, Tcl_Obj *const objv[])
         return TCL_OK;
     }
     char buf[2048];
-    ms_ugraphics_info(c->g, i, c->app->materials, buf, sizeof buf);
+    ms_ugraphics_info(c->g, i, c->app->world.materials, buf, sizeof buf);
     Tcl_SetObjResult(interp, Tcl_NewStringObj(buf, -1));
     return TCL_OK;
 }
@@ -227,12 +227,12 @@ static int manage(gctx *c, int objc, Tcl_Obj *const objv[])
 static int graphics_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     ms_app *app = cd;
-    app->scene_version++;
+    app->world.scene_version++;
     if (objc < 3)
         return ms_cmd_error(interp, "graphics: usage: graphics <molid|top> <command> ?args?");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "graphics");
     if (!m) return TCL_ERROR;
-    gctx c = {app, interp, ms_cmd_ugraphics(app, m), Tcl_GetString(objv[2]), ""};
+    gctx c = {app, interp, ms_world_ugraphics(&app->world, m), Tcl_GetString(objv[2]), ""};
     if (!c.g) return ms_cmd_error(interp, "graphics: out of memory");
     snprintf(c.what, sizeof c.what, "graphics %d %s", m->id, c.shape);
     if (!strcasecmp(c.shape, "text")) return add_text(&c, objc, objv);
@@ -249,7 +249,7 @@ static int graphics_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *co
 static int draw_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     ms_app *app = cd;
-    app->scene_version++;
+    app->world.scene_version++;
     if (objc < 2) return ms_cmd_error(interp, "draw: usage: draw <shape> ?args?");
     ms_molecule *top = ms_molset_top(&app->mols);
     if (!top) {

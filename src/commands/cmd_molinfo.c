@@ -316,7 +316,7 @@ static int molinfo_set(ms_app *app, Tcl_Interp *interp, ms_molecule *m, int objc
 {
     if (objc != 5 && objc != 7)
         return ms_cmd_error(interp, "molinfo: usage: molinfo <molid> set <keywords> <values> ?frame <n>?");
-    app->scene_version++;
+    app->world.scene_version++;
     long frame = m->frame;
     if (objc == 7) {
         if (strcasecmp(Tcl_GetString(objv[5]), "frame"))

@@ -25,7 +25,6 @@
 #include "commands/molinfo.h"
 #include "rep/rep.h"
 #include "scene/material.h"
-#include "view/view.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -58,10 +57,10 @@ static ms_rep *get_rep(ms_app *app, Tcl_Interp *interp, ms_molecule *m, Tcl_Obj 
         ms_cmd_error(interp, "%s: '%s' is not a rep id", cmd, Tcl_GetString(w));
         return NULL;
     }
-    ms_rep *r = ms_rep_get(app->reps, m, id);
+    ms_rep *r = ms_rep_get(app->world.reps, m, id);
     if (!r)
         ms_cmd_error(interp, "%s: molecule %d has no rep %ld (it has %zu)", cmd, m->id, id,
-                     ms_rep_count(app->reps, m));
+                     ms_rep_count(app->world.reps, m));
     if (repid) *repid = id;
     return r;
 }
@@ -98,13 +97,13 @@ static int m_current(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     what_of(Tcl_GetString(objv[1]), &what);
     cmd_name(objv, cmd, sizeof cmd);
     if (objc == 2) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_text(app->reps, NULL, what), -1));
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_text(app->world.reps, NULL, what), -1));
         return TCL_OK;
     }
     Tcl_Obj *text = joined(objc, objv, 2);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
-    int rc = ms_rep_set_current(app->reps, what, Tcl_GetString(text), &err);
+    int rc = ms_rep_set_current(app->world.reps, what, Tcl_GetString(text), &err);
     Tcl_DecrRefCount(text);
     return rc ? ms_cmd_error(interp, "%s: %s", cmd, err.msg) : TCL_OK;
 }
@@ -117,11 +116,11 @@ static int m_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
         return ms_cmd_error(interp, "mol default: usage: mol default color|style|selection|"
                                     "material ?<value>?");
     if (objc == 3) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_get_default(app->reps, what), -1));
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_get_default(app->world.reps, what), -1));
         return TCL_OK;
     }
     ms_error err = {{0}};
-    if (ms_rep_set_default(app->reps, what, Tcl_GetString(objv[3]), &err))
+    if (ms_rep_set_default(app->world.reps, what, Tcl_GetString(objv[3]), &err))
         return ms_cmd_error(interp, "mol default %s: %s", Tcl_GetString(objv[2]), err.msg);
     return TCL_OK;
 }
@@ -133,7 +132,7 @@ static int m_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 static int settle(ms_app *app, Tcl_Interp *interp, ms_molecule *m, ms_rep *r, const char *cmd)
 {
     ms_error err = {{0}};
-    if (m->nframes && ms_rep_update_data(app->reps, m, r, &err))
+    if (m->nframes && ms_rep_update_data(app->world.reps, m, r, &err))
         return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
     return TCL_OK;
 }
@@ -144,7 +143,7 @@ static int m_addrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol addrep");
     if (!m) return TCL_ERROR;
     ms_error err = {{0}};
-    ms_rep *r = ms_rep_add(app->reps, m, &err);
+    ms_rep *r = ms_rep_add(app->world.reps, m, &err);
     if (!r) return ms_cmd_error(interp, "mol addrep: %s", err.msg);
     return settle(app, interp, m, r, "mol addrep");
 }
@@ -155,7 +154,7 @@ static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     ms_molecule *m;
     long id;
     if (!target(app, interp, objv, 1, "mol delrep", &m, &id)) return TCL_ERROR;
-    ms_rep_delete(app->reps, m, (size_t)id);
+    ms_rep_delete(app->world.reps, m, (size_t)id);
     return TCL_OK;
 }
 
@@ -166,7 +165,7 @@ static int m_modrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     ms_rep *r = target(app, interp, objv, 1, "mol modrep", &m, NULL);
     ms_error err = {{0}};
     if (!r) return TCL_ERROR;
-    if (ms_rep_apply_current(app->reps, m, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
+    if (ms_rep_apply_current(app->world.reps, m, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
     return settle(app, interp, m, r, "mol modrep");
 }
 
@@ -184,7 +183,7 @@ static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     Tcl_Obj *text = joined(objc, objv, 4);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
-    int rc = ms_rep_modify(app->reps, m, r, what, Tcl_GetString(text), &err);
+    int rc = ms_rep_modify(app->world.reps, m, r, what, Tcl_GetString(text), &err);
     Tcl_DecrRefCount(text);
     if (rc) return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
     return what == MS_REP_SELECTION || what == MS_REP_COLOR ? settle(app, interp, m, r, cmd) : TCL_OK;
@@ -258,7 +257,7 @@ static int m_scaleminmax(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
     if (!r) return TCL_ERROR;
     if (objc == 4) {
         ms_error err = {{0}};
-        if (ms_rep_update_data(app->reps, m, r, &err))
+        if (ms_rep_update_data(app->world.reps, m, r, &err))
             return ms_cmd_error(interp, "mol scaleminmax: %s", err.msg);
         Tcl_SetObjResult(interp, Tcl_ObjPrintf("%f %f", r->cmin, r->cmax));
         return TCL_OK;
@@ -323,7 +322,7 @@ static int m_repindex(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     if (objc != 4) return ms_cmd_error(interp, "mol repindex: usage: mol repindex <molid> <name>");
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol repindex");
     if (!m) return TCL_ERROR;
-    Tcl_SetObjResult(interp, Tcl_NewLongObj(ms_rep_find(app->reps, m, Tcl_GetString(objv[3]))));
+    Tcl_SetObjResult(interp, Tcl_NewLongObj(ms_rep_find(app->world.reps, m, Tcl_GetString(objv[3]))));
     return TCL_OK;
 }
 
@@ -361,7 +360,7 @@ static Tcl_Obj *counts(ms_app *app, const ms_rep *r)
         Tcl_ListObjAppendElement(NULL, l, Tcl_NewWideIntObj((Tcl_WideInt)c[i].v));
     }
     Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj("material", -1));
-    Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_material_by_id(app->materials, r->material)->name, -1));
+    Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_material_by_id(app->world.materials, r->material)->name, -1));
     return l;
 }
 
@@ -422,7 +421,7 @@ static int m_repinfo(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     ms_rep *r = target(app, interp, objv, 0, "mol repinfo", &m, NULL);
     ms_error err = {{0}};
     if (!r) return TCL_ERROR;
-    if (ms_rep_update(app->reps, m, r, &err)) return ms_cmd_error(interp, "mol repinfo: %s", err.msg);
+    if (ms_rep_update(app->world.reps, m, r, &err)) return ms_cmd_error(interp, "mol repinfo: %s", err.msg);
     if (objc == 4) {
         Tcl_SetObjResult(interp, counts(app, r));
         return TCL_OK;
@@ -455,18 +454,18 @@ static int info_get(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char 
     what_of(word, &what);
     char *end;
     long i = sp ? strtol(sp + 1, &end, 10) : -1;
-    ms_rep *r = sp && end != sp + 1 && !*end ? ms_rep_get(app->reps, m, i) : NULL;
+    ms_rep *r = sp && end != sp + 1 && !*end ? ms_rep_get(app->world.reps, m, i) : NULL;
     if (!r)
         return ms_cmd_error(interp, "molinfo: %s: molecule %d has no rep '%s' (it has %zu)",
-                            keyword, m->id, sp ? sp + 1 : "", ms_rep_count(app->reps, m));
-    *out = Tcl_NewStringObj(ms_rep_text(app->reps, r, what), -1);
+                            keyword, m->id, sp ? sp + 1 : "", ms_rep_count(app->world.reps, m));
+    *out = Tcl_NewStringObj(ms_rep_text(app->world.reps, r, what), -1);
     return TCL_OK;
 }
 
 static int info_numreps(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char *keyword,
                         long frame, Tcl_Obj **out)
 {
-    *out = Tcl_NewWideIntObj((Tcl_WideInt)ms_rep_count(app->reps, m));
+    *out = Tcl_NewWideIntObj((Tcl_WideInt)ms_rep_count(app->world.reps, m));
     return TCL_OK;
 }
 
@@ -483,40 +482,8 @@ static const ms_subcmd rep_table[] = {
     {"showperiodic", m_periodic},  {"numperiodic", m_periodic}, {"repinfo", m_repinfo},
     {NULL, NULL}};
 
-static int scene_source(ms_app *app, ms_molecule *m, ms_scene *s, const float model[16],
-                        ms_error *err)
-{
-    return ms_rep_to_scene(app->reps, m, s, model, err);
-}
-
-static int cov_hook(ms_app *app, ms_molecule *m, float center[3], float *scale)
-{
-    uint32_t *idx;
-    size_t n;
-    if (!ms_rep_shown_atoms(app->reps, m, &idx, &n)) return 0;
-    ms_view_points_cov(ms_mol_pos(m), idx, n, center, scale);
-    free(idx);
-    return 1;
-}
-
-static void free_state(ClientData cd, Tcl_Interp *interp)
-{
-    ms_app *app = cd;
-    ms_rep_state_free(app->reps);
-    app->reps = NULL;
-}
-
 void ms_cmd_rep_register(ms_app *app)
 {
-    ms_error err = {{0}};
-    if (!app->colors || !app->materials ||
-        !(app->reps = ms_rep_state_new(&app->mols, app->colors, app->materials, &err))) {
-        fprintf(stderr, "molscope: cannot create the representation state (out of memory)\n");
-        return;
-    }
-    ms_scene_register_source(scene_source);
-    ms_view_cov_hook = cov_hook;
-    Tcl_CallWhenDeleted(app->interp, free_state, app);
     ms_cmdset_extend(app, "mol", rep_table);
     static const ms_molinfo_keyword keys[] = {
         {"rep ", 1, info_get, NULL},      {"selection ", 1, info_get, NULL},

@@ -8,7 +8,7 @@
 #include "config.h"
 #include "commands/scenecmds.h"
 #include "scene/mat4.h"
-#include "view/view.h"
+#include "assemble/view.h"
 
 #include <string.h>
 #include <strings.h>
@@ -36,7 +36,7 @@ static int rotate_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 {
     ms_app *app = cd;
     if (objc == 2 && !strcasecmp(Tcl_GetString(objv[1]), "stop")) {
-        ms_view_rock(app, '\0', 0, 0);
+        ms_view_rock(&app->world, '\0', 0, 0);
         return TCL_OK;
     }
     if (objc != 4 && objc != 5)
@@ -48,8 +48,8 @@ static int rotate_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *cons
         ms_cmd_get_float(interp, objv[3], &deg, "rotate") ||
         (objc == 5 && ms_cmd_get_float(interp, objv[4], &incr, "rotate increment")))
         return TCL_ERROR;
-    if (by) ms_view_rotate_by(app, axis, deg);
-    else ms_view_rotate_to(app, axis, deg);
+    if (by) ms_view_rotate_by(&app->world, axis, deg);
+    else ms_view_rotate_to(&app->world, axis, deg);
     return TCL_OK;
 }
 
@@ -61,7 +61,7 @@ static int translate_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *c
     if (get_by(interp, objv[1], "translate", &by)) return TCL_ERROR;
     for (int k = 0; k < 3; k++)
         if (ms_cmd_get_float(interp, objv[2 + k], &v[k], "translate")) return TCL_ERROR;
-    ms_view_translate(cd, v[0], v[1], v[2], by);
+    ms_view_translate(&((ms_app *)cd)->world, v[0], v[1], v[2], by);
     return TCL_OK;
 }
 
@@ -72,7 +72,7 @@ static int scale_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const
     if (objc != 3) return ms_cmd_error(interp, "scale: usage: scale by|to <factor>");
     if (get_by(interp, objv[1], "scale", &by) || ms_cmd_get_float(interp, objv[2], &s, "scale"))
         return TCL_ERROR;
-    if (ms_view_scale(cd, s, by))
+    if (ms_view_scale(&((ms_app *)cd)->world, s, by))
         return ms_cmd_error(interp, "scale: the factor must be positive, got %g", s);
     return TCL_OK;
 }
@@ -81,7 +81,7 @@ static int rock_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 {
     ms_app *app = cd;
     if (objc == 2 && !strcasecmp(Tcl_GetString(objv[1]), "off")) {
-        ms_view_rock(app, '\0', 0, 0);
+        ms_view_rock(&app->world, '\0', 0, 0);
         return TCL_OK;
     }
     char axis;
@@ -95,7 +95,7 @@ static int rock_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *const 
         (objc == 5 && ms_cmd_get_count(interp, objv[4], 0x7fffffffL, "rock steps", &steps)))
         return TCL_ERROR;
     if (!by) return ms_cmd_error(interp, "rock: expected 'by', got 'to'");
-    ms_view_rock(app, axis, step, (int)steps);
+    ms_view_rock(&app->world, axis, step, (int)steps);
     return TCL_OK;
 }
 
@@ -112,7 +112,7 @@ static int rotmat_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *cons
     ms_mat4_identity(r);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) r[4 * j + i] = v[3 * i + j];
-    ms_view_rotmat(cd, r, by);
+    ms_view_rotmat(&((ms_app *)cd)->world, r, by);
     return TCL_OK;
 }
 

@@ -4,6 +4,7 @@
 #include "commands/commands.h"
 #include "fileio/load.h"
 #include "parallel/parallel.h"
+#include "assemble/view.h"
 #include "commands/atomsel.h"
 
 #include <stdio.h>
@@ -68,11 +69,11 @@ static int cmdset_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *con
     const char *word = Tcl_GetString(objv[1]);
     for (size_t i = 0; i < s->n; i++)
         if (ms_word_eq(word, s->items[i].name)) {
-            if (!s->quiet && !s->quiet_items[i]) s->app->scene_version++;
+            if (!s->quiet && !s->quiet_items[i]) s->app->world.scene_version++;
             return s->items[i].fn(s->app, interp, objc, objv);
         }
     if (s->fallback) {
-        if (!s->quiet) s->app->scene_version++;
+        if (!s->quiet) s->app->world.scene_version++;
         return s->fallback(s->app, interp, objc, objv);
     }
     Tcl_Obj *msg = Tcl_ObjPrintf("%s: unknown subcommand \"%s\": must be ", s->name, word);
@@ -234,36 +235,6 @@ done:
 /* VMD's resetview on the top molecule: centre on the mean position of its atoms, scale so
  * the largest extent spans 1.5 units, no rotation or global translation; every molecule
  * gets the same view. The view module replaces this once representations exist. */
-static void default_reset_view(ms_app *app)
-{
-    ms_molecule *top = ms_molset_top(&app->mols);
-    const float *pos = top ? ms_mol_pos(top) : NULL;
-    if (!pos || top->atoms.n == 0) return;
-    double c[3] = {0, 0, 0};
-    float lo[3] = {pos[0], pos[1], pos[2]}, hi[3] = {pos[0], pos[1], pos[2]};
-    for (size_t i = 0; i < top->atoms.n; i++)
-        for (int k = 0; k < 3; k++) {
-            float v = pos[3 * i + k];
-            c[k] += v;
-            if (v < lo[k]) lo[k] = v;
-            if (v > hi[k]) hi[k] = v;
-        }
-    float extent = MS_MAX(hi[0] - lo[0], MS_MAX(hi[1] - lo[1], hi[2] - lo[2]));
-    float scale = extent > 0 ? 1.5f / extent : 1.0f;
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    for (size_t i = 0; i < app->mols.n; i++) {
-        ms_molecule *m = app->mols.mols[i];
-        for (int k = 0; k < 3; k++) {
-            m->center[k] = (float)(c[k] / (double)top->atoms.n);
-            m->global[k] = 0.0f;
-        }
-        m->scale = scale;
-        memcpy(m->rotate, identity, sizeof identity);
-    }
-}
-
-void (*ms_cmd_reset_view)(ms_app *app) = default_reset_view;
-
 int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out)
 {
     Tcl_WideInt v;
@@ -376,7 +347,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         if (m->atoms.n) ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, m, NULL);
         if (m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES, m, NULL);
         if (!m->atoms.n && m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES_LOADED, m, NULL);
-        if (ms_cmd_reset_view) ms_cmd_reset_view(app);
+        ms_view_reset(&app->world);
         if (m->pending) ms_app_schedule_loading(app);
         else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, m, path);
         Tcl_SetObjResult(interp, Tcl_NewIntObj(m->id));
@@ -390,12 +361,12 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
     if (atoms_before == 0 && into->atoms.n > 0) {
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE, into, NULL);
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, into, NULL);
-        if (ms_cmd_reset_view) ms_cmd_reset_view(app);
+        ms_view_reset(&app->world);
     }
     if (into->nvolumes != volumes_before) ms_molset_emit(&app->mols, MS_EV_VOLUMES, into, NULL);
     if (into->atoms.n == 0 && volumes_before == 0 && into->nvolumes) {
         ms_molset_emit(&app->mols, MS_EV_VOLUMES_LOADED, into, NULL);
-        if (ms_cmd_reset_view) ms_cmd_reset_view(app);
+        ms_view_reset(&app->world);
     }
     if (into->nframes != frames_before) {
         ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, into, NULL);

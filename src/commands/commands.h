@@ -28,7 +28,7 @@ ms_cmdset *ms_cmdset_create(ms_app *app, const char *name, const ms_subcmd *tabl
 int ms_cmdset_extend(ms_app *app, const char *name, const ms_subcmd *table);
 /* Called for words that match no subcommand (molinfo <id> get ...): may be NULL. */
 void ms_cmdset_fallback(ms_app *app, const char *name, ms_subcmd_fn fn);
-/* Every subcommand of a command bumps app->scene_version (the live view follows it) unless
+/* Every subcommand of a command bumps app->world.scene_version (the live view follows it) unless
  * it was added by ms_cmdset_extend_quiet (queries) or the whole command is marked quiet
  * (molinfo, measure ...: what they change, they bump themselves). */
 int ms_cmdset_extend_quiet(ms_app *app, const char *name, const ms_subcmd *table);
@@ -47,10 +47,6 @@ int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char
 
 /* Parse a non-negative count with an upper bound, naming what it is on error. */
 int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out);
-
-/* Move every molecule's view so the given molecule fills the screen (VMD's resetview
- * centre and scale); the view module may replace this. */
-extern void (*ms_cmd_reset_view)(ms_app *app);
 
 /* Register every command of this module. */
 void ms_commands_register(ms_app *app);

@@ -1,14 +1,14 @@
 /* scenecmds.h: the scene-side Tcl commands (color, colorinfo, material, display, axes,
  * stage, light, rotate, translate, scale, rock, rotmat, graphics, draw, render) and what
- * they share: the state they create on the application and small argument parsers. */
+ * they share: small argument parsers. What they change is the application's world
+ * (assemble/world.h). */
 #ifndef MS_SCENECMDS_H
 #define MS_SCENECMDS_H
 
 #include "commands/commands.h"
 #include "scene/graphics.h"
 
-/* Create the scene state (colours, materials, view, renderers, user-graphics slot), hook
- * it to molecule events and register every command below. */
+/* Register every command below. */
 void ms_cmd_scene_register(ms_app *app);
 
 void ms_cmd_color_register(ms_app *app);
@@ -28,8 +28,5 @@ int ms_cmd_get_float(Tcl_Interp *interp, Tcl_Obj *obj, float *out, const char *w
 int ms_cmd_get_bool(Tcl_Interp *interp, Tcl_Obj *obj, int *out, const char *what);
 /* VMD's "%f" text for a number, as its get commands return them. */
 Tcl_Obj *ms_cmd_float_obj(double v);
-
-/* The user graphics of a molecule, created on first use; NULL when memory runs out. */
-ms_ugraphics *ms_cmd_ugraphics(ms_app *app, ms_molecule *m);
 
 #endif

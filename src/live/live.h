@@ -3,7 +3,7 @@
  * everything runs on the interpreter's thread) that serves one page, the current image and
  * a view-change endpoint, every request checked against a random token.
  *
- * The frames: whenever the picture may have changed (app->scene_version, scene builds by
+ * The frames: whenever the picture may have changed (app->world.scene_version, scene builds by
  * others, colours, materials, display size), the scene is rebuilt and drawn at once with the
  * GL display device when one runs, then TachyonInternal passes refine it at idle time, one
  * pass per idle turn, each pass's average replacing the image until the pass count of

@@ -13,7 +13,7 @@
 #include "fileio/load.h"
 #include "gl/gl.h"
 #include "scene/mat4.h"
-#include "view/view.h"
+#include "assemble/view.h"
 
 #include <math.h>
 #include <stdlib.h>
