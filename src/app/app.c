@@ -1,8 +1,8 @@
-/* app.c: creating the application, locating its Tcl library and plugins, background frame
- * loading, VMD's trace variables, and quit/exit. */
+/* app.c: creating and freeing the application (everything it holds is made and freed here),
+ * locating its Tcl library and plugins, background frame loading, VMD's trace variables, and
+ * quit/exit. */
 #include "config.h"
 #include "app/app.h"
-#include "commands/commands.h"
 #include "fileio/load.h"
 #include "gl/gl.h"
 
@@ -63,7 +63,7 @@ static void find_plugins(ms_app *app)
 
 static void idle_load(ClientData cd);
 
-ms_app *ms_app_new(const char *argv0)
+ms_app *ms_app_new(const char *argv0, const ms_app_cmdset_fn *commands)
 {
     ms_app *app = calloc(1, sizeof *app);
     if (!app) return NULL;
@@ -90,7 +90,7 @@ ms_app *ms_app_new(const char *argv0)
         ms_app_free(app);
         return NULL;
     }
-    ms_commands_register(app);
+    for (size_t i = 0; commands && commands[i]; i++) commands[i](app);
     return app;
 }
 

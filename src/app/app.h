@@ -26,9 +26,17 @@ typedef struct ms_app {
     int idle_scheduled;        /* a background frame-loading callback is queued */
 } ms_app;
 
-/* Create the application: interpreter, plugins, molecule set, commands. NULL on failure
- * (the reason is printed). */
-ms_app *ms_app_new(const char *argv0);
+/* A set of Tcl commands to create on the application's interpreter (commands/commands.h
+ * lists molscope's in ms_command_sets). */
+typedef void (*ms_app_cmdset_fn)(ms_app *app);
+
+/* Create the application: the molecule set, the plugins, the Tcl interpreter with the app's
+ * own commands (quit, exit) and VMD's trace variables, the world, then every command set of
+ * the NULL-terminated table `commands` in order (NULL: none). NULL on failure (the reason is
+ * printed). */
+ms_app *ms_app_new(const char *argv0, const ms_app_cmdset_fn *commands);
+/* Free everything ms_app_new made: the interpreter first (what lives on it, such as the live
+ * view, stops with it), then the molecules, the world and the plugins. */
 void ms_app_free(ms_app *app);
 
 /* Source the Tcl library's init script. Returns TCL_OK or TCL_ERROR. */

@@ -1,4 +1,4 @@
-/* cmd_scene.c: registering the scene commands, and the argument parsers they share. */
+/* cmd_scene.c: the argument parsers the scene-side commands (scenecmds.h) share. */
 #include "config.h"
 #include "commands/scenecmds.h"
 
@@ -41,15 +41,4 @@ Tcl_Obj *ms_cmd_float_obj(double v)
     char buf[64];
     snprintf(buf, sizeof buf, "%f", v);
     return Tcl_NewStringObj(buf, -1);
-}
-
-void ms_cmd_scene_register(ms_app *app)
-{
-    ms_cmd_color_register(app);
-    ms_cmd_material_register(app);
-    ms_cmd_display_register(app);
-    ms_cmd_live_register(app);
-    ms_cmd_trans_register(app);
-    ms_cmd_graphics_register(app);
-    ms_cmd_render_register(app);
 }

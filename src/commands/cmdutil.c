@@ -2,10 +2,9 @@
  * loading used by `mol new`, `mol addfile` and `animate read`. */
 #include "config.h"
 #include "commands/commands.h"
+#include "assemble/view.h"
 #include "fileio/load.h"
 #include "parallel/parallel.h"
-#include "assemble/view.h"
-#include "commands/atomsel.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -376,21 +375,4 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
     else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, into, path);
     Tcl_SetObjResult(interp, Tcl_NewIntObj(into->id));
     return TCL_OK;
-}
-
-void ms_commands_register(ms_app *app)
-{
-    ms_cmd_mol_register(app);
-    ms_cmd_ss_register(app);
-    ms_cmd_molinfo_register(app);
-    ms_cmd_animate_register(app);
-    ms_cmd_vmdinfo_register(app);
-    ms_atomsel_register(app);
-    ms_cmd_scene_register(app);
-    ms_cmd_rep_register(app);
-    ms_cmd_vector_register(app);
-    ms_cmd_measure_register(app);
-    ms_cmd_measure_geom_register(app);
-    ms_cmd_volmap_register(app);
-    ms_cmd_movie_register(app);
 }

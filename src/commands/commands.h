@@ -48,14 +48,15 @@ int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char
 /* Parse a non-negative count with an upper bound, naming what it is on error. */
 int ms_cmd_get_count(Tcl_Interp *interp, Tcl_Obj *obj, long max, const char *what, long *out);
 
-/* Register every command of this module. */
-void ms_commands_register(ms_app *app);
+/* Every command set of this module, in the order ms_app_new creates them (cmdsets.c; ended
+ * by NULL). Each entry creates its Tcl commands (or adds subcommands to one made before it).
+ * Adding a command is its file cmd_<name>.c and a line in that table. */
+extern const ms_app_cmdset_fn ms_command_sets[];
 void ms_cmd_mol_register(ms_app *app);
 void ms_cmd_molinfo_register(ms_app *app);
 void ms_cmd_animate_register(ms_app *app);
 void ms_cmd_vmdinfo_register(ms_app *app);
 /* The scene-side commands (color, material, display, render, graphics ...): scenecmds.h */
-void ms_cmd_scene_register(ms_app *app);
 /* measure (cmd_measure.c, with bond/angle/dihed/imprp/inverse from cmd_measure_geom.c) and
  * VMD's vector and matrix commands (cmd_vector.c). */
 void ms_cmd_measure_register(ms_app *app);
@@ -69,7 +70,7 @@ void ms_cmd_ss_register(ms_app *app);
  * frameok, pose, started, ffmpeg. */
 void ms_cmd_movie_register(ms_app *app);
 /* The rep subcommands of mol (addrep, modstyle, ...) and molinfo's rep keywords
- * (cmd_rep.c); creates the rep module's state. */
+ * (cmd_rep.c). */
 void ms_cmd_rep_register(ms_app *app);
 
 /* Shared by mol and animate: load a file as `mol new` (new molecule) or into mol. */

@@ -1,6 +1,6 @@
 # src/commands: the Tcl command bindings (thin: parse, call the core, set the result).
 src_libmscore_la_SOURCES += \
-	src/commands/commands.h src/commands/cmdutil.c \
+	src/commands/commands.h src/commands/cmdsets.c src/commands/cmdutil.c \
 	src/commands/molinfo.h src/commands/cmd_molinfo.c \
 	src/commands/cmd_mol.c src/commands/cmd_animate.c src/commands/cmd_vmdinfo.c \
 	src/commands/tclvec.h src/commands/tclvec.c src/commands/cmd_vector.c \

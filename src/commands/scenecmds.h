@@ -8,9 +8,6 @@
 #include "commands/commands.h"
 #include "scene/graphics.h"
 
-/* Register every command below. */
-void ms_cmd_scene_register(ms_app *app);
-
 void ms_cmd_color_register(ms_app *app);
 void ms_cmd_material_register(ms_app *app);
 void ms_cmd_display_register(ms_app *app);
