@@ -1,4 +1,4 @@
-/* cmd_trans.c: the transform commands, acting on every non-fixed molecule (view/view.h):
+/* cmd_trans.c: the transform commands, acting on every non-fixed molecule (assemble/view.h):
  *
  *   rotate x|y|z by|to <deg> ?<incr>?   rotate stop      (with incr VMD animates the turn;
  *                                                           here it is made at once)

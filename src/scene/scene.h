@@ -38,8 +38,8 @@ typedef struct ms_light {
 } ms_light;
 
 /* How a scene is drawn: the camera and lights, background gradient, depth cueing, shadows and
- * ambient occlusion (VMD's `display` and `light` settings). The view (view/view.h) keeps one
- * and a built scene takes it whole. */
+ * ambient occlusion (VMD's `display` and `light` settings). The view (assemble/view.h) keeps
+ * one and a built scene takes it whole. */
 typedef struct ms_scene_settings {
     ms_camera cam;
     ms_light lights[MS_SCENE_LIGHTS];
