@@ -1,6 +1,6 @@
 /* rt.h: TachyonInternal, molscope's photorealistic CPU ray tracer. The scene (scene/scene.h) is
  * traced with Embree's BVH and ray kernels and shaded the way Tachyon shades the scenes VMD
- * gives it (vmd-compat.md section 6, render/tachyon.c for the settings): directional lights,
+ * gives it (doc/vmd-behaviour.md section 8, render/tachyon.c for settings): directional lights,
  * ambient, diffuse and Blinn-Phong specular terms, outlines, mirror reflection, shadows,
  * ambient occlusion, angle-modulated transparency with shadows filtered by transparent
  * surfaces, planar depth cueing, background gradients, perspective and orthographic cameras,

@@ -1,7 +1,7 @@
-/* test_rep.c: unit tests of the rep module's parts that are clearest in C: VMD's style
- * string rules (defaults of vmd-compat's table, omitted parameters, '-', too many numbers,
- * Off), colouring strings, drawframes specs, smoothing (window averages worked out by hand,
- * periodic unwrapping), the spline bases, and the colour data mapping (VMD's formula
+/* test_rep.c: unit tests of the rep module's parts that are clearest in C: VMD's style string
+ * rules (the defaults of doc/vmd-behaviour.md's table, omitted parameters, '-', too many
+ * numbers, Off), colouring strings, drawframes specs, smoothing (window averages worked out by
+ * hand, periodic unwrapping), the spline bases, and the colour data mapping (VMD's formula
  * index = int((v - min) * 1023 / (max - min))). */
 #include "config.h"
 #include "ms_test.h"
@@ -33,7 +33,7 @@ static void test_style(void)
     ms_error err = {{0}};
     t_ok(!strcmp(ms_rep_method_at((size_t)s.method)->name, "Lines") && !strcmp(s.text, "Lines 1.000000"),
          "a new style is Lines (VMD's text: \"Lines 1.000000\")");
-    /* vmd-compat section 3 */
+    /* doc/vmd-behaviour.md section 5 */
     const float *p = params(&s, "CPK");
     t_ok(p[0] == 1.0f && p[1] == 0.3f && p[2] == 12 && p[3] == 12 && p[4] == 0, "CPK defaults");
     p = params(&s, "NewCartoon");

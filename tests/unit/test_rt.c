@@ -1,5 +1,5 @@
 /* test_rt.c: unit tests of TachyonInternal on scenes built in C, against values worked out
- * here from the camera model and Tachyon's shading formulas (vmd-compat.md section 6):
+ * here from the camera model and Tachyon's shading formulas (doc/vmd-behaviour.md section 8):
  * one sphere under one light (the centre pixel's value, the silhouette's radius), a sphere
  * seen through a 50% transparent one (plain and angle-modulated), ambient occlusion in a 90
  * degree crevice (half the sky) and on an open plane (all of it), a shadow where the light

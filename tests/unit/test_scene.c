@@ -2,7 +2,7 @@
  * quantization (OpenGL 1.2.1 table 2.6), VMD's colour scale formula and default colours,
  * materials' shininess scale, matrices, the camera projection, tessellation, the stroke
  * font, and user graphics ids (VMD's replace and delete rules). Expected values are worked
- * out by hand from the formulas in vmd-compat.md. */
+ * out by hand from the formulas in doc/vmd-behaviour.md. */
 #include "config.h"
 #include "ms_test.h"
 #include "render/export.h"
