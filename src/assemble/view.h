@@ -1,6 +1,7 @@
 /* view.h: the view and display state and VMD's semantics for changing it: the camera and
- * display settings (`display ...`), the lights, the axes and the stage, and the molecule
- * transforms that rotate / translate / scale / rock / rotmat / resetview change.
+ * display settings (`display ...`) and the lights (the scene settings a built scene takes
+ * whole), the axes and the stage, and the transforms that rotate / translate / scale / rock
+ * / rotmat / resetview make on the world's molecules (world.h).
  *
  * VMD's rules: rotations are pre-multiplied into every non-fixed molecule's rotate matrix
  * (so they turn about the screen axes) and into the axes; translate and scale act on each

@@ -18,8 +18,8 @@
  *
  * A new structure loaded by mol new / mol addfile resets the current settings to the
  * defaults and gets one rep made from them (VMD's rule); a molecule of volumetric data
- * alone gets an Isosurface rep. Every error names the command and
- * the bad value, and changes nothing. */
+ * alone gets an Isosurface rep (rep/rep.c does both, hearing the molecule set's load
+ * events). Every error names the command and the bad value, and changes nothing. */
 #include "config.h"
 #include "commands/commands.h"
 #include "commands/molinfo.h"
