@@ -1,6 +1,6 @@
-/* commands.h: the Tcl command bindings and what they share: subcommand tables that other
- * modules can extend (the representation module adds `mol addrep` ...), molecule id and
- * molspec parsing, and error messages that name the command and the object.
+/* commands.h: the Tcl command bindings and what they share: the table of command sets,
+ * subcommand tables that other command files extend (cmd_rep.c adds `mol addrep` ...),
+ * molecule id and molspec parsing, and error messages that name the command and the object.
  *
  * Each binding is thin: parse the arguments, call the core, set the result. */
 #ifndef MS_COMMANDS_H
