@@ -14,6 +14,7 @@
  * order: rt TachyonInternal, ocl TachyonLOpenCLInternal; default "rt"), BENCH_RT_OWNBVH (the
  * OpenCL tracer's BVH from its own SAH builder instead of rtcBuildBVH). */
 #include "config.h"
+#include "assemble/view.h"
 #include "base/threads.h"
 #include "render/render.h"
 #include "oclrt/oclrt.h"
@@ -21,7 +22,6 @@
 #include "scene/displaylist.h"
 #include "scene/mat4.h"
 #include "scene/material.h"
-#include "assemble/view.h"
 #include "bench_system.h"
 
 #include <math.h>

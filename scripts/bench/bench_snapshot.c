@@ -7,9 +7,9 @@
  * usage: bench_snapshot [data folder] [copies] [size] [frames] [egl|osmesa|all] */
 #include "config.h"
 #include "bench_system.h"
+#include "assemble/view.h"
 #include "gl/gl.h"
 #include "scene/mat4.h"
-#include "assemble/view.h"
 
 #include <stdio.h>
 #include <stdlib.h>

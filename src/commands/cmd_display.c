@@ -14,8 +14,8 @@
  * Invalid values are refused with an error and change nothing. */
 #include "config.h"
 #include "commands/scenecmds.h"
-#include "scene/mat4.h"
 #include "assemble/view.h"
+#include "scene/mat4.h"
 
 #include <stddef.h>
 #include <string.h>

@@ -16,9 +16,9 @@
  *   ::molscope::movie::ffmpeg                   the ffmpeg a video would use, or "" */
 #include "config.h"
 #include "commands/commands.h"
+#include "assemble/view.h"
 #include "image/image.h"
 #include "movie/movie.h"
-#include "assemble/view.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -7,8 +7,8 @@
  *   rotmat by|to <r11> ... <r33>        (nine numbers, taken column by column as VMD does) */
 #include "config.h"
 #include "commands/scenecmds.h"
-#include "scene/mat4.h"
 #include "assemble/view.h"
+#include "scene/mat4.h"
 
 #include <string.h>
 #include <strings.h>

@@ -5,10 +5,10 @@
 #include "config.h"
 #include "live/live.h"
 #include "assemble/devices.h"
+#include "assemble/view.h"
 #include "gl/gl.h"
 #include "scene/color.h"
 #include "scene/material.h"
-#include "assemble/view.h"
 
 #include <errno.h>
 #include <math.h>

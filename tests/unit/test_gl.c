@@ -10,10 +10,10 @@
  * 255); bad sizes are errors. */
 #include "config.h"
 #include "ms_test.h"
+#include "assemble/view.h"
 #include "fileio/load.h"
 #include "gl/gl.h"
 #include "scene/mat4.h"
-#include "assemble/view.h"
 
 #include <math.h>
 #include <stdlib.h>
