@@ -14,6 +14,7 @@
  * order: rt TachyonInternal, ocl TachyonLOpenCLInternal; default "rt"), BENCH_RT_OWNBVH (the
  * OpenCL tracer's BVH from its own SAH builder instead of rtcBuildBVH). */
 #include "config.h"
+#include "assemble/view.h"
 #include "base/threads.h"
 #include "render/render.h"
 #include "oclrt/oclrt.h"
@@ -21,7 +22,6 @@
 #include "scene/displaylist.h"
 #include "scene/mat4.h"
 #include "scene/material.h"
-#include "view/view.h"
 #include "bench_system.h"
 
 #include <math.h>
@@ -110,19 +110,19 @@ static void default_view(const bench_sys *s, float xform[16], float centre[3], f
 static void scene_settings(ms_scene *sc, int size)
 {
     sc->width = sc->height = size;
-    ms_camera *c = &sc->cam;
+    ms_camera *c = &sc->settings.cam;
     c->projection = MS_PROJ_PERSPECTIVE;
     c->eye[2] = 2, c->dir[2] = -1, c->up[1] = 1;
     c->height = 6, c->distance = -2, c->near_clip = 0.5f, c->far_clip = 10;
     c->dof_fnumber = 64, c->dof_focaldist = 0.7f;
     for (int i = 0; i < 2; i++) {
-        sc->lights[i].on = 1;
-        memcpy(sc->lights[i].pos, ms_view_default_light(i), 3 * sizeof(float));
-        sc->lights[i].color[0] = sc->lights[i].color[1] = sc->lights[i].color[2] = 1;
+        sc->settings.lights[i].on = 1;
+        memcpy(sc->settings.lights[i].pos, ms_view_default_light(i), 3 * sizeof(float));
+        sc->settings.lights[i].color[0] = sc->settings.lights[i].color[1] = sc->settings.lights[i].color[2] = 1;
     }
-    sc->shadows = sc->ao = 1;
-    sc->ao_ambient = 0.8f, sc->ao_direct = 0.3f;
-    sc->cue_start = 0.5f, sc->cue_end = 10, sc->cue_density = 0.32f;
+    sc->settings.shadows = sc->settings.ao = 1;
+    sc->settings.ao_ambient = 0.8f, sc->settings.ao_direct = 0.3f;
+    sc->settings.cue_start = 0.5f, sc->settings.cue_end = 10, sc->settings.cue_density = 0.32f;
 }
 
 /* CPU seconds of the process so far (all threads): timings on a shared machine. */
@@ -193,18 +193,17 @@ int main(int argc, char **argv)
     ms_scene_add(&sc, &vdw, xform, mats, &err);
     if (!getenv("BENCH_RT_VDWONLY")) ms_scene_add(&sc, &lic, xform, mats, &err);
     if (!getenv("BENCH_RT_NOSHELL") && !getenv("BENCH_RT_VDWONLY")) ms_scene_add(&sc, &shell, xform, mats, &err);
-    if (getenv("BENCH_RT_NOAO")) sc.ao = 0;
-    if (getenv("BENCH_RT_NOSHADOWS")) sc.shadows = 0;
+    if (getenv("BENCH_RT_NOAO")) sc.settings.ao = 0;
+    if (getenv("BENCH_RT_NOSHADOWS")) sc.settings.shadows = 0;
     if (getenv("BENCH_RT_OPAQUESHELL")) sc.items[sc.nitems - 1].mat.opacity = 1;
     printf("scene: %zu atoms (1tii x %d): %zu VDW spheres, %zu Licorice spheres + %zu cylinders, "
            "%zu transparent triangles; %dx%d, %d threads\n", s.n, copies, vdw.spheres.n,
            lic.spheres.n, lic.cylinders.n, shell.mesh.ntris, size, size, ms_threads_count());
     char path[1024];
     snprintf(path, sizeof path, "%s/rt_scene.dat", argv[4]);
-    ms_render_register_builtin();
     double t = ms_now();
     if (!getenv("BENCH_RT_NOEXPORT")) {
-        if (ms_render_find("Tachyon")->write(&sc, path, &err)) fprintf(stderr, "bench_rt: %s\n", err.msg);
+        if (ms_render_tachyon.write(&sc, path, &err)) fprintf(stderr, "bench_rt: %s\n", err.msg);
         printf("exported %s in %.2f s\n", path, ms_now() - t);
     }
     fflush(stdout);

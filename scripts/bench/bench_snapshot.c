@@ -7,9 +7,9 @@
  * usage: bench_snapshot [data folder] [copies] [size] [frames] [egl|osmesa|all] */
 #include "config.h"
 #include "bench_system.h"
+#include "assemble/view.h"
 #include "gl/gl.h"
 #include "scene/mat4.h"
-#include "view/view.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,7 +20,7 @@ static void vmd_scene(ms_scene *sc, int size)
 {
     ms_scene_init(sc);
     sc->width = sc->height = size;
-    ms_camera *c = &sc->cam;
+    ms_camera *c = &sc->settings.cam;
     c->projection = MS_PROJ_PERSPECTIVE;
     c->eye[2] = 2;
     c->dir[2] = -1;
@@ -30,15 +30,15 @@ static void vmd_scene(ms_scene *sc, int size)
     c->near_clip = 0.5f;
     c->far_clip = 10;
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
-        sc->lights[i].on = i < 2;
-        memcpy(sc->lights[i].pos, ms_view_default_light(i), 3 * sizeof(float));
-        sc->lights[i].color[0] = sc->lights[i].color[1] = sc->lights[i].color[2] = 1;
+        sc->settings.lights[i].on = i < 2;
+        memcpy(sc->settings.lights[i].pos, ms_view_default_light(i), 3 * sizeof(float));
+        sc->settings.lights[i].color[0] = sc->settings.lights[i].color[1] = sc->settings.lights[i].color[2] = 1;
     }
-    sc->depthcue = 1;
-    sc->cuemode = MS_CUE_EXP2;
-    sc->cue_start = 0.5f;
-    sc->cue_end = 10;
-    sc->cue_density = 0.32f;
+    sc->settings.depthcue = 1;
+    sc->settings.cuemode = MS_CUE_EXP2;
+    sc->settings.cue_start = 0.5f;
+    sc->settings.cue_end = 10;
+    sc->settings.cue_density = 0.32f;
 }
 
 /* resetview: centre on the box, largest extent 1.5 units. */

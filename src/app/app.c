@@ -1,11 +1,10 @@
-/* app.c: creating the application, locating its Tcl library and plugins, VMD's trace
- * variables, and quit/exit (background frame loading is in loading.c). */
+/* app.c: creating and freeing the application (everything it holds is made and freed here),
+ * locating its Tcl library and plugins, and VMD's trace variables (background frame loading
+ * is in loading.c; quit and exit are commands/cmd_quit.c's). */
 #include "config.h"
 #include "app/app.h"
-#include "commands/commands.h"
 #include "fileio/load.h"
 #include "gl/gl.h"
-#include "live/live.h"
 
 #include <limits.h>
 #include <stdio.h>
@@ -62,7 +61,7 @@ static void find_plugins(ms_app *app)
     }
 }
 
-ms_app *ms_app_new(const char *argv0)
+ms_app *ms_app_new(const char *argv0, const ms_app_cmdset_fn *commands)
 {
     ms_app *app = calloc(1, sizeof *app);
     if (!app) return NULL;
@@ -70,7 +69,6 @@ ms_app *ms_app_new(const char *argv0)
     if (n > 0) app->exe_path[n] = '\0';
     else snprintf(app->exe_path, sizeof app->exe_path, "%s", argv0);
     strcpy(app->dispdev, "text");
-    app->width = app->height = 512;
     ms_molset_init(&app->mols);
     ms_registry_init(&app->plugins);
     find_tcllib(app);
@@ -83,8 +81,14 @@ ms_app *ms_app_new(const char *argv0)
         /* Tcl works without its own script library, with fewer conveniences. */
     }
     Tcl_SetVar2(app->interp, "env", "MOLSCOPE_TCLLIB", app->tcllib_dir, TCL_GLOBAL_ONLY);
-    ms_app_register(app);
-    ms_commands_register(app);
+    ms_app_register(app);      /* first: the trace variables are set before others hear */
+    ms_error err = {{0}};
+    if (ms_world_init(&app->world, &app->mols, &err)) {
+        fprintf(stderr, "molscope: cannot create the scene state: %s\n", err.msg);
+        ms_app_free(app);
+        return NULL;
+    }
+    for (size_t i = 0; commands && commands[i]; i++) commands[i](app);
     return app;
 }
 
@@ -94,13 +98,13 @@ void ms_app_free(ms_app *app)
     ms_app_stop_loading(app);
     for (size_t i = 0; i < app->mols.n; i++) ms_loader_cancel(app->mols.mols[i]);
     if (app->interp) {
-        ms_live_stop(app);                /* before the display lists it may hold go */
         Tcl_SetVar(app->interp, "vmd_quit", "1", TCL_GLOBAL_ONLY);
-        ms_molset_free(&app->mols);
+        /* Whatever lives on the interpreter ends with it (the live view stops there),
+         * before the molecules and the display lists it may hold go. */
         Tcl_DeleteInterp(app->interp);
-    } else {
-        ms_molset_free(&app->mols);
     }
+    ms_molset_free(&app->mols);
+    ms_world_free(&app->world);
     ms_registry_free(&app->plugins);
     ms_gl_display_close();
     free(app);
@@ -137,7 +141,7 @@ static void on_mol_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *
 {
     ms_app *app = ud;
     char buf[32];
-    app->scene_version++;
+    app->world.scene_version++;
     switch (ev) {
     case MS_EV_MOL_NEW:
         set_trace_var(app, "vmd_initialize_structure", m->id, "1");
@@ -162,25 +166,8 @@ static void on_mol_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *
     }
 }
 
-/* ---------------------------------------------------------------- quit / exit */
-
-/* quit ?status?: VMD schedules the exit and returns an error on purpose, so a sourcing
- * script stops right there; the shell then exits with the status. */
-static int cmd_quit(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
-{
-    int status = 0;
-    if (objc == 2 && ms_arg_int(interp, objv[1], "status", INT_MIN, INT_MAX, &status)) return TCL_ERROR;
-    app->quit_requested = 1;
-    app->quit_status = status;
-    Tcl_SetObjResult(interp, Tcl_NewStringObj("", 0));
-    return TCL_ERROR;
-}
-
 void ms_app_register(ms_app *app)
 {
-    static const ms_subcmd cmds[] = {{"quit", cmd_quit, 0, 1, "?<status>?"},
-                                     {"exit", cmd_quit, 0, 1, "?<status>?"}};
-    for (size_t i = 0; i < MS_COUNTOF(cmds); i++) ms_cmd_create(app, &cmds[i]);
     ms_app_register_loading(app);
     ms_molset_listen(&app->mols, on_mol_event, app);
 }

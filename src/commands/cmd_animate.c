@@ -8,6 +8,7 @@
  *   animate delete all ?molid? | animate delete ?beg b? ?end e? ?skip s? ?molid?
  *   animate dup ?frame n|now|null? molid */
 #include "config.h"
+#include "commands/atomsel.h"
 #include "commands/commands.h"
 #include "fileio/load.h"
 #include "fileio/write.h"
@@ -219,10 +220,8 @@ static int an_write(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
         int selmol;
         long selframe;
         size_t n;
-        if (!ms_cmd_sel_resolver)
-            return ms_cmd_error(interp, "animate write: sel: atom selections are not available");
-        if (ms_cmd_sel_resolver(app, interp, r.sel, "animate write", &selmol, &selframe, &atoms,
-                                &n) != TCL_OK)
+        if (ms_atomsel_resolve(app, interp, r.sel, "animate write", &selmol, &selframe, &atoms,
+                               &n) != TCL_OK)
             return TCL_ERROR;
         if (selmol != m->id) {
             free(atoms);

@@ -17,14 +17,14 @@
 
 static int get_color(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, int *id)
 {
-    *id = ms_color_index(app->colors, Tcl_GetString(o));
+    *id = ms_color_index(app->world.colors, Tcl_GetString(o));
     if (*id < 0) return ms_cmd_error(interp, "%s: unknown color '%s'", cmd, Tcl_GetString(o));
     return TCL_OK;
 }
 
 static int get_category(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, int *cat)
 {
-    *cat = ms_color_category_index(app->colors, Tcl_GetString(o));
+    *cat = ms_color_category_index(app->world.colors, Tcl_GetString(o));
     if (*cat < 0)
         return ms_cmd_error(interp, "%s: unknown color category '%s'", cmd, Tcl_GetString(o));
     return TCL_OK;
@@ -46,9 +46,9 @@ static Tcl_Obj *rgb_obj(const float rgb[3])
 /* An {r g b} list or a colour name. */
 static int get_rgb(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, float rgb[3])
 {
-    int id = ms_color_index(app->colors, Tcl_GetString(o));
+    int id = ms_color_index(app->world.colors, Tcl_GetString(o));
     if (id >= 0 && !strchr(Tcl_GetString(o), ' ')) {
-        memcpy(rgb, ms_color_rgb(app->colors, id), 3 * sizeof(float));
+        memcpy(rgb, ms_color_rgb(app->world.colors, id), 3 * sizeof(float));
         return TCL_OK;
     }
     return ms_arg_vec3(interp, o, NULL, rgb);
@@ -71,7 +71,7 @@ static int change_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
         for (int k = 0; k < 3; k++)
             if (ms_arg_float(interp, objv[objc == 5 ? 4 : 4 + k], NULL, &rgb[k])) return TCL_ERROR;
     }
-    ms_color_set_rgb(app->colors, id, rgb);
+    ms_color_set_rgb(app->world.colors, id, rgb);
     return TCL_OK;
 }
 
@@ -105,7 +105,7 @@ static int change_rgblist(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
                                 cmd, Tcl_GetString(e[i]));
         }
     }
-    for (int i = 0; i < n; i++) ms_color_set_rgb(app->colors, ids[i], rgb[i]);
+    for (int i = 0; i < n; i++) ms_color_set_rgb(app->world.colors, ids[i], rgb[i]);
     return TCL_OK;
 }
 
@@ -127,10 +127,10 @@ static int change_namelist(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *c
                                     cmd, Tcl_GetString(e[i]));
             if (get_category(app, interp, f[0], cmd, &cat) || get_color(app, interp, f[2], cmd, &col))
                 return TCL_ERROR;
-            if (pass == 0 && ms_color_item_index(app->colors, cat, Tcl_GetString(f[1])) < 0)
+            if (pass == 0 && ms_color_item_index(app->world.colors, cat, Tcl_GetString(f[1])) < 0)
                 return ms_cmd_error(interp, "%s: category %s has no item '%s'", cmd,
                                     Tcl_GetString(f[0]), Tcl_GetString(f[1]));
-            if (pass == 1) ms_color_item_set(app->colors, cat, Tcl_GetString(f[1]), col);
+            if (pass == 1) ms_color_item_set(app->world.colors, cat, Tcl_GetString(f[1]), col);
         }
     return TCL_OK;
 }
@@ -151,35 +151,35 @@ static int scale_colors(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 {
     const char *cmd = "color scale colors";
     if (objc != 4 && objc != 7) return ms_args_usage(interp);
-    int m = ms_color_scale_method_index(app->colors, Tcl_GetString(objv[3]));
+    int m = ms_color_scale_method_index(app->world.colors, Tcl_GetString(objv[3]));
     if (m < 0)
         return ms_cmd_error(interp, "%s: unknown color scale method '%s'", cmd, Tcl_GetString(objv[3]));
     if (objc == 4) {
         Tcl_Obj *v[3];
-        for (int i = 0; i < 3; i++) v[i] = rgb_obj(app->colors->methods[m].rgb[i]);
+        for (int i = 0; i < 3; i++) v[i] = rgb_obj(app->world.colors->methods[m].rgb[i]);
         Tcl_SetObjResult(interp, Tcl_NewListObj(3, v));
         return TCL_OK;
     }
     float rgb[3][3];
     for (int i = 0; i < 3; i++)
         if (get_rgb(app, interp, objv[4 + i], cmd, rgb[i])) return TCL_ERROR;
-    ms_color_scale_set_colors(app->colors, m, rgb);
+    ms_color_scale_set_colors(app->world.colors, m, rgb);
     return TCL_OK;
 }
 
 static int scale_method(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    int m = ms_color_scale_method_index(app->colors, Tcl_GetString(objv[3]));
+    int m = ms_color_scale_method_index(app->world.colors, Tcl_GetString(objv[3]));
     if (m < 0)
         return ms_cmd_error(interp, "color scale method: unknown method '%s'", Tcl_GetString(objv[3]));
-    ms_color_scale_set_method(app->colors, m);
+    ms_color_scale_set_method(app->world.colors, m);
     return TCL_OK;
 }
 
 /* midpoint, min, max */
 static int scale_value(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_colors *c = app->colors;
+    ms_colors *c = app->world.colors;
     const char *what = Tcl_GetString(objv[2]);
     float v, mid = c->scale_mid, min = c->scale_min, max = c->scale_max;
     if (ms_arg_float(interp, objv[3], NULL, &v)) return TCL_ERROR;
@@ -217,17 +217,17 @@ static int color_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 static int color_restype(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *res = Tcl_GetString(objv[2]);
-    int cat = ms_color_category_index(app->colors, "Restype");
-    int is_item = ms_color_item_index(app->colors, cat, res) >= 0;
+    int cat = ms_color_category_index(app->world.colors, "Restype");
+    int is_item = ms_color_item_index(app->world.colors, cat, res) >= 0;
     if (objc == 3) {
-        const char *t = ms_color_restype(app->colors, res);
+        const char *t = ms_color_restype(app->world.colors, res);
         if (!t && is_item) return color_item(app, interp, objc, objv);
         if (!t) return ms_cmd_error(interp, "color restype: no restype for residue '%s'", res);
         Tcl_SetObjResult(interp, Tcl_NewStringObj(t, -1));
         return TCL_OK;
     }
-    if (ms_color_set_restype(app->colors, res, Tcl_GetString(objv[3])) == 0) return TCL_OK;
-    if (is_item && ms_color_index(app->colors, Tcl_GetString(objv[3])) >= 0)
+    if (ms_color_set_restype(app->world.colors, res, Tcl_GetString(objv[3])) == 0) return TCL_OK;
+    if (is_item && ms_color_index(app->world.colors, Tcl_GetString(objv[3])) >= 0)
         return color_item(app, interp, objc, objv);
     return ms_cmd_error(interp, "color restype: unknown residue type '%s'", Tcl_GetString(objv[3]));
 }
@@ -238,7 +238,7 @@ static int add_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     if (get_category(app, interp, objv[3], "color add item", &cat) ||
         get_color(app, interp, objv[5], "color add item", &col))
         return TCL_ERROR;
-    if (ms_color_item_add(app->colors, cat, Tcl_GetString(objv[4]), col) < 0)
+    if (ms_color_item_add(app->world.colors, cat, Tcl_GetString(objv[4]), col) < 0)
         return ms_cmd_error(interp, "color add item: out of memory");
     return TCL_OK;
 }
@@ -256,14 +256,14 @@ static int color_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     int cat, col;
     if (get_category(app, interp, objv[1], "color", &cat)) return TCL_ERROR;
     const char *item = Tcl_GetString(objv[2]);
-    if (ms_color_item_index(app->colors, cat, item) < 0)
+    if (ms_color_item_index(app->world.colors, cat, item) < 0)
         return ms_cmd_error(interp, "color: category %s has no item '%s'", Tcl_GetString(objv[1]), item);
     if (objc == 3) {
-        Tcl_SetObjResult(interp, color_obj(ms_color_item_get(app->colors, cat, item)));
+        Tcl_SetObjResult(interp, color_obj(ms_color_item_get(app->world.colors, cat, item)));
         return TCL_OK;
     }
     if (get_color(app, interp, objv[3], "color", &col)) return TCL_ERROR;
-    ms_color_item_set(app->colors, cat, item, col);
+    ms_color_item_set(app->world.colors, cat, item, col);
     return TCL_OK;
 }
 
@@ -272,8 +272,8 @@ static int color_item(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 static int info_categories(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     Tcl_Obj *l = Tcl_NewListObj(0, NULL);
-    for (size_t i = 0; i < app->colors->ncats; i++)
-        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(app->colors->cats[i].name, -1));
+    for (size_t i = 0; i < app->world.colors->ncats; i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(app->world.colors->cats[i].name, -1));
     Tcl_SetObjResult(interp, l);
     return TCL_OK;
 }
@@ -282,9 +282,9 @@ static int info_category(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
 {
     int cat;
     if (get_category(app, interp, objv[2], "colorinfo category", &cat)) return TCL_ERROR;
-    const ms_color_category *k = &app->colors->cats[cat];
+    const ms_color_category *k = &app->world.colors->cats[cat];
     if (objc == 4) {
-        int col = ms_color_item_get(app->colors, cat, Tcl_GetString(objv[3]));
+        int col = ms_color_item_get(app->world.colors, cat, Tcl_GetString(objv[3]));
         if (col < 0)
             return ms_cmd_error(interp, "colorinfo category: category %s has no item '%s'",
                                 k->name, Tcl_GetString(objv[3]));
@@ -325,14 +325,14 @@ static int info_index_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
     int id;
     if (get_color(app, interp, objv[2], "colorinfo", &id)) return TCL_ERROR;
     Tcl_SetObjResult(interp, ms_word_eq(what, "index") ? Tcl_NewIntObj(id)
-                                                        : rgb_obj(ms_color_rgb(app->colors, id)));
+                                                        : rgb_obj(ms_color_rgb(app->world.colors, id)));
     return TCL_OK;
 }
 
 static int info_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     static const char *const words[] = {"method", "methods", "midpoint", "min", "max", NULL};
-    const ms_colors *c = app->colors;
+    const ms_colors *c = app->world.colors;
     int w;
     if (ms_arg_choice(interp, objv[2], words, NULL, &w)) return TCL_ERROR;
     if (w == 0) {

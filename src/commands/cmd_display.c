@@ -14,8 +14,8 @@
  * Invalid values are refused with an error and change nothing. */
 #include "config.h"
 #include "commands/scenecmds.h"
+#include "assemble/view.h"
 #include "scene/mat4.h"
-#include "view/view.h"
 
 #include <limits.h>
 #include <stddef.h>
@@ -36,35 +36,35 @@ static const char *positive(const ms_view *v, float x) { return x > 0 ? NULL : "
 static const char *nonneg(const ms_view *v, float x) { return x >= 0 ? NULL : "must not be negative"; }
 static const char *not_eye(const ms_view *v, float x)
 {
-    return x != v->cam.eye[2] ? NULL : "puts the screen at the eye";
+    return x != v->settings.cam.eye[2] ? NULL : "puts the screen at the eye";
 }
 static const char *cue_start(const ms_view *v, float x)
 {
-    return x < 0 ? "must not be negative" : x >= v->cue_end ? "must be less than cueend" : NULL;
+    return x < 0 ? "must not be negative" : x >= v->settings.cue_end ? "must be less than cueend" : NULL;
 }
 static const char *cue_end(const ms_view *v, float x)
 {
-    return x > v->cue_start ? NULL : "must be greater than cuestart";
+    return x > v->settings.cue_start ? NULL : "must be greater than cuestart";
 }
 
 #define VOFF(f) offsetof(ms_view, f)
 static const setting settings[] = {
-    {"height", S_FLOAT, VOFF(cam.height), positive},
-    {"distance", S_FLOAT, VOFF(cam.distance), not_eye},
-    {"eyesep", S_FLOAT, VOFF(cam.eyesep), nonneg},
-    {"focallength", S_FLOAT, VOFF(cam.focal_length), positive},
-    {"cuestart", S_FLOAT, VOFF(cue_start), cue_start},
-    {"cueend", S_FLOAT, VOFF(cue_end), cue_end},
-    {"cuedensity", S_FLOAT, VOFF(cue_density), nonneg},
-    {"aoambient", S_FLOAT, VOFF(ao_ambient), nonneg},
-    {"aodirect", S_FLOAT, VOFF(ao_direct), nonneg},
-    {"dof_fnumber", S_FLOAT, VOFF(cam.dof_fnumber), positive},
-    {"dof_focaldist", S_FLOAT, VOFF(cam.dof_focaldist), positive},
-    {"depthcue", S_BOOL, VOFF(depthcue), NULL},
-    {"shadows", S_BOOL, VOFF(shadows), NULL},
-    {"ambientocclusion", S_BOOL, VOFF(ao), NULL},
-    {"dof", S_BOOL, VOFF(cam.dof), NULL},
-    {"backgroundgradient", S_BOOL, VOFF(bg_gradient), NULL},
+    {"height", S_FLOAT, VOFF(settings.cam.height), positive},
+    {"distance", S_FLOAT, VOFF(settings.cam.distance), not_eye},
+    {"eyesep", S_FLOAT, VOFF(settings.cam.eyesep), nonneg},
+    {"focallength", S_FLOAT, VOFF(settings.cam.focal_length), positive},
+    {"cuestart", S_FLOAT, VOFF(settings.cue_start), cue_start},
+    {"cueend", S_FLOAT, VOFF(settings.cue_end), cue_end},
+    {"cuedensity", S_FLOAT, VOFF(settings.cue_density), nonneg},
+    {"aoambient", S_FLOAT, VOFF(settings.ao_ambient), nonneg},
+    {"aodirect", S_FLOAT, VOFF(settings.ao_direct), nonneg},
+    {"dof_fnumber", S_FLOAT, VOFF(settings.cam.dof_fnumber), positive},
+    {"dof_focaldist", S_FLOAT, VOFF(settings.cam.dof_focaldist), positive},
+    {"depthcue", S_BOOL, VOFF(settings.depthcue), NULL},
+    {"shadows", S_BOOL, VOFF(settings.shadows), NULL},
+    {"ambientocclusion", S_BOOL, VOFF(settings.ao), NULL},
+    {"dof", S_BOOL, VOFF(settings.cam.dof), NULL},
+    {"backgroundgradient", S_BOOL, VOFF(settings.bg_gradient), NULL},
     {"antialias", S_BOOL, VOFF(antialias), NULL},
     {"culling", S_BOOL, VOFF(culling), NULL},
     {"stereoswap", S_BOOL, VOFF(stereoswap), NULL},
@@ -84,11 +84,11 @@ static const setting *find_setting(const char *name)
 
 static int set_value(ms_app *app, Tcl_Interp *interp, const setting *s, Tcl_Obj *val)
 {
-    char *p = (char *)app->view + s->off;
+    char *p = (char *)app->world.view + s->off;
     if (s->type == S_BOOL) return ms_arg_bool(interp, val, NULL, (int *)p);
     float x;
     if (ms_arg_float(interp, val, NULL, &x)) return TCL_ERROR;
-    const char *bad = s->check ? s->check(app->view, x) : NULL;
+    const char *bad = s->check ? s->check(app->world.view, x) : NULL;
     if (bad) return ms_cmd_error(interp, "%s: %g %s", ms_args_where(), x, bad);
     *(float *)p = x;
     return TCL_OK;
@@ -123,36 +123,36 @@ static const char *const get_words[W_COUNT + 1] = {
 
 static Tcl_Obj *get_word(ms_app *app, const char *w)
 {
-    const ms_view *v = app->view;
+    const ms_view *v = app->world.view;
     static const char *const projs[] = {"Perspective", "Orthographic"};
     static const char *const cues[] = {"Linear", "Exp", "Exp2"};
     Tcl_Obj *e[2];
     switch ((get_word_id)ms_args_find(get_words, sizeof *get_words, w)) {
-    case W_PROJECTION: return Tcl_NewStringObj(ms_projection_name(v->cam.projection), -1);
+    case W_PROJECTION: return Tcl_NewStringObj(ms_projection_name(v->settings.cam.projection), -1);
     case W_PROJECTIONS: return list_of(projs, 2);
-    case W_CUEMODE: return Tcl_NewStringObj(ms_cuemode_name(v->cuemode), -1);
+    case W_CUEMODE: return Tcl_NewStringObj(ms_cuemode_name(v->settings.cuemode), -1);
     case W_CUEMODES: return list_of(cues, 3);
-    case W_NEARCLIP: return ms_cmd_float_obj(v->cam.near_clip);
-    case W_FARCLIP: return ms_cmd_float_obj(v->cam.far_clip);
+    case W_NEARCLIP: return ms_cmd_float_obj(v->settings.cam.near_clip);
+    case W_FARCLIP: return ms_cmd_float_obj(v->settings.cam.far_clip);
     case W_STEREO: return Tcl_NewStringObj(v->stereo, -1);
     case W_STEREOMODES: return list_of(stereo_modes, 8);
     case W_RENDERMODE: return Tcl_NewStringObj(v->rendermode, -1);
     case W_RENDERMODES: return list_of(render_modes, 8);
     case W_CACHEMODE: return Tcl_NewStringObj(v->cachemode, -1);
     case W_CACHEMODES: return list_of(cache_modes, 8);
-    case W_EYEPOS: return vec_obj(v->cam.eye);
-    case W_EYEDIR: return vec_obj(v->cam.dir);
-    case W_EYEUP: return vec_obj(v->cam.up);
+    case W_EYEPOS: return vec_obj(v->settings.cam.eye);
+    case W_EYEDIR: return vec_obj(v->settings.cam.dir);
+    case W_EYEUP: return vec_obj(v->settings.cam.up);
     case W_SIZE:
-        e[0] = Tcl_NewIntObj(app->width);
-        e[1] = Tcl_NewIntObj(app->height);
+        e[0] = Tcl_NewIntObj(app->world.width);
+        e[1] = Tcl_NewIntObj(app->world.height);
         return Tcl_NewListObj(2, e);
     default:
         break;
     }
     const setting *s = find_setting(w);
     if (!s) return NULL;
-    const char *p = (const char *)app->view + s->off;
+    const char *p = (const char *)app->world.view + s->off;
     if (s->type == S_BOOL) return Tcl_NewStringObj(*(const int *)p ? "on" : "off", -1);
     return ms_cmd_float_obj(*(const float *)p);
 }
@@ -205,7 +205,7 @@ static const char *stage_name(int i) { return ms_stage_loc_name((ms_stage_loc)i)
 static int disp_choice(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const char *w = Tcl_GetString(objv[1]);
-    ms_view *v = app->view;
+    ms_view *v = app->world.view;
     int proj = ms_word_eq(w, "projection") || ms_word_eq(w, "proj");
     if (objc == 2) {
         Tcl_SetObjResult(interp, get_word(app, proj ? "projection" : w));
@@ -214,10 +214,10 @@ static int disp_choice(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     int i;
     if (proj) {
         if (pick(interp, objv[2], projection_name, 2, "projection", &i)) return TCL_ERROR;
-        v->cam.projection = (ms_projection)i;
+        v->settings.cam.projection = (ms_projection)i;
     } else if (ms_word_eq(w, "cuemode")) {
         if (pick(interp, objv[2], cuemode_name, 3, "cue mode", &i)) return TCL_ERROR;
-        v->cuemode = (ms_cuemode)i;
+        v->settings.cuemode = (ms_cuemode)i;
     } else {
         int stereo = ms_word_eq(w, "stereo"), render = ms_word_eq(w, "rendermode");
         const char *const *modes = stereo ? stereo_modes : render ? render_modes : cache_modes;
@@ -235,7 +235,7 @@ static int disp_clip(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 {
     static const char *const how_words[] = {"set", "add", NULL};
     int near = ms_word_eq(Tcl_GetString(objv[1]), "nearclip"), add;
-    ms_camera *c = &app->view->cam;
+    ms_camera *c = &app->world.view->settings.cam;
     if (objc == 2) {
         Tcl_SetObjResult(interp, ms_cmd_float_obj(near ? c->near_clip : c->far_clip));
         return TCL_OK;
@@ -263,8 +263,8 @@ static int disp_resize(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     if (ms_arg_int(interp, objv[2], "width", 1, 32768, &w) ||
         ms_arg_int(interp, objv[3], "height", 1, 32768, &h))
         return TCL_ERROR;
-    app->width = w;
-    app->height = h;
+    app->world.width = w;
+    app->world.height = h;
     return TCL_OK;
 }
 
@@ -287,7 +287,7 @@ static int disp_size(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 
 static int disp_resetview(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    ms_view_reset(app);
+    ms_view_reset(&app->world);
     return TCL_OK;
 }
 
@@ -295,14 +295,14 @@ static int disp_update(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
 {
     if (objc == 2) {
         ms_app_finish_loading(app);   /* the frames still being read arrive now */
-        ms_view_rock_step(app);   /* a redraw advances rocking, as VMD's display loop does */
+        ms_view_rock_step(&app->world);   /* a redraw advances rocking, as VMD's display loop does */
         return TCL_OK;
     }
     const char *w = Tcl_GetString(objv[2]);
     int b;
-    if (ms_word_eq(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->view->update));
+    if (ms_word_eq(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->world.view->update));
     else if (ms_word_eq(w, "ui")) return TCL_OK;
-    else if (ms_arg_bool(NULL, objv[2], NULL, &b) == TCL_OK) app->view->update = b;
+    else if (ms_arg_bool(NULL, objv[2], NULL, &b) == TCL_OK) app->world.view->update = b;
     else return ms_args_usage(interp);
     return TCL_OK;
 }
@@ -313,11 +313,11 @@ static int axes_location(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
 {
     int l;
     if (objc == 2) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_axes_loc_name(app->view->axes), -1));
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_axes_loc_name(app->world.view->axes), -1));
         return TCL_OK;
     }
     if (pick(interp, objv[2], axes_name, MS_AXES_NLOCS, "location", &l)) return TCL_ERROR;
-    app->view->axes = (ms_axes_loc)l;
+    app->world.view->axes = (ms_axes_loc)l;
     return TCL_OK;
 }
 
@@ -334,11 +334,11 @@ static int stage_location(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
 {
     int l;
     if (objc == 2) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_stage_loc_name(app->view->stage), -1));
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_stage_loc_name(app->world.view->stage), -1));
         return TCL_OK;
     }
     if (pick(interp, objv[2], stage_name, MS_STAGE_NLOCS, "location", &l)) return TCL_ERROR;
-    app->view->stage = (ms_stage_loc)l;
+    app->world.view->stage = (ms_stage_loc)l;
     return TCL_OK;
 }
 
@@ -354,22 +354,22 @@ static int stage_locations(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *c
 static int stage_panels(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     if (objc == 2) {
-        Tcl_SetObjResult(interp, Tcl_NewIntObj(app->view->stage_panels));
+        Tcl_SetObjResult(interp, Tcl_NewIntObj(app->world.view->stage_panels));
         return TCL_OK;
     }
-    return ms_arg_int(interp, objv[2], NULL, 1, 30, &app->view->stage_panels);
+    return ms_arg_int(interp, objv[2], NULL, 1, 30, &app->world.view->stage_panels);
 }
 
 static int stage_size(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     float s;
     if (objc == 2) {
-        Tcl_SetObjResult(interp, ms_cmd_float_obj(app->view->stage_size));
+        Tcl_SetObjResult(interp, ms_cmd_float_obj(app->world.view->stage_size));
         return TCL_OK;
     }
     if (ms_arg_float(interp, objv[2], NULL, &s)) return TCL_ERROR;
     if (s <= 0) return ms_cmd_error(interp, "stage size: %g must be positive", s);
-    app->view->stage_size = s;
+    app->world.view->stage_size = s;
     return TCL_OK;
 }
 
@@ -379,7 +379,7 @@ static int stage_size(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 static ms_light *the_light(ms_app *app, Tcl_Obj *const objv[], int *n)
 {
     Tcl_GetIntFromObj(NULL, objv[1], n);
-    return &app->view->lights[*n];
+    return &app->world.view->settings.lights[*n];
 }
 
 static int light_switch(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
@@ -388,7 +388,7 @@ static int light_switch(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
     ms_light *l = the_light(app, objv, &n);
     const char *w = Tcl_GetString(objv[2]);
     if (ms_word_eq(w, "on") || ms_word_eq(w, "off")) l->on = ms_word_eq(w, "on");
-    else app->view->light_highlight[n] = ms_word_eq(w, "highlight");
+    else app->world.view->light_highlight[n] = ms_word_eq(w, "highlight");
     return TCL_OK;
 }
 
@@ -397,7 +397,7 @@ static int light_status(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
     int n;
     ms_light *l = the_light(app, objv, &n);
     Tcl_SetObjResult(interp, Tcl_ObjPrintf("%s %s", l->on ? "on" : "off",
-                                           app->view->light_highlight[n] ? "highlight" : "unhighlight"));
+                                           app->world.view->light_highlight[n] ? "highlight" : "unhighlight"));
     return TCL_OK;
 }
 

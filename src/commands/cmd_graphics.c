@@ -28,7 +28,7 @@
 static ms_ugraphics *graphics_of(ms_app *app, Tcl_Interp *interp, Tcl_Obj *const objv[])
 {
     ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "graphics");
-    ms_ugraphics *g = m ? ms_cmd_ugraphics(app, m) : NULL;
+    ms_ugraphics *g = m ? ms_world_ugraphics(&app->world, m) : NULL;
     if (m && !g) ms_cmd_error(interp, "graphics: out of memory");
     return g;
 }
@@ -103,7 +103,7 @@ static int add_shape(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     if (get_points(interp, np, objv + 3, &it)) return TCL_ERROR;
     if (it.kind == MS_UG_TRICOLOR) {
         for (int k = 0; k < 3; k++) {
-            it.iv[k] = ms_color_index(app->colors, Tcl_GetString(objv[9 + k]));
+            it.iv[k] = ms_color_index(app->world.colors, Tcl_GetString(objv[9 + k]));
             if (it.iv[k] < 0)
                 return ms_cmd_error(interp, "%s: unknown color '%s'", ms_args_where(),
                                     Tcl_GetString(objv[9 + k]));
@@ -136,13 +136,13 @@ static int add_state(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     const char *w = Tcl_GetString(objv[2]), *v = Tcl_GetString(objv[3]);
     if (ms_word_eq(w, "color") || ms_word_eq(w, "colour")) {
         it.kind = MS_UG_COLOR;
-        if ((it.iv[0] = ms_color_index(app->colors, v)) < 0)
+        if ((it.iv[0] = ms_color_index(app->world.colors, v)) < 0)
             return ms_cmd_error(interp, "%s: unknown color '%s'", ms_args_where(), v);
     } else if (ms_word_eq(w, "material")) {
         it.kind = MS_UG_MATERIAL;
-        int i = ms_material_index(app->materials, v);
+        int i = ms_material_index(app->world.materials, v);
         if (i < 0) return ms_cmd_error(interp, "%s: unknown material '%s'", ms_args_where(), v);
-        it.iv[0] = app->materials->list[i].id;
+        it.iv[0] = app->world.materials->list[i].id;
     } else {
         it.kind = MS_UG_MATERIALS;
         if (ms_arg_bool(interp, objv[3], NULL, &it.iv[0])) return TCL_ERROR;
@@ -191,7 +191,7 @@ static int manage(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
         return TCL_OK;
     }
     char buf[2048];
-    ms_ugraphics_info(g, i, app->materials, buf, sizeof buf);
+    ms_ugraphics_info(g, i, app->world.materials, buf, sizeof buf);
     Tcl_SetObjResult(interp, Tcl_NewStringObj(buf, -1));
     return TCL_OK;
 }
@@ -223,10 +223,10 @@ static const ms_subcmd graphics_table[] = {
 /* graphics <molid|top> <command> ...: the molecule, then its graphics command */
 static int graphics_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    app->scene_version++;
+    app->world.scene_version++;
     ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "graphics");
     if (!m) return TCL_ERROR;
-    if (!ms_cmd_ugraphics(app, m)) return ms_cmd_error(interp, "graphics: out of memory");
+    if (!ms_world_ugraphics(&app->world, m)) return ms_cmd_error(interp, "graphics: out of memory");
     char where[48];
     snprintf(where, sizeof where, "graphics %d", m->id);
     return ms_args_dispatch(app, interp, objc, objv, 2, graphics_table, NULL, where);
@@ -235,7 +235,7 @@ static int graphics_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
 /* draw <shape> args: graphics on the top molecule, or a user's vmd_draw_<shape> proc. */
 static int draw_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    app->scene_version++;
+    app->world.scene_version++;
     ms_molecule *top = ms_molset_top(&app->mols);
     if (!top) {
         ms_error err = {{0}};

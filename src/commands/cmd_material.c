@@ -14,7 +14,7 @@
 
 static int get_material(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char *cmd, int *i)
 {
-    *i = ms_material_index(app->materials, Tcl_GetString(o));
+    *i = ms_material_index(app->world.materials, Tcl_GetString(o));
     if (*i < 0) return ms_cmd_error(interp, "%s: unknown material '%s'", cmd, Tcl_GetString(o));
     return TCL_OK;
 }
@@ -22,8 +22,8 @@ static int get_material(ms_app *app, Tcl_Interp *interp, Tcl_Obj *o, const char 
 static int mat_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     Tcl_Obj *l = Tcl_NewListObj(0, NULL);
-    for (size_t i = 0; i < app->materials->n; i++)
-        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(app->materials->list[i].name, -1));
+    for (size_t i = 0; i < app->world.materials->n; i++)
+        Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(app->world.materials->list[i].name, -1));
     Tcl_SetObjResult(interp, l);
     return TCL_OK;
 }
@@ -35,7 +35,7 @@ static int mat_settings(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
     Tcl_Obj *l = Tcl_NewListObj(0, NULL);
     for (int p = 0; p < MS_MAT_NPROPS; p++)
         Tcl_ListObjAppendElement(NULL, l, ms_cmd_float_obj(
-                                     ms_material_get(&app->materials->list[i], (ms_mat_prop)p)));
+                                     ms_material_get(&app->world.materials->list[i], (ms_mat_prop)p)));
     Tcl_SetObjResult(interp, l);
     return TCL_OK;
 }
@@ -50,9 +50,9 @@ static int mat_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
         if (get_material(app, interp, objv[copy + 1], "material add", &from)) return TCL_ERROR;
     }
     ms_error err = {{0}};
-    int i = ms_material_add(app->materials, name, from, &err);
+    int i = ms_material_add(app->world.materials, name, from, &err);
     if (i < 0) return ms_cmd_error(interp, "material add: %s", err.msg);
-    Tcl_SetObjResult(interp, Tcl_NewStringObj(app->materials->list[i].name, -1));
+    Tcl_SetObjResult(interp, Tcl_NewStringObj(app->world.materials->list[i].name, -1));
     return TCL_OK;
 }
 
@@ -61,7 +61,7 @@ static int mat_rename(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     int i;
     if (get_material(app, interp, objv[2], "material rename", &i)) return TCL_ERROR;
     ms_error err = {{0}};
-    if (ms_material_rename(app->materials, i, Tcl_GetString(objv[3]), &err))
+    if (ms_material_rename(app->world.materials, i, Tcl_GetString(objv[3]), &err))
         return ms_cmd_error(interp, "material rename: %s", err.msg);
     return TCL_OK;
 }
@@ -71,7 +71,7 @@ static int mat_delete(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     int i;
     if (get_material(app, interp, objv[2], "material delete", &i)) return TCL_ERROR;
     ms_error err = {{0}};
-    if (ms_material_delete(app->materials, i, &err))
+    if (ms_material_delete(app->world.materials, i, &err))
         return ms_cmd_error(interp, "material delete: %s", err.msg);
     return TCL_OK;
 }
@@ -86,7 +86,7 @@ static int mat_change(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
         get_material(app, interp, objv[3], "material change", &i) ||
         ms_arg_float(interp, objv[4], NULL, &v))
         return TCL_ERROR;
-    ms_material_set(app->materials, i, (ms_mat_prop)p, v);
+    ms_material_set(app->world.materials, i, (ms_mat_prop)p, v);
     return TCL_OK;
 }
 
@@ -95,7 +95,7 @@ static int mat_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     int i;
     if (get_material(app, interp, objv[2], "material default", &i)) return TCL_ERROR;
     ms_error err = {{0}};
-    if (ms_material_restore_default(app->materials, i, &err))
+    if (ms_material_restore_default(app->world.materials, i, &err))
         return ms_cmd_error(interp, "material default: %s", err.msg);
     return TCL_OK;
 }

@@ -17,10 +17,11 @@
  * A weight is `none`, a floating-point atom keyword (mass, charge, beta, occupancy,
  * radius, user...) or a list of numbers, one per selected atom or one per atom of the
  * molecule; weights of two-selection commands come from the first. Selections are resolved
- * through ms_cmd_sel_resolver; nothing here changes a molecule (gofr with selupdate moves
+ * through ms_atomsel_resolve; nothing here changes a molecule (gofr with selupdate moves
  * the selections through the frames and puts them back). The numbers come from
  * src/measure. */
 #include "config.h"
+#include "commands/atomsel.h"
 #include "commands/commands.h"
 #include "commands/tclvec.h"
 #include "measure/measure.h"
@@ -56,9 +57,7 @@ static int get_sel(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const char *c
     size_t n = 0;
     memset(s, 0, sizeof *s);
     s->name = Tcl_GetString(word);
-    if (!ms_cmd_sel_resolver)
-        return ms_cmd_error(interp, "%s: atom selections are not available", cmd);
-    if (ms_cmd_sel_resolver(app, interp, s->name, cmd, &s->molid, &s->frame, &s->atoms, &n) !=
+    if (ms_atomsel_resolve(app, interp, s->name, cmd, &s->molid, &s->frame, &s->atoms, &n) !=
         TCL_OK)
         return TCL_ERROR;
     ms_molecule *m = ms_molset_get(&app->mols, s->molid);

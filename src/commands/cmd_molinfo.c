@@ -332,7 +332,7 @@ static int molinfo_set(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "molinfo");
     long frame;
     if (!m) return TCL_ERROR;
-    app->scene_version++;
+    app->world.scene_version++;
     if (frame_option(interp, m, objc, objv, 5, &frame)) return TCL_ERROR;
     Tcl_Obj **keys, **vals;
     int nk, nv;

@@ -16,9 +16,9 @@
  *   ::molscope::movie::ffmpeg                   the ffmpeg a video would use, or "" */
 #include "config.h"
 #include "commands/commands.h"
+#include "assemble/view.h"
 #include "image/image.h"
 #include "movie/movie.h"
-#include "view/view.h"
 
 #include <limits.h>
 #include <stddef.h>
@@ -181,7 +181,7 @@ static int get_floats(Tcl_Interp *interp, Tcl_Obj *o, int n, float *out)
 static Tcl_Obj *pose_get(ms_app *app)
 {
     Tcl_Obj *l = Tcl_NewListObj(0, NULL);
-    Tcl_Obj *axes[2] = {Tcl_NewStringObj("axes", -1), floats(app->view->axes_rotate, 16)};
+    Tcl_Obj *axes[2] = {Tcl_NewStringObj("axes", -1), floats(app->world.view->axes_rotate, 16)};
     Tcl_ListObjAppendElement(NULL, l, Tcl_NewListObj(2, axes));
     for (size_t i = 0; i < app->mols.n; i++) {
         const ms_molecule *m = app->mols.mols[i];
@@ -201,7 +201,7 @@ static int pose_set_one(ms_app *app, Tcl_Interp *interp, Tcl_Obj *rec)
     if (Tcl_ListObjGetElements(NULL, rec, &n, &e) != TCL_OK || n < 2)
         return ms_cmd_error(interp, "movie pose: bad record '%s'", Tcl_GetString(rec));
     const char *kind = Tcl_GetString(e[0]);
-    if (ms_word_eq(kind, "axes") && n == 2) return get_floats(interp, e[1], 16, app->view->axes_rotate);
+    if (ms_word_eq(kind, "axes") && n == 2) return get_floats(interp, e[1], 16, app->world.view->axes_rotate);
     if (!ms_word_eq(kind, "mol") || n != 6 || Tcl_GetIntFromObj(NULL, e[1], &id) != TCL_OK)
         return ms_cmd_error(interp, "movie pose: bad record '%s'", Tcl_GetString(rec));
     if (get_floats(interp, e[2], 3, c) || get_floats(interp, e[3], 16, r) ||

@@ -10,7 +10,7 @@
  *   render formats <method>;  render format <method> ?fmt? */
 #include "config.h"
 #include "commands/scenecmds.h"
-#include "render/render.h"
+#include "assemble/devices.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -35,7 +35,7 @@ static Tcl_Obj *joined(int objc, Tcl_Obj *const objv[], int from)
 
 static ms_render_setting *setting(ms_app *app, Tcl_Interp *interp, const ms_render_device *d)
 {
-    ms_render_setting *s = ms_render_setting_of(app->renderers, d);
+    ms_render_setting *s = ms_render_setting_of(app->world.renderers, d);
     if (!s) ms_cmd_error(interp, "render: out of memory");
     return s;
 }
@@ -97,9 +97,9 @@ static int r_info(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
     if (ms_word_eq(w, "hasaa")) {
         Tcl_SetObjResult(interp, Tcl_NewIntObj(d->has_aa));
     } else if (ms_word_eq(w, "imagesize")) {
-        Tcl_SetObjResult(interp, Tcl_ObjPrintf("%d %d", app->width, app->height));
+        Tcl_SetObjResult(interp, Tcl_ObjPrintf("%d %d", app->world.width, app->world.height));
     } else if (ms_word_eq(w, "aspectratio")) {
-        Tcl_SetObjResult(interp, Tcl_NewDoubleObj((double)app->width / app->height));
+        Tcl_SetObjResult(interp, Tcl_NewDoubleObj((double)app->world.width / app->world.height));
     } else {   /* formats */
         Tcl_Obj *l = Tcl_NewListObj(0, NULL);
         for (const char *const *f = d->formats; f && *f; f++)
@@ -131,7 +131,7 @@ static int r_render(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     Tcl_Obj *cmd = joined(objc, objv, 3);
     Tcl_IncrRefCount(cmd);
     ms_error err = {{0}};
-    int rc = ms_render(app, d, Tcl_GetString(objv[2]), Tcl_GetString(cmd), &err);
+    int rc = ms_render(&app->world, d, Tcl_GetString(objv[2]), Tcl_GetString(cmd), &err);
     Tcl_DecrRefCount(cmd);
     if (rc) return ms_cmd_error(interp, "render %s: %s", d->name, err.msg);
     return TCL_OK;

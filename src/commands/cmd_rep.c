@@ -18,8 +18,8 @@
  *
  * A new structure loaded by mol new / mol addfile resets the current settings to the
  * defaults and gets one rep made from them (VMD's rule); a molecule of volumetric data
- * alone gets an Isosurface rep. Every error names the command and
- * the bad value, and changes nothing. */
+ * alone gets an Isosurface rep (rep/rep.c does both, hearing the molecule set's load
+ * events). Every error names the command and the bad value, and changes nothing. */
 #include "config.h"
 #include "commands/commands.h"
 #include "commands/molinfo.h"
@@ -51,10 +51,10 @@ static ms_rep *get_rep(ms_app *app, Tcl_Interp *interp, ms_molecule *m, Tcl_Obj 
         ms_cmd_error(interp, "%s: '%s' is not a rep id", cmd, Tcl_GetString(w));
         return NULL;
     }
-    ms_rep *r = ms_rep_get(app, m, id);
+    ms_rep *r = ms_rep_get(app->world.reps, m, id);
     if (!r)
         ms_cmd_error(interp, "%s: molecule %d has no rep %ld (it has %zu)", cmd, m->id, id,
-                     ms_rep_count(app, m));
+                     ms_rep_count(app->world.reps, m));
     if (repid) *repid = id;
     return r;
 }
@@ -96,13 +96,13 @@ static int m_current(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     ms_rep_what what = MS_REP_STYLE;
     what_of(Tcl_GetString(objv[1]), &what);
     if (objc == 2) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_text(app, NULL, what), -1));
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_text(app->world.reps, NULL, what), -1));
         return TCL_OK;
     }
     Tcl_Obj *text = joined(objc, objv, 2);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
-    int rc = ms_rep_set_current(app, what, Tcl_GetString(text), &err);
+    int rc = ms_rep_set_current(app->world.reps, what, Tcl_GetString(text), &err);
     Tcl_DecrRefCount(text);
     return rc ? ms_cmd_error(interp, "%s: %s", cmd, err.msg) : TCL_OK;
 }
@@ -117,11 +117,11 @@ static int m_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     if (what_of(Tcl_GetString(objv[2]), &what))
         return ms_arg_choice(interp, objv[2], words, NULL, &k);
     if (objc == 3) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_get_default(app, what), -1));
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_get_default(app->world.reps, what), -1));
         return TCL_OK;
     }
     ms_error err = {{0}};
-    if (ms_rep_set_default(app, what, Tcl_GetString(objv[3]), &err))
+    if (ms_rep_set_default(app->world.reps, what, Tcl_GetString(objv[3]), &err))
         return ms_cmd_error(interp, "mol default %s: %s", Tcl_GetString(objv[2]), err.msg);
     return TCL_OK;
 }
@@ -133,7 +133,7 @@ static int m_default(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
 static int settle(ms_app *app, Tcl_Interp *interp, ms_molecule *m, ms_rep *r, const char *cmd)
 {
     ms_error err = {{0}};
-    if (m->nframes && ms_rep_update_data(app, m, r, &err))
+    if (m->nframes && ms_rep_update_data(app->world.reps, m, r, &err))
         return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
     return TCL_OK;
 }
@@ -143,7 +143,7 @@ static int m_addrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol addrep");
     if (!m) return TCL_ERROR;
     ms_error err = {{0}};
-    ms_rep *r = ms_rep_add(app, m, &err);
+    ms_rep *r = ms_rep_add(app->world.reps, m, &err);
     if (!r) return ms_cmd_error(interp, "mol addrep: %s", err.msg);
     return settle(app, interp, m, r, "mol addrep");
 }
@@ -153,7 +153,7 @@ static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     ms_molecule *m;
     long id;
     if (!target(app, interp, objv, 1, "mol delrep", &m, &id)) return TCL_ERROR;
-    ms_rep_delete(app, m, (size_t)id);
+    ms_rep_delete(app->world.reps, m, (size_t)id);
     return TCL_OK;
 }
 
@@ -163,7 +163,7 @@ static int m_modrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     ms_rep *r = target(app, interp, objv, 1, "mol modrep", &m, NULL);
     ms_error err = {{0}};
     if (!r) return TCL_ERROR;
-    if (ms_rep_apply_current(app, m, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
+    if (ms_rep_apply_current(app->world.reps, m, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
     return settle(app, interp, m, r, "mol modrep");
 }
 
@@ -179,7 +179,7 @@ static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     Tcl_Obj *text = joined(objc, objv, 4);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
-    int rc = ms_rep_modify(app, m, r, what, Tcl_GetString(text), &err);
+    int rc = ms_rep_modify(app->world.reps, m, r, what, Tcl_GetString(text), &err);
     Tcl_DecrRefCount(text);
     if (rc) return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
     return what == MS_REP_SELECTION || what == MS_REP_COLOR ? settle(app, interp, m, r, cmd) : TCL_OK;
@@ -241,7 +241,7 @@ static int m_scaleminmax(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
     if (!r) return TCL_ERROR;
     if (objc == 4) {
         ms_error err = {{0}};
-        if (ms_rep_update_data(app, m, r, &err))
+        if (ms_rep_update_data(app->world.reps, m, r, &err))
             return ms_cmd_error(interp, "mol scaleminmax: %s", err.msg);
         Tcl_SetObjResult(interp, Tcl_ObjPrintf("%f %f", r->cmin, r->cmax));
         return TCL_OK;
@@ -297,7 +297,7 @@ static int m_repindex(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
 {
     ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol repindex");
     if (!m) return TCL_ERROR;
-    Tcl_SetObjResult(interp, Tcl_NewLongObj(ms_rep_find(app, m, Tcl_GetString(objv[3]))));
+    Tcl_SetObjResult(interp, Tcl_NewLongObj(ms_rep_find(app->world.reps, m, Tcl_GetString(objv[3]))));
     return TCL_OK;
 }
 
@@ -335,7 +335,7 @@ static Tcl_Obj *counts(ms_app *app, const ms_rep *r)
         Tcl_ListObjAppendElement(NULL, l, Tcl_NewWideIntObj((Tcl_WideInt)c[i].v));
     }
     Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj("material", -1));
-    Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_material_by_id(app->materials, r->material)->name, -1));
+    Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(ms_material_by_id(app->world.materials, r->material)->name, -1));
     return l;
 }
 
@@ -393,7 +393,7 @@ static int m_repinfo(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     ms_rep *r = target(app, interp, objv, 0, "mol repinfo", &m, NULL);
     ms_error err = {{0}};
     if (!r) return TCL_ERROR;
-    if (ms_rep_update(app, m, r, &err)) return ms_cmd_error(interp, "mol repinfo: %s", err.msg);
+    if (ms_rep_update(app->world.reps, m, r, &err)) return ms_cmd_error(interp, "mol repinfo: %s", err.msg);
     if (objc == 4) {
         Tcl_SetObjResult(interp, counts(app, r));
         return TCL_OK;
@@ -422,48 +422,23 @@ static int info_get(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char 
     what_of(word, &what);
     char *end;
     long i = sp ? strtol(sp + 1, &end, 10) : -1;
-    ms_rep *r = sp && end != sp + 1 && !*end ? ms_rep_get(app, m, i) : NULL;
+    ms_rep *r = sp && end != sp + 1 && !*end ? ms_rep_get(app->world.reps, m, i) : NULL;
     if (!r)
         return ms_cmd_error(interp, "%s: %s: molecule %d has no rep '%s' (it has %zu)",
                             ms_args_where(), keyword, m->id, sp ? sp + 1 : "",
-                            ms_rep_count(app, m));
-    *out = Tcl_NewStringObj(ms_rep_text(app, r, what), -1);
+                            ms_rep_count(app->world.reps, m));
+    *out = Tcl_NewStringObj(ms_rep_text(app->world.reps, r, what), -1);
     return TCL_OK;
 }
 
 static int info_numreps(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char *keyword,
                         long frame, Tcl_Obj **out)
 {
-    *out = Tcl_NewWideIntObj((Tcl_WideInt)ms_rep_count(app, m));
+    *out = Tcl_NewWideIntObj((Tcl_WideInt)ms_rep_count(app->world.reps, m));
     return TCL_OK;
 }
 
 /* ---------------------------------------------------------------- registration */
-
-/* A structure's first atoms: VMD resets the current settings to the defaults and adds a rep. */
-static void new_structure(ms_app *app, ms_molecule *m)
-{
-    ms_error err = {{0}};
-    if (ms_rep_reset_current(app, &err) || !ms_rep_add(app, m, &err))
-        fprintf(stderr, "molscope: molecule %d: no default rep: %s\n", m->id, err.msg);
-}
-
-/* A molecule of volumetric data alone: VMD resets the current settings and draws the data
- * with an Isosurface rep, here at the method's default parameters (whatever the current
- * style last used with Isosurface, which might name a volume this molecule lacks). */
-static void new_volumes(ms_app *app, ms_molecule *m)
-{
-    ms_error err = {{0}};
-    if (ms_rep_count(app, m) > 0) return;
-    const ms_rep_method *iso = ms_rep_method_at((size_t)ms_rep_method_find("Isosurface"));
-    char text[256];
-    int len = snprintf(text, sizeof text, "%s", iso->name);
-    for (int i = 0; i < iso->nparams && len < (int)sizeof text; i++)
-        len += snprintf(text + len, sizeof text - (size_t)len, " %g", (double)iso->param[i].def);
-    if (ms_rep_reset_current(app, &err) || ms_rep_set_current(app, MS_REP_STYLE, text, &err) ||
-        ms_rep_set_current(app, MS_REP_STYLE, iso->name, &err) || !ms_rep_add(app, m, &err))
-        fprintf(stderr, "molscope: molecule %d: no default rep: %s\n", m->id, err.msg);
-}
 
 static const ms_subcmd rep_table[] = {
     {"representation", m_current, 0, MS_ARGS_ANY, "?<style> ?<parameter> ...??"},
@@ -495,16 +470,10 @@ static const ms_subcmd rep_table[] = {
 
 void ms_cmd_rep_register(ms_app *app)
 {
-    if (!app->colors || !app->materials || ms_rep_register(app)) {
-        fprintf(stderr, "molscope: cannot create the representation state (out of memory)\n");
-        return;
-    }
     ms_cmdset_extend(app, "mol", rep_table);
     static const ms_molinfo_keyword keys[] = {
         {"rep ", 1, info_get, NULL},      {"selection ", 1, info_get, NULL},
         {"color ", 1, info_get, NULL},    {"material ", 1, info_get, NULL},
         {"numreps", 0, info_numreps, NULL}};
     for (size_t i = 0; i < MS_COUNTOF(keys); i++) ms_molinfo_add_keyword(&keys[i]);
-    ms_cmd_structure_hook = new_structure;
-    ms_cmd_volume_hook = new_volumes;
 }

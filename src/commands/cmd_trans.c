@@ -1,4 +1,4 @@
-/* cmd_trans.c: the transform commands, acting on every non-fixed molecule (view/view.h):
+/* cmd_trans.c: the transform commands, acting on every non-fixed molecule (assemble/view.h):
  *
  *   rotate x|y|z by|to <deg> ?<incr>?   rotate stop      (with incr VMD animates the turn;
  *                                                           here it is made at once)
@@ -7,8 +7,8 @@
  *   rotmat by|to <r11> ... <r33>        (nine numbers, taken column by column as VMD does) */
 #include "config.h"
 #include "commands/scenecmds.h"
+#include "assemble/view.h"
 #include "scene/mat4.h"
-#include "view/view.h"
 
 /* x, y or z ("axis") into 'x', 'y' or 'z'. */
 static int get_axis(Tcl_Interp *interp, Tcl_Obj *o, char *axis)
@@ -33,7 +33,7 @@ static int get_by(Tcl_Interp *interp, Tcl_Obj *o, int *by)
 static int rotate_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     if (objc == 2 && ms_word_eq(Tcl_GetString(objv[1]), "stop")) {
-        ms_view_rock(app, '\0', 0, 0);
+        ms_view_rock(&app->world, '\0', 0, 0);
         return TCL_OK;
     }
     if (objc < 4) return ms_args_usage(interp);
@@ -44,8 +44,8 @@ static int rotate_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
         ms_arg_float(interp, objv[3], "angle", &deg) ||
         (objc == 5 && ms_arg_float(interp, objv[4], "increment", &incr)))
         return TCL_ERROR;
-    if (by) ms_view_rotate_by(app, axis, deg);
-    else ms_view_rotate_to(app, axis, deg);
+    if (by) ms_view_rotate_by(&app->world, axis, deg);
+    else ms_view_rotate_to(&app->world, axis, deg);
     return TCL_OK;
 }
 
@@ -56,7 +56,7 @@ static int translate_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
     if (get_by(interp, objv[1], &by)) return TCL_ERROR;
     for (int k = 0; k < 3; k++)
         if (ms_arg_float(interp, objv[2 + k], NULL, &v[k])) return TCL_ERROR;
-    ms_view_translate(app, v[0], v[1], v[2], by);
+    ms_view_translate(&app->world, v[0], v[1], v[2], by);
     return TCL_OK;
 }
 
@@ -66,7 +66,7 @@ static int scale_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     float s;
     if (get_by(interp, objv[1], &by) || ms_arg_float(interp, objv[2], "factor", &s))
         return TCL_ERROR;
-    if (ms_view_scale(app, s, by))
+    if (ms_view_scale(&app->world, s, by))
         return ms_cmd_error(interp, "scale: the factor must be positive, got %g", s);
     return TCL_OK;
 }
@@ -75,7 +75,7 @@ static int rock_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 {
     static const char *const by_word[] = {"by", NULL};
     if (objc == 2 && ms_word_eq(Tcl_GetString(objv[1]), "off")) {
-        ms_view_rock(app, '\0', 0, 0);
+        ms_view_rock(&app->world, '\0', 0, 0);
         return TCL_OK;
     }
     if (objc < 4) return ms_args_usage(interp);
@@ -87,7 +87,7 @@ static int rock_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
         ms_arg_float(interp, objv[3], "increment", &step) ||
         (objc == 5 && ms_arg_long(interp, objv[4], "steps", 0, 0x7fffffffL, &steps)))
         return TCL_ERROR;
-    ms_view_rock(app, axis, step, (int)steps);
+    ms_view_rock(&app->world, axis, step, (int)steps);
     return TCL_OK;
 }
 
@@ -103,7 +103,7 @@ static int rotmat_cmd(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     ms_mat4_identity(r);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) r[4 * j + i] = v[3 * i + j];
-    ms_view_rotmat(app, r, by);
+    ms_view_rotmat(&app->world, r, by);
     return TCL_OK;
 }
 

@@ -10,6 +10,7 @@
  * the map is added to molecule -mol, or to the selection's molecule when no -o is given.
  * Returns the new volume's index in that molecule, or "" when only a file was written. */
 #include "config.h"
+#include "commands/atomsel.h"
 #include "commands/commands.h"
 #include "fileio/write.h"
 #include "surf/qsurf.h"
@@ -195,14 +196,12 @@ static int volmap_density(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
 {
     volmap_opts o;
     if (parse_opts(interp, objc, objv, &o)) return TCL_ERROR;
-    if (!ms_cmd_sel_resolver)
-        return ms_cmd_error(interp, "volmap density: atom selections are not available");
     int molid;
     long frame;
     uint32_t *atoms = NULL;
     size_t n = 0;
-    if (ms_cmd_sel_resolver(app, interp, Tcl_GetString(objv[2]), "volmap density", &molid,
-                            &frame, &atoms, &n) != TCL_OK)
+    if (ms_atomsel_resolve(app, interp, Tcl_GetString(objv[2]), "volmap density", &molid,
+                           &frame, &atoms, &n) != TCL_OK)
         return TCL_ERROR;
     ms_molecule *m = ms_molset_get(&app->mols, molid), *target = NULL;
     float *w = NULL;

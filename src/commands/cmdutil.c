@@ -3,9 +3,9 @@
  * `animate read`. */
 #include "config.h"
 #include "commands/commands.h"
+#include "assemble/view.h"
 #include "fileio/load.h"
 #include "parallel/parallel.h"
-#include "select/atomsel.h"
 
 #include <limits.h>
 #include <stddef.h>
@@ -13,9 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-ms_sel_resolver ms_cmd_sel_resolver = NULL;
-void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m) = NULL;
-void (*ms_cmd_volume_hook)(ms_app *app, ms_molecule *m) = NULL;
 
 struct ms_cmdset {
     char *name;
@@ -46,7 +43,7 @@ static int cmdset_proc(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj *con
     int k = objc > 1 ? ms_args_find(s->items, sizeof *s->items, Tcl_GetString(objv[1])) : -1;
     if (k < 0 && (objc < 2 || !s->fallback.fn))
         return ms_args_dispatch(s->app, interp, objc, objv, 1, s->items, NULL, s->name);
-    if (!s->quiet && (k < 0 || !s->quiet_items[k])) s->app->scene_version++;
+    if (!s->quiet && (k < 0 || !s->quiet_items[k])) s->app->world.scene_version++;
     if (k < 0) return ms_args_call(s->app, interp, objc, objv, 1, &s->fallback, s->name, 1);
     return ms_args_call(s->app, interp, objc, objv, 2, &s->items[k], s->name, 0);
 }
@@ -240,39 +237,6 @@ done:
     return rc;
 }
 
-/* VMD's resetview on the top molecule: centre on the mean position of its atoms, scale so
- * the largest extent spans 1.5 units, no rotation or global translation; every molecule
- * gets the same view. The view module replaces this once representations exist. */
-static void default_reset_view(ms_app *app)
-{
-    ms_molecule *top = ms_molset_top(&app->mols);
-    const float *pos = top ? ms_mol_pos(top) : NULL;
-    if (!pos || top->atoms.n == 0) return;
-    double c[3] = {0, 0, 0};
-    float lo[3] = {pos[0], pos[1], pos[2]}, hi[3] = {pos[0], pos[1], pos[2]};
-    for (size_t i = 0; i < top->atoms.n; i++)
-        for (int k = 0; k < 3; k++) {
-            float v = pos[3 * i + k];
-            c[k] += v;
-            if (v < lo[k]) lo[k] = v;
-            if (v > hi[k]) hi[k] = v;
-        }
-    float extent = MS_MAX(hi[0] - lo[0], MS_MAX(hi[1] - lo[1], hi[2] - lo[2]));
-    float scale = extent > 0 ? 1.5f / extent : 1.0f;
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    for (size_t i = 0; i < app->mols.n; i++) {
-        ms_molecule *m = app->mols.mols[i];
-        for (int k = 0; k < 3; k++) {
-            m->center[k] = (float)(c[k] / (double)top->atoms.n);
-            m->global[k] = 0.0f;
-        }
-        m->scale = scale;
-        memcpy(m->rotate, identity, sizeof identity);
-    }
-}
-
-void (*ms_cmd_reset_view)(ms_app *app) = default_reset_view;
-
 /* ---------------------------------------------------------------- loading */
 
 /* VMD's load options; waitfor is a number or `all`, read after the table. */
@@ -346,10 +310,10 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
             return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
         }
         if (m->nframes) ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
-        if (m->atoms.n && ms_cmd_structure_hook) ms_cmd_structure_hook(app, m);
+        if (m->atoms.n) ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, m, NULL);
         if (m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES, m, NULL);
-        if (!m->atoms.n && m->nvolumes && ms_cmd_volume_hook) ms_cmd_volume_hook(app, m);
-        if (ms_cmd_reset_view) ms_cmd_reset_view(app);
+        if (!m->atoms.n && m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES_LOADED, m, NULL);
+        ms_view_reset(&app->world);
         if (m->pending) ms_app_schedule_loading(app);
         else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, m, path);
         Tcl_SetObjResult(interp, Tcl_NewIntObj(m->id));
@@ -367,13 +331,13 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
         return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
     if (atoms_before == 0 && into->atoms.n > 0) {
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE, into, NULL);
-        if (ms_cmd_structure_hook) ms_cmd_structure_hook(app, into);
-        if (ms_cmd_reset_view) ms_cmd_reset_view(app);
+        ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, into, NULL);
+        ms_view_reset(&app->world);
     }
     if (into->nvolumes != volumes_before) ms_molset_emit(&app->mols, MS_EV_VOLUMES, into, NULL);
-    if (into->atoms.n == 0 && volumes_before == 0 && into->nvolumes && ms_cmd_volume_hook) {
-        ms_cmd_volume_hook(app, into);
-        if (ms_cmd_reset_view) ms_cmd_reset_view(app);
+    if (into->atoms.n == 0 && volumes_before == 0 && into->nvolumes) {
+        ms_molset_emit(&app->mols, MS_EV_VOLUMES_LOADED, into, NULL);
+        ms_view_reset(&app->world);
     }
     if (into->nframes != frames_before) {
         ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, into, NULL);
@@ -383,21 +347,4 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
     else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, into, path);
     Tcl_SetObjResult(interp, Tcl_NewIntObj(into->id));
     return TCL_OK;
-}
-
-void ms_commands_register(ms_app *app)
-{
-    ms_cmd_mol_register(app);
-    ms_cmd_ss_register(app);
-    ms_cmd_molinfo_register(app);
-    ms_cmd_animate_register(app);
-    ms_cmd_vmdinfo_register(app);
-    ms_atomsel_register(app);
-    ms_cmd_scene_register(app);
-    ms_cmd_rep_register(app);
-    ms_cmd_vector_register(app);
-    ms_cmd_measure_register(app);
-    ms_cmd_measure_geom_register(app);
-    ms_cmd_volmap_register(app);
-    ms_cmd_movie_register(app);
 }

@@ -1,7 +1,7 @@
-/* commands.h: the Tcl command bindings and what they share: commands made of subcommand
- * tables that other modules can extend (the representation module adds `mol addrep` ...),
- * molecule id and molspec parsing, and the shared file loading. How arguments are declared,
- * counted, read and refused: args.h.
+/* commands.h: the Tcl command bindings and what they share: the table of command sets,
+ * commands made of subcommand tables that other command files extend (cmd_rep.c adds `mol
+ * addrep` ...), molecule id and molspec parsing, and the shared file loading. How arguments
+ * are declared, counted, read and refused: args.h.
  *
  * Each binding is thin: parse the arguments, call the core, set the result. */
 #ifndef MS_COMMANDS_H
@@ -24,7 +24,7 @@ int ms_cmdset_extend(ms_app *app, const char *name, const ms_subcmd *table);
 /* The entry called for a word that matches no subcommand (molinfo <molid> get ...): its
  * counts include that word, its usage starts with it ("<molid> get|set ..."). */
 void ms_cmdset_fallback(ms_app *app, const char *name, const ms_subcmd *entry);
-/* Every subcommand of a command bumps app->scene_version (the live view follows it) unless
+/* Every subcommand of a command bumps app->world.scene_version (the live view follows it) unless
  * it was added by ms_cmdset_extend_quiet (queries) or the whole command is marked quiet
  * (molinfo, measure ...: what they change, they bump themselves). */
 int ms_cmdset_extend_quiet(ms_app *app, const char *name, const ms_subcmd *table);
@@ -41,35 +41,17 @@ ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const ch
 int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char *cmd,
                    int **out, int *n);
 
-/* A selection object (atomselectN) resolved for commands that take one (`animate write ...
- * sel`, `measure`): the selection module installs this; NULL until then. Returns TCL_OK with
- * the molecule id, the resolved frame (-1 when the molecule has none) and malloc'd
- * ascending atom indices; TCL_ERROR with a message naming cmd and the word otherwise. */
-typedef int (*ms_sel_resolver)(ms_app *app, Tcl_Interp *interp, const char *name,
-                               const char *cmd, int *molid, long *frame, uint32_t **atoms,
-                               size_t *natoms);
-extern ms_sel_resolver ms_cmd_sel_resolver;
-
-/* Move every molecule's view so the given molecule fills the screen (VMD's resetview
- * centre and scale); the view module may replace this. */
-extern void (*ms_cmd_reset_view)(ms_app *app);
-
-/* Called by ms_cmd_load when a file gives a molecule its first atoms (a new molecule, or
- * addfile into an empty one), before the view is reset: the rep commands add VMD's default
- * rep there. NULL: nothing happens. */
-extern void (*ms_cmd_structure_hook)(ms_app *app, ms_molecule *m);
-/* Called by ms_cmd_load when a file gives a molecule with no atoms its first volumetric
- * data sets, before the view is reset: the rep commands add VMD's Isosurface rep there. */
-extern void (*ms_cmd_volume_hook)(ms_app *app, ms_molecule *m);
-
-/* Register every command of this module. */
-void ms_commands_register(ms_app *app);
+/* Every command set of this module, in the order ms_app_new creates them (cmdsets.c; ended
+ * by NULL). Each entry creates its Tcl commands (or adds subcommands to one made before it).
+ * Adding a command is its file cmd_<name>.c and a line in that table. */
+extern const ms_app_cmdset_fn ms_command_sets[];
+/* quit and exit (cmd_quit.c) */
+void ms_cmd_quit_register(ms_app *app);
 void ms_cmd_mol_register(ms_app *app);
 void ms_cmd_molinfo_register(ms_app *app);
 void ms_cmd_animate_register(ms_app *app);
 void ms_cmd_vmdinfo_register(ms_app *app);
 /* The scene-side commands (color, material, display, render, graphics ...): scenecmds.h */
-void ms_cmd_scene_register(ms_app *app);
 /* measure (cmd_measure.c, with bond/angle/dihed/imprp/inverse from cmd_measure_geom.c) and
  * VMD's vector and matrix commands (cmd_vector.c). */
 void ms_cmd_measure_register(ms_app *app);
@@ -83,7 +65,7 @@ void ms_cmd_ss_register(ms_app *app);
  * frameok, pose, started, ffmpeg. */
 void ms_cmd_movie_register(ms_app *app);
 /* The rep subcommands of mol (addrep, modstyle, ...) and molinfo's rep keywords
- * (cmd_rep.c); creates the rep module's state. */
+ * (cmd_rep.c). */
 void ms_cmd_rep_register(ms_app *app);
 
 /* Shared by mol and animate: load a file as `mol new` (new molecule) or into mol. */

@@ -1,12 +1,16 @@
 # src/commands: the Tcl command bindings (thin: parse, call the core, set the result).
 src_libmscore_la_SOURCES += \
 	src/commands/args.h src/commands/args.c \
-	src/commands/commands.h src/commands/cmdutil.c \
+	src/commands/commands.h src/commands/cmdsets.c src/commands/cmdutil.c src/commands/cmd_quit.c \
 	src/commands/molinfo.h src/commands/cmd_molinfo.c \
 	src/commands/cmd_mol.c src/commands/cmd_animate.c src/commands/cmd_vmdinfo.c \
 	src/commands/tclvec.h src/commands/tclvec.c src/commands/cmd_vector.c \
 	src/commands/cmd_measure.c src/commands/cmd_measure_geom.c src/commands/cmd_ss.c \
 	src/commands/cmd_volmap.c src/commands/cmd_movie.c
+# atomselect and its selection objects (atomsel.h)
+src_libmscore_la_SOURCES += \
+	src/commands/atomsel.h src/commands/atomsel_int.h src/commands/atomsel.c \
+	src/commands/atomsel_getset.c src/commands/atomsel_methods.c
 # the scene-side commands (scenecmds.h)
 src_libmscore_la_SOURCES += \
 	src/commands/scenecmds.h src/commands/cmd_scene.c src/commands/cmd_color.c \

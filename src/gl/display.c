@@ -103,7 +103,7 @@ static int snapshot_write(const ms_scene *s, const char *path, ms_error *err)
     return rc;
 }
 
-static const ms_render_device snapshot = {
+const ms_render_device ms_gl_snapshot = {
     .name = "snapshot",
     .description = "the display's image, drawn offscreen with OpenGL (OSMesa or EGL)",
     .default_cmd = "display %s",
@@ -112,8 +112,3 @@ static const ms_render_device snapshot = {
     .aosamples = 0,
     .write = snapshot_write,
 };
-
-void ms_gl_register_snapshot(void)
-{
-    ms_render_register(&snapshot);
-}

@@ -16,6 +16,7 @@
 
 #include "base/base.h"
 #include "image/image.h"
+#include "render/render.h"
 #include "scene/scene.h"
 
 typedef enum ms_gl_kind { MS_GL_EGL, MS_GL_OSMESA, MS_GL_NKINDS } ms_gl_kind;
@@ -64,7 +65,7 @@ ms_gl *ms_gl_display_current(void);
 /* Close the display context (at exit). */
 void ms_gl_display_close(void);
 
-/* Register the `snapshot` render device (render/render.h). */
-void ms_gl_register_snapshot(void);
+/* The `snapshot` render device (render/render.h). */
+extern const ms_render_device ms_gl_snapshot;
 
 #endif

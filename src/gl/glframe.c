@@ -76,7 +76,7 @@ static void view_matrix(const ms_camera *c, float m[16])
  * the eye); orthographic height / 2 tall. */
 static void projection(frame *fr)
 {
-    const ms_camera *c = &fr->s->cam;
+    const ms_camera *c = &fr->s->settings.cam;
     float n = c->near_clip, f = c->far_clip, aspect = (float)fr->s->width / (float)fr->s->height;
     float *p = fr->proj;
     memset(p, 0, 16 * sizeof *p);
@@ -106,21 +106,21 @@ static void lights_and_fog(frame *fr)
 {
     const ms_scene *s = fr->s;
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
-        if (!s->lights[i].on) continue;
+        if (!s->settings.lights[i].on) continue;
         float *d = fr->ldir + 3 * fr->nlights;
-        const float *l = s->lights[i].pos;
+        const float *l = s->settings.lights[i].pos;
         for (int k = 0; k < 3; k++)
             d[k] = fr->view[4 * k] * l[0] + fr->view[4 * k + 1] * l[1] + fr->view[4 * k + 2] * l[2];
         normalize3(d);
-        memcpy(fr->lcol + 3 * fr->nlights, s->lights[i].color, 3 * sizeof(float));
+        memcpy(fr->lcol + 3 * fr->nlights, s->settings.lights[i].color, 3 * sizeof(float));
         fr->nlights++;
     }
-    fr->fog = !s->depthcue ? 0 : s->cuemode == MS_CUE_LINEAR ? 1 : s->cuemode == MS_CUE_EXP ? 2 : 3;
-    fr->fogp[0] = s->cue_start;
-    fr->fogp[1] = s->cue_end;
-    fr->fogp[2] = s->cue_density;
-    memcpy(fr->bg_top, s->bg_gradient ? s->bg_top : s->background, sizeof fr->bg_top);
-    memcpy(fr->bg_bot, s->bg_gradient ? s->bg_bottom : s->background, sizeof fr->bg_bot);
+    fr->fog = !s->settings.depthcue ? 0 : s->settings.cuemode == MS_CUE_LINEAR ? 1 : s->settings.cuemode == MS_CUE_EXP ? 2 : 3;
+    fr->fogp[0] = s->settings.cue_start;
+    fr->fogp[1] = s->settings.cue_end;
+    fr->fogp[2] = s->settings.cue_density;
+    memcpy(fr->bg_top, s->settings.bg_gradient ? s->bg_top : s->background, sizeof fr->bg_top);
+    memcpy(fr->bg_bot, s->settings.bg_gradient ? s->bg_bottom : s->background, sizeof fr->bg_bot);
 }
 
 /* Uniforms of the frame, in every program that has them. */
@@ -478,7 +478,7 @@ static void background(frame *fr)
     f->ClearColor(fr->bg_bot[0], fr->bg_bot[1], fr->bg_bot[2], 1.0f);
     f->ClearDepth(1.0);
     f->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (!fr->s->bg_gradient) return;
+    if (!fr->s->settings.bg_gradient) return;
     f->Disable(GL_DEPTH_TEST);
     f->UseProgram(fr->g->r.prog[MS_GLR_GRADIENT].id);
     f->DrawArrays(GL_TRIANGLES, 0, 3);
@@ -535,7 +535,7 @@ int ms_glr_draw_scene(ms_gl *g, const ms_scene *s, ms_gl_times *t, ms_error *err
     memset(&fr, 0, sizeof fr);
     fr.g = g;
     fr.s = s;
-    view_matrix(&s->cam, fr.view);
+    view_matrix(&s->settings.cam, fr.view);
     projection(&fr);
     lights_and_fog(&fr);
     g->f.BindVertexArray(g->r.vao);

@@ -4,11 +4,11 @@
  * replaces the last; and the view changes the page sends, checked and applied. */
 #include "config.h"
 #include "live/live.h"
+#include "assemble/devices.h"
+#include "assemble/view.h"
 #include "gl/gl.h"
-#include "render/render.h"
 #include "scene/color.h"
 #include "scene/material.h"
-#include "view/view.h"
 
 #include <errno.h>
 #include <math.h>
@@ -62,22 +62,22 @@ static void drop_scene(ms_live_frames *f)
 int ms_live_frames_stale(const ms_live_frames *f)
 {
     const ms_app *app = f->app;
-    return !f->valid || f->version != app->scene_version || f->builds != ms_scene_builds ||
-           (app->colors && f->colors_version != app->colors->version) ||
-           (app->materials && f->materials_version != app->materials->version) ||
-           f->width != app->width || f->height != app->height;
+    return !f->valid || f->version != app->world.scene_version || f->builds != app->world.scene_builds ||
+           (app->world.colors && f->colors_version != app->world.colors->version) ||
+           (app->world.materials && f->materials_version != app->world.materials->version) ||
+           f->width != app->world.width || f->height != app->world.height;
 }
 
 static void remember(ms_live_frames *f)
 {
     ms_app *app = f->app;
     f->valid = 1;
-    f->version = app->scene_version;
-    f->builds = ms_scene_builds;
-    f->colors_version = app->colors ? app->colors->version : 0;
-    f->materials_version = app->materials ? app->materials->version : 0;
-    f->width = app->width;
-    f->height = app->height;
+    f->version = app->world.scene_version;
+    f->builds = app->world.scene_builds;
+    f->colors_version = app->world.colors ? app->world.colors->version : 0;
+    f->materials_version = app->world.materials ? app->world.materials->version : 0;
+    f->width = app->world.width;
+    f->height = app->world.height;
 }
 
 /* TachyonInternal's sample counts from `render aasamples|aosamples TachyonInternal`. */
@@ -85,8 +85,8 @@ static void rt_settings(ms_live_frames *f, ms_rt_options *o)
 {
     ms_rt_options_default(o);
     const ms_render_device *dev = ms_render_find("TachyonInternal");
-    ms_render_setting *set = dev && f->app->renderers ?
-                             ms_render_setting_of(f->app->renderers, dev) : NULL;
+    ms_render_setting *set = dev && f->app->world.renderers ?
+                             ms_render_setting_of(f->app->world.renderers, dev) : NULL;
     if (set) {
         o->aasamples = set->aasamples;
         o->aosamples = set->aosamples;
@@ -101,7 +101,7 @@ static void restart(ms_live_frames *f)
     ms_error err = {{0}};
     drop_scene(f);
     f->error[0] = '\0';
-    if (ms_scene_build(f->app, &f->scene, &err)) {
+    if (ms_world_build_scene(&f->app->world, &f->scene, &err)) {
         snprintf(f->error, sizeof f->error, "%.200s", err.msg);
         remember(f);
         return;
@@ -261,8 +261,8 @@ int ms_live_view_set(ms_live_view *v, const char *key, const char *value, ms_err
 void ms_live_view_apply(ms_app *app, const ms_live_view *v)
 {
     for (int k = 0; k < 3; k++)
-        if (v->rot[k] != 0.0f) ms_view_rotate_by(app, (char)('x' + k), v->rot[k]);
-    if (v->scale != 1.0f) ms_view_scale(app, v->scale, 1);
+        if (v->rot[k] != 0.0f) ms_view_rotate_by(&app->world, (char)('x' + k), v->rot[k]);
+    if (v->scale != 1.0f) ms_view_scale(&app->world, v->scale, 1);
     if (v->trans[0] != 0.0f || v->trans[1] != 0.0f || v->trans[2] != 0.0f)
-        ms_view_translate(app, v->trans[0], v->trans[1], v->trans[2], 1);
+        ms_view_translate(&app->world, v->trans[0], v->trans[1], v->trans[2], 1);
 }

@@ -3,15 +3,15 @@
  * everything runs on the interpreter's thread) that serves one page, the current image and
  * a view-change endpoint, every request checked against a random token.
  *
- * The frames: whenever the picture may have changed (app->scene_version, scene builds by
- * others, colours, materials, display size), the scene is rebuilt and drawn at once with the
+ * The frames: whenever the picture may have changed (the world's scene_version, scene builds
+ * by others, colours, materials, display size), the scene is rebuilt and drawn at once with the
  * GL display device when one runs, then TachyonInternal passes refine it at idle time, one
  * pass per idle turn, each pass's average replacing the image until the pass count of
  * `render aasamples TachyonInternal` is reached. A text session (no GL) shows the ray-traced
  * passes only. Every new image gets the next serial number; the page polls for it.
  *
  * View changes from the page (rotation angles about the screen axes, a scale factor, a
- * translation) are numbers checked against bounds and applied through view/view.h, as the
+ * translation) are numbers checked against bounds and applied through assemble/view.h, as the
  * rotate / scale / translate commands do, so molinfo's matrices follow them. */
 #ifndef MS_LIVE_H
 #define MS_LIVE_H
@@ -74,7 +74,7 @@ void ms_live_view_init(ms_live_view *v);
 /* Set one field from a form pair (rx ry rz scale tx ty tz): 0, or -1 with err set for an
  * unknown key or a value that is not a plain finite number within the bounds above. */
 int ms_live_view_set(ms_live_view *v, const char *key, const char *value, ms_error *err);
-/* Apply through view/view.h (rotations x, y, z in turn, then scale, then translation). */
+/* Apply through assemble/view.h (rotations x, y, z in turn, then scale, then translation). */
 void ms_live_view_apply(ms_app *app, const ms_live_view *v);
 
 /* ---------------------------------------------------------------- the server */

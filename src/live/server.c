@@ -119,7 +119,7 @@ static enum MHD_Result reply_state(live_server *sv, struct MHD_Connection *c)
     snprintf(json, sizeof json,
              "{\"serial\":%lu,\"passes\":%d,\"maxpasses\":%d,\"width\":%d,\"height\":%d,"
              "\"error\":\"%s\"}",
-             f->serial, f->passes, f->max_passes, sv->app->width, sv->app->height, err);
+             f->serial, f->passes, f->max_passes, sv->app->world.width, sv->app->world.height, err);
     return reply(c, MHD_HTTP_OK, "application/json", json, strlen(json));
 }
 

@@ -1,5 +1,6 @@
 /* molset.h: the set of loaded molecules: ids, the top molecule, and events other modules
- * (the Tcl trace variables, reps) listen to. */
+ * (the Tcl trace variables, the colour categories, reps) listen to, in the order they started
+ * listening. */
 #ifndef MS_MOLSET_H
 #define MS_MOLSET_H
 
@@ -12,7 +13,11 @@ typedef enum ms_mol_event {
     MS_EV_FRAMES_ADDED,   /* frames were appended or deleted (vmd_timestep) */
     MS_EV_TRAJ_DONE,      /* a file finished loading (vmd_trajectory_read); arg: path */
     MS_EV_STRUCTURE,      /* atoms' attributes or bonds changed */
-    MS_EV_VOLUMES         /* volumetric data sets were added or deleted */
+    MS_EV_VOLUMES,        /* volumetric data sets were added or deleted */
+    MS_EV_STRUCTURE_LOADED,   /* a file gave the molecule its first atoms (VMD then gives it
+                               * its default rep; the view is reset after this event) */
+    MS_EV_VOLUMES_LOADED  /* a file gave a molecule without atoms its first volumetric data
+                           * (VMD then draws it with an Isosurface rep) */
 } ms_mol_event;
 
 typedef void (*ms_mol_listener)(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg);

@@ -37,6 +37,9 @@ int ms_oclrt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms
  * renders instead. *fell_back (may be NULL) says whether it did. */
 int ms_oclrt_write(const ms_scene *s, const ms_rt_options *o, const char *path, ms_rt_stats *st,
                    int *fell_back, ms_error *err);
+/* The render devices: TachyonLOpenCLInternal, and TachyonLOptiXInternal (VMD's name for its GPU
+ * tracer, which scripts use) drawing the same way. */
+extern const ms_render_device ms_render_tachyon_ocl, ms_render_tachyon_optix;
 /* The name of the device the tracer uses ("" before the first render or without one). */
 const char *ms_oclrt_device_name(void);
 

@@ -1,4 +1,6 @@
-# src/render: the render device registry and the file exporters (Tachyon, POV3, Wavefront).
+# src/render: what a render device is and what the devices share (output files written
+# through a temporary name), and the file exporters (Tachyon, POV3, Wavefront). The table of
+# devices is src/assemble/devices.c.
 src_libmscore_la_SOURCES += \
 	src/render/render.h src/render/render.c \
 	src/render/export.h src/render/font.c src/render/tess.c src/render/numfmt.c \

@@ -43,7 +43,7 @@ static void texture(pov *w, ms_rgba8 c, int lit)
             rgb[2], t);
     if (lit) fprintf(w->f, "MS_F%zu", w->index);
     else fputs("MS_Unlit", w->f);
-    fprintf(w->f, " } }%s }\n", w->s->shadows ? "" : " no_shadow");
+    fprintf(w->f, " } }%s }\n", w->s->settings.shadows ? "" : " no_shadow");
 }
 
 static int degenerate(const float a[3], const float b[3])
@@ -181,14 +181,14 @@ static void mesh(pov *w, const ms_displaylist *dl)
         const uint32_t *v = ms->tri + 3 * t;
         fprintf(f, ",\n    <%u,%u,%u>,%u,%u,%u", v[0], v[1], v[2], v[0], v[1], v[2]);
     }
-    fprintf(f, " }\n%s}\n", w->s->shadows ? "" : "  no_shadow\n");
+    fprintf(f, " }\n%s}\n", w->s->settings.shadows ? "" : "  no_shadow\n");
 }
 
 /* ---------------------------------------------------------------- scene settings */
 
 static void camera(FILE *f, const ms_scene *s)
 {
-    const ms_camera *c = &s->cam;
+    const ms_camera *c = &s->settings.cam;
     float aspect = (float)s->width / (float)s->height;
     fputs("camera {\n", f);
     if (c->projection == MS_PROJ_ORTHOGRAPHIC) {
@@ -212,7 +212,7 @@ static void camera(FILE *f, const ms_scene *s)
 static void environment(FILE *f, const ms_scene *s)
 {
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
-        const ms_light *l = &s->lights[i];
+        const ms_light *l = &s->settings.lights[i];
         if (!l->on) continue;
         fprintf(f, "light_source { <%g, %g, %g> color rgb <%g, %g, %g> parallel "
                    "point_at <0, 0, 0> }\n", l->pos[0], l->pos[1], 0.0f - l->pos[2], l->color[0],
@@ -220,14 +220,14 @@ static void environment(FILE *f, const ms_scene *s)
     }
     const float *bg = s->background;
     fprintf(f, "background { color rgb <%.3f, %.3f, %.3f> }\n", bg[0], bg[1], bg[2]);
-    if (s->bg_gradient)
+    if (s->settings.bg_gradient)
         fprintf(f, "sky_sphere { pigment { gradient y color_map { [0.0 color rgb <%.3f, %.3f, "
                    "%.3f>] [1.0 color rgb <%.3f, %.3f, %.3f>] } scale 2 translate -1 } }\n",
                 s->bg_bottom[0], s->bg_bottom[1], s->bg_bottom[2], s->bg_top[0], s->bg_top[1],
                 s->bg_top[2]);
-    if (s->depthcue && s->cue_density > 1e-4f)
+    if (s->settings.depthcue && s->settings.cue_density > 1e-4f)
         fprintf(f, "fog { distance %g color rgb <%.3f, %.3f, %.3f> }\n",
-                s->cuemode == MS_CUE_LINEAR ? s->cue_end : 1.0f / s->cue_density, bg[0], bg[1],
+                s->settings.cuemode == MS_CUE_LINEAR ? s->settings.cue_end : 1.0f / s->settings.cue_density, bg[0], bg[1],
                 bg[2]);
 }
 

@@ -329,17 +329,17 @@ static void header(FILE *f, const ms_scene *s)
     fprintf(f, "#   tachyon  -aasamples %d %%s -format TARGA -o %%s.tga\n# \n", s->aa_samples);
     fputs("Begin_Scene\n", f);
     fprintf(f, "Resolution %d %d\n", s->width, s->height);
-    fprintf(f, "Shader_Mode %s\n  Trans_VMD\n  Fog_VMD\n", s->shadows || s->ao ? "Full" : "Medium");
-    if (s->ao)
+    fprintf(f, "Shader_Mode %s\n  Trans_VMD\n  Fog_VMD\n", s->settings.shadows || s->settings.ao ? "Full" : "Medium");
+    if (s->settings.ao)
         fprintf(f, "  Ambient_Occlusion\n    Ambient_Color %g %g %g\n    Rescale_Direct %g\n"
-                   "    Samples %d\n", s->ao_ambient, s->ao_ambient, s->ao_ambient, s->ao_direct,
+                   "    Samples %d\n", s->settings.ao_ambient, s->settings.ao_ambient, s->settings.ao_ambient, s->settings.ao_direct,
                 s->ao_samples);
     fputs("End_Shader_Mode\n", f);
 }
 
 static void camera(FILE *f, const ms_scene *s)
 {
-    const ms_camera *c = &s->cam;
+    const ms_camera *c = &s->settings.cam;
     fputs("Camera\n", f);
     if (c->projection == MS_PROJ_ORTHOGRAPHIC) {
         fputs("  Projection Orthographic\n", f);
@@ -362,29 +362,29 @@ static void camera(FILE *f, const ms_scene *s)
 static void lights_and_background(FILE *f, const ms_scene *s)
 {
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
-        const ms_light *l = &s->lights[i];
+        const ms_light *l = &s->settings.lights[i];
         if (!l->on) continue;
         fprintf(f, "Directional_Light Direction %g %g %g Color %g %g %g\n", 0.0f - l->pos[0],
                 0.0f - l->pos[1], l->pos[2], l->color[0], l->color[1], l->color[2]);
     }
     const float *bg = s->background;
     fprintf(f, "\nBackground %g %g %g\n", bg[0], bg[1], bg[2]);
-    if (s->bg_gradient) {
-        int ortho = s->cam.projection == MS_PROJ_ORTHOGRAPHIC;
-        float mag = ortho ? s->cam.height / 4.0f
-                          : MS_MIN(1.0f, (s->cam.height / 2.0f) / (s->cam.eye[2] - s->cam.distance));
+    if (s->settings.bg_gradient) {
+        int ortho = s->settings.cam.projection == MS_PROJ_ORTHOGRAPHIC;
+        float mag = ortho ? s->settings.cam.height / 4.0f
+                          : MS_MIN(1.0f, (s->settings.cam.height / 2.0f) / (s->settings.cam.eye[2] - s->settings.cam.distance));
         fprintf(f, "Background_Gradient %s\n  UpDir %g %g %g\n  TopVal %g\n  BottomVal %g\n",
                 ortho ? "Sky_Ortho_Plane" : "Sky_Sphere", 0.0, 1.0, 0.0, mag, -mag);
         fprintf(f, "  TopColor %g %g %g\n  BottomColor %g %g %g\n", s->bg_top[0], s->bg_top[1],
                 s->bg_top[2], s->bg_bottom[0], s->bg_bottom[1], s->bg_bottom[2]);
     }
-    if (!s->depthcue) return;
-    if (s->cuemode == MS_CUE_LINEAR)
-        fprintf(f, "Fog Linear Start %g End %g Density %g Color %g %g %g\n", s->cue_start,
-                s->cue_end, 1.0, bg[0], bg[1], bg[2]);
+    if (!s->settings.depthcue) return;
+    if (s->settings.cuemode == MS_CUE_LINEAR)
+        fprintf(f, "Fog Linear Start %g End %g Density %g Color %g %g %g\n", s->settings.cue_start,
+                s->settings.cue_end, 1.0, bg[0], bg[1], bg[2]);
     else
         fprintf(f, "Fog %s Start %g End %g Density %g Color %g %g %g\n",
-                s->cuemode == MS_CUE_EXP ? "Exp" : "Exp2", 0.0, s->cue_end, s->cue_density,
+                s->settings.cuemode == MS_CUE_EXP ? "Exp" : "Exp2", 0.0, s->settings.cue_end, s->settings.cue_density,
                 bg[0], bg[1], bg[2]);
 }
 

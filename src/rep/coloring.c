@@ -380,11 +380,11 @@ static void by_time(ctx *x, ms_colmethod meth, long frame, int recompute, float 
     fill(x, MS_COLOR_SCALE_BEGIN + k);
 }
 
-int ms_rep_color_ids(ms_app *app, ms_molecule *m, const ms_rep_coloring *c, long frame,
+int ms_rep_color_ids(ms_colors *colors, ms_molecule *m, const ms_rep_coloring *c, long frame,
                      int recompute_range, float *min, float *max, uint16_t *out,
                      ms_error *err)
 {
-    ctx x = {app->colors, m, out};
+    ctx x = {colors, m, out};
     const ms_atoms *a = &m->atoms;
     int rc = 0;
     switch (c->method) {

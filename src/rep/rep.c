@@ -1,14 +1,11 @@
 /* rep.c: rep objects and the lists of them molecules carry; VMD's "current" settings new reps
  * take and the defaults a new structure resets them to; the edits the `mol` subcommands make
- * (all or nothing); VMD's periodic images; the molecule events that invalidate caches; the
- * scene source giving the shown reps' display lists (once per periodic image); and
- * resetview's centre on the displayed reps' atoms. */
+ * (all or nothing); VMD's periodic images; the molecule events that give loaded molecules
+ * their default rep and invalidate caches; the shown reps' display lists placed in a scene
+ * (once per periodic image); resetview's atoms (the displayed reps'); the module's state. */
 #include "config.h"
 #include "rep/rep_int.h"
 #include "scene/mat4.h"
-#include "scene/material.h"
-#include "scene/scene.h"
-#include "view/view.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,11 +13,9 @@
 
 static const char *const default_text[4] = {"Lines", "Name", "all", "Opaque"};
 
-static ms_rep_state *state_of(const ms_app *app) { return app->reps; }
-
-static ms_replist *list_get(const ms_app *app, ms_molecule *m, int create)
+static ms_replist *list_get(const ms_rep_state *reps, ms_molecule *m, int create)
 {
-    ms_rep_state *st = state_of(app);
+    const ms_rep_state *st = reps;
     if (!st || st->slot < 0) return NULL;
     if (!m->ext[st->slot] && create) {
         ms_replist *l = calloc(1, sizeof *l);
@@ -30,9 +25,9 @@ static ms_replist *list_get(const ms_app *app, ms_molecule *m, int create)
     return m->ext[st->slot];
 }
 
-ms_replist *ms_replist_of(const ms_app *app, const ms_molecule *m)
+ms_replist *ms_replist_of(const ms_rep_state *reps, const ms_molecule *m)
 {
-    return list_get(app, (ms_molecule *)m, 0);
+    return list_get(reps, (ms_molecule *)m, 0);
 }
 
 /* ---------------------------------------------------------------- rep objects */
@@ -74,21 +69,21 @@ static void free_list(void *p)
     free(l);
 }
 
-size_t ms_rep_count(const ms_app *app, const ms_molecule *m)
+size_t ms_rep_count(const ms_rep_state *reps, const ms_molecule *m)
 {
-    ms_replist *l = ms_replist_of(app, m);
+    ms_replist *l = ms_replist_of(reps, m);
     return l ? l->n : 0;
 }
 
-ms_rep *ms_rep_get(const ms_app *app, const ms_molecule *m, long i)
+ms_rep *ms_rep_get(const ms_rep_state *reps, const ms_molecule *m, long i)
 {
-    ms_replist *l = ms_replist_of(app, m);
+    ms_replist *l = ms_replist_of(reps, m);
     return l && i >= 0 && (size_t)i < l->n ? l->reps[i] : NULL;
 }
 
-long ms_rep_find(const ms_app *app, const ms_molecule *m, const char *name)
+long ms_rep_find(const ms_rep_state *reps, const ms_molecule *m, const char *name)
 {
-    ms_replist *l = ms_replist_of(app, m);
+    ms_replist *l = ms_replist_of(reps, m);
     for (size_t i = 0; l && i < l->n; i++)
         if (!strcmp(l->reps[i]->name, name)) return (long)i;
     return -1;
@@ -122,11 +117,11 @@ int ms_rep_check_volumes(const ms_molecule *m, const ms_rep_style *s, const ms_r
     return 0;
 }
 
-ms_rep *ms_rep_add(ms_app *app, ms_molecule *m, ms_error *err)
+ms_rep *ms_rep_add(ms_rep_state *reps, ms_molecule *m, ms_error *err)
 {
-    const ms_rep_settings *cur = ms_rep_current(app);
+    const ms_rep_settings *cur = ms_rep_current(reps);
     if (ms_rep_check_volumes(m, &cur->style, &cur->coloring, err)) return NULL;
-    ms_replist *l = list_get(app, m, 1);
+    ms_replist *l = list_get(reps, m, 1);
     ms_rep *r = calloc(1, sizeof *r);
     if (!l || !r || !(r->cache = ms_rep_cache_new()) || !(r->seltext = ms_strdup(cur->selection)) ||
         !(r->frames = ms_strdup("now")) || ms_grow((void **)&l->reps, &l->cap, l->n + 1, sizeof *l->reps)) {
@@ -149,9 +144,9 @@ ms_rep *ms_rep_add(ms_app *app, ms_molecule *m, ms_error *err)
     return r;
 }
 
-void ms_rep_delete(ms_app *app, ms_molecule *m, size_t i)
+void ms_rep_delete(ms_rep_state *reps, ms_molecule *m, size_t i)
 {
-    ms_replist *l = list_get(app, m, 0);
+    ms_replist *l = list_get(reps, m, 0);
     if (!l || i >= l->n) return;
     ms_rep_free(l->reps[i]);
     memmove(l->reps + i, l->reps + i + 1, (l->n - i - 1) * sizeof *l->reps);
@@ -160,14 +155,14 @@ void ms_rep_delete(ms_app *app, ms_molecule *m, size_t i)
 
 /* ---------------------------------------------------------------- edits */
 
-static int material_id(const ms_app *app, const char *name, ms_error *err)
+static int material_id(const ms_rep_state *reps, const char *name, ms_error *err)
 {
-    int k = ms_material_index(app->materials, name);
+    int k = ms_material_index(reps->materials, name);
     if (k < 0) {
         ms_error_set(err, "unknown material '%s'", name);
         return -1;
     }
-    return app->materials->list[k].id;
+    return reps->materials->list[k].id;
 }
 
 static int replace_selection(char **text, ms_selexpr **expr, const char *src, ms_error *err)
@@ -189,7 +184,7 @@ static int replace_selection(char **text, ms_selexpr **expr, const char *src, ms
     return 0;
 }
 
-int ms_rep_modify(ms_app *app, const ms_molecule *m, ms_rep *r, ms_rep_what what,
+int ms_rep_modify(ms_rep_state *reps, const ms_molecule *m, ms_rep *r, ms_rep_what what,
                   const char *text, ms_error *err)
 {
     ms_rep_cache *c = r->cache;
@@ -209,16 +204,16 @@ int ms_rep_modify(ms_app *app, const ms_molecule *m, ms_rep *r, ms_rep_what what
         if (replace_selection(&r->seltext, &r->sel, text, err)) return -1;
         c->sel_valid = 0;
     } else {
-        int id = material_id(app, text, err);
+        int id = material_id(reps, text, err);
         if (id < 0) return -1;
         r->material = id;
     }
     return 0;
 }
 
-int ms_rep_apply_current(ms_app *app, const ms_molecule *m, ms_rep *r, ms_error *err)
+int ms_rep_apply_current(ms_rep_state *reps, const ms_molecule *m, ms_rep *r, ms_error *err)
 {
-    const ms_rep_settings *cur = ms_rep_current(app);
+    const ms_rep_settings *cur = ms_rep_current(reps);
     ms_rep_style s = r->style;
     ms_rep_coloring k = r->coloring;
     ms_selexpr *e = ms_sel_compile(cur->selection, err);
@@ -345,14 +340,14 @@ int ms_rep_periodic_images(const ms_rep *r, const float cell[6], float **out, si
 
 /* ---------------------------------------------------------------- current settings */
 
-const ms_rep_settings *ms_rep_current(const ms_app *app)
+const ms_rep_settings *ms_rep_current(const ms_rep_state *reps)
 {
-    return &state_of(app)->current;
+    return &reps->current;
 }
 
-int ms_rep_set_current(ms_app *app, ms_rep_what what, const char *text, ms_error *err)
+int ms_rep_set_current(ms_rep_state *reps, ms_rep_what what, const char *text, ms_error *err)
 {
-    ms_rep_settings *cur = &state_of(app)->current;
+    ms_rep_settings *cur = &reps->current;
     if (what == MS_REP_STYLE) {
         ms_rep_style s = cur->style;
         if (ms_rep_style_parse(&s, text, err)) return -1;
@@ -367,19 +362,19 @@ int ms_rep_set_current(ms_app *app, ms_rep_what what, const char *text, ms_error
         ms_sel_free(e);
         return replace_selection(&cur->selection, NULL, text, err);
     } else {
-        int id = material_id(app, text, err);
+        int id = material_id(reps, text, err);
         if (id < 0) return -1;
         cur->material = id;
     }
     return 0;
 }
 
-const char *ms_rep_get_default(const ms_app *app, ms_rep_what what)
+const char *ms_rep_get_default(const ms_rep_state *reps, ms_rep_what what)
 {
-    return state_of(app)->defaults[what];
+    return reps->defaults[what];
 }
 
-int ms_rep_set_default(ms_app *app, ms_rep_what what, const char *text, ms_error *err)
+int ms_rep_set_default(ms_rep_state *reps, ms_rep_what what, const char *text, ms_error *err)
 {
     ms_rep_style s;
     ms_rep_coloring k;
@@ -388,42 +383,69 @@ int ms_rep_set_default(ms_app *app, ms_rep_what what, const char *text, ms_error
     ms_rep_coloring_init(&k);
     if (what == MS_REP_STYLE && ms_rep_style_parse(&s, text, err)) return -1;
     if (what == MS_REP_COLOR && ms_rep_coloring_parse(&k, text, err)) return -1;
-    if (what == MS_REP_MATERIAL && material_id(app, text, err) < 0) return -1;
+    if (what == MS_REP_MATERIAL && material_id(reps, text, err) < 0) return -1;
     if (what == MS_REP_SELECTION) {
         if (!(e = ms_sel_compile(text, err))) return -1;
         ms_sel_free(e);
     }
-    return replace_selection(&state_of(app)->defaults[what], NULL, text, err);
+    return replace_selection(&reps->defaults[what], NULL, text, err);
 }
 
-int ms_rep_reset_current(ms_app *app, ms_error *err)
+int ms_rep_reset_current(ms_rep_state *reps, ms_error *err)
 {
-    ms_rep_state *st = state_of(app);
+    ms_rep_state *st = reps;
     for (int w = MS_REP_STYLE; w <= MS_REP_MATERIAL; w++)
-        if (ms_rep_set_current(app, (ms_rep_what)w, st->defaults[w], err)) {
+        if (ms_rep_set_current(reps, (ms_rep_what)w, st->defaults[w], err)) {
             /* a default that no longer parses (a deleted material or macro): VMD's own */
-            if (ms_rep_set_current(app, (ms_rep_what)w, default_text[w], err)) return -1;
+            if (ms_rep_set_current(reps, (ms_rep_what)w, default_text[w], err)) return -1;
         }
     return 0;
 }
 
-const char *ms_rep_text(const ms_app *app, const ms_rep *r, ms_rep_what what)
+const char *ms_rep_text(const ms_rep_state *reps, const ms_rep *r, ms_rep_what what)
 {
-    const ms_rep_settings *cur = ms_rep_current(app);
+    const ms_rep_settings *cur = ms_rep_current(reps);
     switch (what) {
     case MS_REP_STYLE: return r ? r->style.text : cur->style.text;
     case MS_REP_COLOR: return r ? r->coloring.text : cur->coloring.text;
     case MS_REP_SELECTION: return r ? r->seltext : cur->selection;
-    default: return ms_material_by_id(app->materials, r ? r->material : cur->material)->name;
+    default: return ms_material_by_id(reps->materials, r ? r->material : cur->material)->name;
     }
 }
 
 /* ---------------------------------------------------------------- events, scene, view */
 
-/* Structure edits invalidate selections and colours; a coordinate edit arrives as a frame
- * event that leaves the frame number as it was. */
+/* A structure's first atoms: VMD resets the current settings to the defaults and adds a rep. */
+static void new_structure(ms_rep_state *reps, ms_molecule *m)
+{
+    ms_error err = {{0}};
+    if (ms_rep_reset_current(reps, &err) || !ms_rep_add(reps, m, &err))
+        fprintf(stderr, "molscope: molecule %d: no default rep: %s\n", m->id, err.msg);
+}
+
+/* A molecule of volumetric data alone: VMD resets the current settings and draws the data
+ * with an Isosurface rep, here at the method's default parameters (whatever the current
+ * style last used with Isosurface, which might name a volume this molecule lacks). */
+static void new_volumes(ms_rep_state *reps, ms_molecule *m)
+{
+    ms_error err = {{0}};
+    if (ms_rep_count(reps, m) > 0) return;
+    const ms_rep_method *iso = ms_rep_method_at((size_t)ms_rep_method_find("Isosurface"));
+    char text[256];
+    int len = snprintf(text, sizeof text, "%s", iso->name);
+    for (int i = 0; i < iso->nparams && len < (int)sizeof text; i++)
+        len += snprintf(text + len, sizeof text - (size_t)len, " %g", (double)iso->param[i].def);
+    if (ms_rep_reset_current(reps, &err) || ms_rep_set_current(reps, MS_REP_STYLE, text, &err) ||
+        ms_rep_set_current(reps, MS_REP_STYLE, iso->name, &err) || !ms_rep_add(reps, m, &err))
+        fprintf(stderr, "molscope: molecule %d: no default rep: %s\n", m->id, err.msg);
+}
+
+/* Loads give default reps; structure edits invalidate selections and colours; a coordinate
+ * edit arrives as a frame event that leaves the frame number as it was. */
 static void on_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg)
 {
+    if (ev == MS_EV_STRUCTURE_LOADED) new_structure(ud, m);
+    if (ev == MS_EV_VOLUMES_LOADED) new_volumes(ud, m);
     ms_replist *l = list_get(ud, m, 0);
     if (!l) return;
     if (ev == MS_EV_STRUCTURE) l->struct_gen++;
@@ -436,7 +458,7 @@ static void on_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg)
 }
 
 /* The rep's list placed once per periodic image: model * translation * the list's model. */
-static int place_images(ms_app *app, const ms_molecule *m, const ms_rep *r, ms_scene *s,
+static int place_images(ms_rep_state *reps, const ms_molecule *m, const ms_rep *r, ms_scene *s,
                         const float model[16], ms_error *err)
 {
     const ms_displaylist *dl = &r->cache->dl;
@@ -450,42 +472,42 @@ static int place_images(ms_app *app, const ms_molecule *m, const ms_rep *r, ms_s
         ms_mat4_translation(shift, t[3 * i], t[3 * i + 1], t[3 * i + 2]);
         ms_mat4_mul(model, shift, a);
         ms_mat4_mul(a, dl->model, xform);
-        rc = ms_scene_add(s, dl, xform, app->materials, err);
+        rc = ms_scene_add(s, dl, xform, reps->materials, err);
     }
     free(t);
     return rc;
 }
 
-static int scene_source(ms_app *app, ms_molecule *m, ms_scene *s, const float model[16],
-                        ms_error *err)
+int ms_rep_to_scene(ms_rep_state *reps, ms_molecule *m, ms_scene *s, const float model[16],
+                    ms_error *err)
 {
-    ms_replist *l = list_get(app, m, 0);
+    ms_replist *l = list_get(reps, m, 0);
     for (size_t i = 0; l && i < l->n; i++) {
         ms_rep *r = l->reps[i];
         if (!r->shown) continue;
-        if (ms_rep_update(app, m, r, err)) {
+        if (ms_rep_update(reps, m, r, err)) {
             ms_error_prefix(err, "molecule %d rep %zu", m->id, i);
             return -1;
         }
         ms_displaylist *dl = &r->cache->dl;
         dl->material = r->material;
         if (ms_dl_count(dl) == 0) continue;
-        if (place_images(app, m, r, s, model, err)) return -1;
+        if (place_images(reps, m, r, s, model, err)) return -1;
     }
     return 0;
 }
 
 /* VMD's resetview: the atoms of the molecule's shown reps, when there are any. */
-static int cov_hook(ms_app *app, ms_molecule *m, float center[3], float *scale)
+int ms_rep_shown_atoms(ms_rep_state *reps, ms_molecule *m, uint32_t **atoms, size_t *natoms)
 {
-    ms_replist *l = list_get(app, m, 0);
+    ms_replist *l = list_get(reps, m, 0);
     const float *pos = ms_mol_pos(m);
     if (!l || !pos || m->atoms.n == 0) return 0;
     ms_bitset any;
     if (ms_bitset_init(&any, m->atoms.n)) return 0;
     ms_error err = {{0}};
     for (size_t i = 0; i < l->n; i++)
-        if (l->reps[i]->shown && ms_rep_update_data(app, m, l->reps[i], &err) == 0 &&
+        if (l->reps[i]->shown && ms_rep_update_data(reps, m, l->reps[i], &err) == 0 &&
             l->reps[i]->cache->on.nbits == m->atoms.n)
             ms_bitset_or(&any, &l->reps[i]->cache->on);
     size_t n = ms_bitset_count(&any);
@@ -493,42 +515,45 @@ static int cov_hook(ms_app *app, ms_molecule *m, float center[3], float *scale)
     int rc = 0;
     if (idx) {
         ms_bitset_indices(&any, idx);
-        ms_view_points_cov(pos, idx, n, center, scale);
+        *atoms = idx;
+        *natoms = n;
         rc = 1;
     }
-    free(idx);
     ms_bitset_free(&any);
     return rc;
 }
 
-static void free_state(ClientData cd, Tcl_Interp *interp)
+/* ---------------------------------------------------------------- the state */
+
+void ms_rep_state_free(ms_rep_state *reps)
 {
-    ms_app *app = cd;
-    ms_rep_state *st = app->reps;
-    if (!st) return;
-    free(st->current.selection);
-    for (int w = 0; w < 4; w++) free(st->defaults[w]);
-    free(st);
-    app->reps = NULL;
+    if (!reps) return;
+    free(reps->current.selection);
+    for (int w = 0; w < 4; w++) free(reps->defaults[w]);
+    free(reps);
 }
 
-int ms_rep_register(ms_app *app)
+ms_rep_state *ms_rep_state_new(ms_molset *mols, ms_colors *colors, ms_materials *materials,
+                               ms_error *err)
 {
     ms_rep_state *st = calloc(1, sizeof *st);
-    if (!st) return -1;
-    app->reps = st;
+    if (!st) {
+        ms_error_set(err, "out of memory");
+        return NULL;
+    }
+    st->mols = mols;
+    st->colors = colors;
+    st->materials = materials;
     ms_rep_style_init(&st->current.style);
     ms_rep_coloring_init(&st->current.coloring);
     int ok = (st->current.selection = ms_strdup("all")) != NULL;
     for (int w = 0; w < 4; w++) ok &= (st->defaults[w] = ms_strdup(default_text[w])) != NULL;
-    st->current.material = app->materials ? app->materials->list[0].id : 0;
-    st->slot = ms_molset_register_ext(&app->mols, free_list);
-    if (!ok || st->slot < 0 || ms_molset_listen(&app->mols, on_event, app) ||
-        ms_scene_register_source(scene_source)) {
-        free_state(app, app->interp);
-        return -1;
+    st->current.material = materials->list[0].id;
+    st->slot = ms_molset_register_ext(mols, free_list);
+    if (!ok || st->slot < 0 || ms_molset_listen(mols, on_event, st)) {
+        ms_error_set(err, "%s", ok ? "too many molecule attachments or listeners" : "out of memory");
+        ms_rep_state_free(st);
+        return NULL;
     }
-    ms_view_cov_hook = cov_hook;
-    Tcl_CallWhenDeleted(app->interp, free_state, app);
-    return 0;
+    return st;
 }

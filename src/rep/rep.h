@@ -19,10 +19,17 @@
 
 #include <stdint.h>
 
-#include "app/app.h"
 #include "base/bitset.h"
+#include "molecule/molset.h"
+#include "scene/color.h"
 #include "scene/displaylist.h"
+#include "scene/material.h"
+#include "scene/scene.h"
 #include "select/select.h"
+
+/* The module's state: the current and default settings new reps take, and every molecule's
+ * reps (ms_rep_state_new below). */
+typedef struct ms_rep_state ms_rep_state;
 
 #define MS_REP_MAXPARAMS 10
 #define MS_REP_MAXMETHODS 32
@@ -109,7 +116,7 @@ int ms_rep_coloring_timed(ms_colmethod m);
  * Scale methods: the data's min and max over all atoms go to *min and *max when
  * recompute_range, else *min and *max are used as given. Category items a molecule lacks
  * are added. */
-int ms_rep_color_ids(ms_app *app, ms_molecule *m, const ms_rep_coloring *c, long frame,
+int ms_rep_color_ids(ms_colors *colors, ms_molecule *m, const ms_rep_coloring *c, long frame,
                      int recompute_range, float *min, float *max, uint16_t *out,
                      ms_error *err);
 
@@ -158,39 +165,44 @@ typedef struct ms_rep_settings {
 
 typedef enum ms_rep_what { MS_REP_STYLE, MS_REP_COLOR, MS_REP_SELECTION, MS_REP_MATERIAL } ms_rep_what;
 
-/* Create the module state on the application (current settings at VMD's defaults Lines,
- * Name, all, Opaque), the molecule attachment, the event listener, the scene source, the
- * resetview hook and the hook that gives new structures their default rep. */
-int ms_rep_register(ms_app *app);
+/* Create the module's state (current settings at VMD's defaults Lines, Name, all, Opaque),
+ * drawing with colors and materials. It attaches every molecule's reps to the molecules of
+ * mols and listens to their events: a structure a file loads gets VMD's default rep
+ * (MS_EV_STRUCTURE_LOADED: the current settings are reset to the defaults first), a molecule
+ * of volumetric data alone an Isosurface rep (MS_EV_VOLUMES_LOADED). NULL with err set when
+ * memory runs out. Free it after the molecules. */
+ms_rep_state *ms_rep_state_new(ms_molset *mols, ms_colors *colors, ms_materials *materials,
+                               ms_error *err);
+void ms_rep_state_free(ms_rep_state *reps);
 
-const ms_rep_settings *ms_rep_current(const ms_app *app);
+const ms_rep_settings *ms_rep_current(const ms_rep_state *reps);
 /* Change one current setting from its text (style string, colouring, selection, material
  * name or number). Nothing changes on an error. */
-int ms_rep_set_current(ms_app *app, ms_rep_what what, const char *text, ms_error *err);
+int ms_rep_set_current(ms_rep_state *reps, ms_rep_what what, const char *text, ms_error *err);
 /* `mol default`: the text a new structure resets the current setting to. */
-const char *ms_rep_get_default(const ms_app *app, ms_rep_what what);
-int ms_rep_set_default(ms_app *app, ms_rep_what what, const char *text, ms_error *err);
+const char *ms_rep_get_default(const ms_rep_state *reps, ms_rep_what what);
+int ms_rep_set_default(ms_rep_state *reps, ms_rep_what what, const char *text, ms_error *err);
 /* Reset the current settings to the defaults (VMD does it when a structure loads). */
-int ms_rep_reset_current(ms_app *app, ms_error *err);
+int ms_rep_reset_current(ms_rep_state *reps, ms_error *err);
 /* The text of a setting of a rep, or of the current settings when r is NULL (material: its
  * name). */
-const char *ms_rep_text(const ms_app *app, const ms_rep *r, ms_rep_what what);
+const char *ms_rep_text(const ms_rep_state *reps, const ms_rep *r, ms_rep_what what);
 
-size_t ms_rep_count(const ms_app *app, const ms_molecule *m);
+size_t ms_rep_count(const ms_rep_state *reps, const ms_molecule *m);
 /* Rep i of m, or NULL. */
-ms_rep *ms_rep_get(const ms_app *app, const ms_molecule *m, long i);
+ms_rep *ms_rep_get(const ms_rep_state *reps, const ms_molecule *m, long i);
 /* The repid of the rep named `name`, or -1. */
-long ms_rep_find(const ms_app *app, const ms_molecule *m, const char *name);
+long ms_rep_find(const ms_rep_state *reps, const ms_molecule *m, const char *name);
 /* Append a rep made from the current settings; NULL with err set on failure (also when
  * they name a volume m does not hold). */
-ms_rep *ms_rep_add(ms_app *app, ms_molecule *m, ms_error *err);
-void ms_rep_delete(ms_app *app, ms_molecule *m, size_t i);
+ms_rep *ms_rep_add(ms_rep_state *reps, ms_molecule *m, ms_error *err);
+void ms_rep_delete(ms_rep_state *reps, ms_molecule *m, size_t i);
 /* modstyle / modcolor / modselect / modmaterial of rep r of m: nothing changes on an error
  * (a style or colouring naming a volume m does not hold is one). */
-int ms_rep_modify(ms_app *app, const ms_molecule *m, ms_rep *r, ms_rep_what what,
+int ms_rep_modify(ms_rep_state *reps, const ms_molecule *m, ms_rep *r, ms_rep_what what,
                   const char *text, ms_error *err);
 /* modrep: every current setting at once (all or nothing). */
-int ms_rep_apply_current(ms_app *app, const ms_molecule *m, ms_rep *r, ms_error *err);
+int ms_rep_apply_current(ms_rep_state *reps, const ms_molecule *m, ms_rep *r, ms_error *err);
 /* Does m hold the volumes a style's volid and a `Volume n` colouring name? 0, or -1 with err
  * saying "molecule M has no volume N (it has K)". */
 int ms_rep_check_volumes(const ms_molecule *m, const ms_rep_style *s, const ms_rep_coloring *c,
@@ -204,10 +216,18 @@ void ms_rep_auto_range(ms_rep *r);
 
 /* Bring the rep's selection, colours and display list up to date (rebuilding only what an
  * input change requires). Returns 0 or -1 with err set. */
-int ms_rep_update(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err);
+int ms_rep_update(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err);
 /* Only the selection and colours (for resetview, scaleminmax and counts). */
-int ms_rep_update_data(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err);
+int ms_rep_update_data(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err);
 const ms_displaylist *ms_rep_list(const ms_rep *r);
+/* Place the shown reps of m in s, each brought up to date first and placed once per periodic
+ * image, model being the molecule's model-to-world transform. 0, or -1 with err naming the
+ * rep. */
+int ms_rep_to_scene(ms_rep_state *reps, ms_molecule *m, ms_scene *s, const float model[16],
+                    ms_error *err);
+/* The atoms of m's shown reps, for VMD's resetview: 1 with *atoms (malloc'd, ascending) and
+ * *n, or 0 when no shown rep selects an atom (or memory runs out). */
+int ms_rep_shown_atoms(ms_rep_state *reps, ms_molecule *m, uint32_t **atoms, size_t *n);
 /* Atoms selected when last evaluated, ascending. */
 const uint32_t *ms_rep_atoms(const ms_rep *r, size_t *n);
 /* How many times the display list was built (for tests of the cache). */

@@ -1,8 +1,8 @@
 /* rep_int.h: what the files of src/rep share and nothing outside reads: the input a drawing
  * method's builder gets, reusable scratch memory, the helpers several methods use (atom
  * spheres, the bonds drawn, half-bond cylinders and lines, pair search through a cell grid,
- * polymer backbones, splines, the ribbon extrusion), the per-rep cache and the per-molecule
- * and per-application state. */
+ * polymer backbones, splines, the ribbon extrusion), the per-rep cache, the per-molecule rep
+ * lists and the module's state. */
 #ifndef MS_REP_INT_H
 #define MS_REP_INT_H
 
@@ -74,7 +74,7 @@ static inline uint16_t ms_rep_res(float v)
 }
 
 /* The colour ids volume methods use for a rep of m coloured by c. */
-void ms_rep_volume_colors(ms_app *app, ms_molecule *m, const ms_rep_coloring *c,
+void ms_rep_volume_colors(ms_colors *colors, ms_molecule *m, const ms_rep_coloring *c,
                           ms_rep_volcolors *out);
 /* Volume k of the builder's molecule, or NULL (a volid a later voldelete removed). */
 const ms_volume *ms_rep_volume(const ms_rep_build *b, float k);
@@ -227,19 +227,22 @@ typedef struct ms_replist {
     long last_frame;
 } ms_replist;
 
-/* The module's state on the application. */
-typedef struct ms_rep_state {
+/* The module's state (rep.h): what it draws with and the settings new reps take. */
+struct ms_rep_state {
+    ms_molset *mols;            /* the molecules, their events and attachments */
+    ms_colors *colors;
+    ms_materials *materials;
     int slot;                   /* molecule attachment slot */
     ms_rep_settings current;
     char *defaults[4];          /* by ms_rep_what */
-} ms_rep_state;
+};
 
-ms_replist *ms_replist_of(const ms_app *app, const ms_molecule *m);
+ms_replist *ms_replist_of(const ms_rep_state *reps, const ms_molecule *m);
 /* Free a rep and its cache. */
 void ms_rep_free(ms_rep *r);
 ms_rep_cache *ms_rep_cache_new(void);
 void ms_rep_cache_free(ms_rep_cache *c);
 /* The method's builder over the frames drawframes names (update.c). */
-int ms_rep_build_frames(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err);
+int ms_rep_build_frames(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err);
 
 #endif

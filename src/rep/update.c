@@ -91,12 +91,12 @@ static int update_selection(ms_molecule *m, ms_replist *l, ms_rep *r, ms_error *
 
 /* ---------------------------------------------------------------- colours */
 
-static int update_colors(ms_app *app, ms_molecule *m, ms_replist *l, ms_rep *r, ms_error *err)
+static int update_colors(ms_rep_state *reps, ms_molecule *m, ms_replist *l, ms_rep *r, ms_error *err)
 {
     ms_rep_cache *c = r->cache;
     ms_colmethod meth = r->coloring.method;
     int per_frame = r->colupdate || ms_rep_coloring_timed(meth);
-    int stale = !c->col_valid || c->col_colors != app->colors->version ||
+    int stale = !c->col_valid || c->col_colors != reps->colors->version ||
                 c->col_struct != l->struct_gen || c->colcap < m->atoms.n ||
                 (per_frame && c->col_frame != m->frame) ||
                 (r->colupdate && c->col_coord != l->coord_gen) || meth == MS_COL_THROB;
@@ -110,12 +110,12 @@ static int update_colors(ms_app *app, ms_molecule *m, ms_replist *l, ms_rep *r, 
         c->col = p;
         c->colcap = m->atoms.n;
     }
-    if (ms_rep_color_ids(app, m, &r->coloring, m->frame, r->range_auto, &r->cmin, &r->cmax,
+    if (ms_rep_color_ids(reps->colors, m, &r->coloring, m->frame, r->range_auto, &r->cmin, &r->cmax,
                          c->col, err))
         return -1;
     r->range_auto = 0;
     c->col_valid = 1;
-    c->col_colors = app->colors->version;
+    c->col_colors = reps->colors->version;
     c->col_struct = l->struct_gen;
     c->col_coord = l->coord_gen;
     c->col_frame = m->frame;
@@ -123,12 +123,12 @@ static int update_colors(ms_app *app, ms_molecule *m, ms_replist *l, ms_rep *r, 
     return 0;
 }
 
-int ms_rep_update_data(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
+int ms_rep_update_data(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err)
 {
-    ms_replist *l = ms_replist_of(app, m);
+    ms_replist *l = ms_replist_of(reps, m);
     if (!l) return 0;
     return ensure_ss(m, l, r, err) || update_selection(m, l, r, err) ||
-           update_colors(app, m, l, r, err) ? -1 : 0;
+           update_colors(reps, m, l, r, err) ? -1 : 0;
 }
 
 /* ---------------------------------------------------------------- display list */
@@ -140,7 +140,7 @@ static int draws_volume(const ms_rep *r)
     return (ms_rep_method_at((size_t)r->style.method)->flags & MS_REP_VOLUME) != 0;
 }
 
-static void make_key(ms_app *app, const ms_molecule *m, const ms_replist *l, const ms_rep *r,
+static void make_key(ms_rep_state *reps, const ms_molecule *m, const ms_replist *l, const ms_rep *r,
                      ms_rep_key *k)
 {
     memset(k, 0, sizeof *k);
@@ -149,7 +149,7 @@ static void make_key(ms_app *app, const ms_molecule *m, const ms_replist *l, con
     k->coord_gen = l->coord_gen;
     k->sel_gen = r->cache->sel_gen;
     k->col_gen = r->cache->col_gen;
-    k->colors_version = app->colors->version;
+    k->colors_version = reps->colors->version;
     k->vol_gen = l->vol_gen;
     if (draws_volume(r)) {   /* the data sets alone: no atoms, no frames */
         k->struct_gen = k->coord_gen = k->sel_gen = 0;
@@ -160,7 +160,7 @@ static void make_key(ms_app *app, const ms_molecule *m, const ms_replist *l, con
     k->nframes = !draws_now(r) || r->smooth ? m->nframes : 0;
 }
 
-int ms_rep_update(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
+int ms_rep_update(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err)
 {
     ms_rep_cache *c = r->cache;
     if ((m->nframes == 0 || m->frame < 0) && !draws_volume(r)) {
@@ -169,15 +169,15 @@ int ms_rep_update(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
         c->dl_valid = 0;
         return 0;
     }
-    if (ms_rep_update_data(app, m, r, err)) return -1;
-    ms_replist *l = ms_replist_of(app, m);
+    if (ms_rep_update_data(reps, m, r, err)) return -1;
+    ms_replist *l = ms_replist_of(reps, m);
     ms_rep_key key;
-    make_key(app, m, l, r, &key);
+    make_key(reps, m, l, r, &key);
     if (c->dl_valid && !memcmp(&key, &c->key, sizeof key)) return 0;
     ms_dl_clear(&c->dl);
     c->dl.lit = 1;
     c->dl_valid = 0;
-    if (ms_rep_build_frames(app, m, r, err)) {
+    if (ms_rep_build_frames(reps, m, r, err)) {
         ms_dl_clear(&c->dl);
         return -1;
     }
@@ -195,7 +195,7 @@ typedef struct frame_data {
     uint16_t *col;
 } frame_data;
 
-static int frame_specific(ms_app *app, ms_molecule *m, ms_rep *r, long f, frame_data *fd,
+static int frame_specific(ms_rep_state *reps, ms_molecule *m, ms_rep *r, long f, frame_data *fd,
                           ms_rep_build *b, ms_error *err)
 {
     if (f == m->frame) return 0;
@@ -211,7 +211,7 @@ static int frame_specific(ms_app *app, ms_molecule *m, ms_rep *r, long f, frame_
             ms_error_set(err, "out of memory");
             return -1;
         }
-        if (ms_rep_color_ids(app, m, &r->coloring, f, 0, &lo, &hi, fd->col, err)) return -1;
+        if (ms_rep_color_ids(reps->colors, m, &r->coloring, f, 0, &lo, &hi, fd->col, err)) return -1;
         b->color = fd->col;
     }
     return 0;
@@ -249,22 +249,22 @@ static void build_input(ms_molecule *m, ms_rep *r, ms_rep_build *b)
 
 /* A volume method: one build from the data sets (and the current frame's coordinates, when
  * there is one). */
-static int build_volume(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
+static int build_volume(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err)
 {
     ms_rep_build b;
     build_input(m, r, &b);
-    ms_rep_volume_colors(app, m, &r->coloring, &b.vc);
+    ms_rep_volume_colors(reps->colors, m, &r->coloring, &b.vc);
     b.pos = m->nframes && m->frame >= 0 ? m->frames[m->frame].pos : NULL;
     return ms_rep_method_at((size_t)r->style.method)->build(&b, &r->cache->dl, err);
 }
 
-int ms_rep_build_frames(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
+int ms_rep_build_frames(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err)
 {
     ms_rep_cache *c = r->cache;
     if (!c->sel_valid || !c->col_valid) return 0;
     for (int id = 0; id < MS_COLOR_MAX; id++)
-        c->palette[id] = ms_rgba8_from_float(ms_color_rgb(app->colors, id), 1.0f);
-    if (draws_volume(r)) return build_volume(app, m, r, err);
+        c->palette[id] = ms_rgba8_from_float(ms_color_rgb(reps->colors, id), 1.0f);
+    if (draws_volume(r)) return build_volume(reps, m, r, err);
     if (m->nframes == 0 || m->frame < 0) return 0;
     const ms_rep_method *meth = ms_rep_method_at((size_t)r->style.method);
     long *frames = NULL, now = m->frame;
@@ -278,7 +278,7 @@ int ms_rep_build_frames(ms_app *app, ms_molecule *m, ms_rep *r, ms_error *err)
         memset(&fd, 0, sizeof fd);
         ms_rep_build b;
         build_input(m, r, &b);
-        rc = !(b.pos = frame_pos(m, r, f, err)) || frame_specific(app, m, r, f, &fd, &b, err) ||
+        rc = !(b.pos = frame_pos(m, r, f, err)) || frame_specific(reps, m, r, f, &fd, &b, err) ||
              meth->build(&b, &c->dl, err) ? -1 : 0;
         ms_bitset_free(&fd.on);
         free(fd.idx);

@@ -14,10 +14,9 @@ static int item(ms_colors *c, const char *cat, const char *name)
     return col < 0 ? 0 : col;
 }
 
-void ms_rep_volume_colors(ms_app *app, ms_molecule *m, const ms_rep_coloring *c,
+void ms_rep_volume_colors(ms_colors *colors, ms_molecule *m, const ms_rep_coloring *c,
                           ms_rep_volcolors *out)
 {
-    ms_colors *colors = app->colors;
     static const char *const axis[3] = {"X", "Y", "Z"};
     out->box = item(colors, "Display", "Foreground");
     for (int k = 0; k < 3; k++) out->axis[k] = item(colors, "Axes", axis[k]);

@@ -15,7 +15,7 @@
 
 void rt_camera_init(rt_camera *c, const ms_scene *s)
 {
-    const ms_camera *m = &s->cam;
+    const ms_camera *m = &s->settings.cam;
     c->ortho = m->projection == MS_PROJ_ORTHOGRAPHIC;
     c->width = s->width;
     c->height = s->height;

@@ -82,7 +82,7 @@ int rt_xform_make(rt_xform *out, const float x[16])
  * least 1e-5: well above float rounding at a hit, far below any feature. */
 float rt_world_eps(const ms_scene *s)
 {
-    float big = fabsf(s->cam.eye[0]) + fabsf(s->cam.eye[1]) + fabsf(s->cam.eye[2]);
+    float big = fabsf(s->settings.cam.eye[0]) + fabsf(s->settings.cam.eye[1]) + fabsf(s->settings.cam.eye[2]);
     for (size_t i = 0; i < s->nitems; i++) {
         float lo[3], hi[3], a[3], b[3];
         if (!ms_dl_bounds(s->items[i].dl, lo, hi)) continue;
@@ -102,10 +102,10 @@ static void background_init(rt_shader *sh, const ms_scene *s)
     memcpy(sh->bg_top, s->bg_top, sizeof sh->bg_top);
     memcpy(sh->bg_bot, s->bg_bottom, sizeof sh->bg_bot);
     sh->bg_mode = RT_BG_SOLID;
-    if (!s->bg_gradient) return;
-    int ortho = s->cam.projection == MS_PROJ_ORTHOGRAPHIC;
-    float mag = ortho ? s->cam.height / 4.0f
-                      : fminf(1.0f, (s->cam.height / 2.0f) / (s->cam.eye[2] - s->cam.distance));
+    if (!s->settings.bg_gradient) return;
+    int ortho = s->settings.cam.projection == MS_PROJ_ORTHOGRAPHIC;
+    float mag = ortho ? s->settings.cam.height / 4.0f
+                      : fminf(1.0f, (s->settings.cam.height / 2.0f) / (s->settings.cam.eye[2] - s->settings.cam.distance));
     sh->bg_mode = ortho ? RT_BG_SKY_PLANE : RT_BG_SKY_SPHERE;
     sh->grad_top = mag;
     sh->grad_bot = -mag;
@@ -117,23 +117,23 @@ void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, 
     sh->w = w;
     rt_camera_init(&sh->cam, s);
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
-        const ms_light *l = &s->lights[i];
+        const ms_light *l = &s->settings.lights[i];
         float d[3] = {l->pos[0], l->pos[1], l->pos[2]};
         if (!l->on || rt_normalize(d) == 0.0f) continue;
         memcpy(sh->ldir[sh->nlights], d, sizeof d);
         memcpy(sh->lcol[sh->nlights], l->color, sizeof d);
         sh->nlights++;
     }
-    sh->full = s->shadows || s->ao;
-    sh->light_scale = s->ao ? s->ao_direct : 1.0f;
-    sh->ao_samples = s->ao ? aosamples : 0;
-    for (int k = 0; k < 3; k++) sh->ao_col[k] = s->ao_ambient;
+    sh->full = s->settings.shadows || s->settings.ao;
+    sh->light_scale = s->settings.ao ? s->settings.ao_direct : 1.0f;
+    sh->ao_samples = s->settings.ao ? aosamples : 0;
+    for (int k = 0; k < 3; k++) sh->ao_col[k] = s->settings.ao_ambient;
     background_init(sh, s);
-    sh->fog = s->depthcue;
-    sh->cuemode = s->cuemode;
-    sh->fog_start = s->cuemode == MS_CUE_LINEAR ? s->cue_start : 0.0f;
-    sh->fog_end = s->cue_end;
-    sh->fog_density = s->cue_density;
+    sh->fog = s->settings.depthcue;
+    sh->cuemode = s->settings.cuemode;
+    sh->fog_start = s->settings.cuemode == MS_CUE_LINEAR ? s->settings.cue_start : 0.0f;
+    sh->fog_end = s->settings.cue_end;
+    sh->fog_density = s->settings.cue_density;
 }
 
 int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)

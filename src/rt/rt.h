@@ -1,6 +1,6 @@
 /* rt.h: TachyonInternal, molscope's photorealistic CPU ray tracer. The scene (scene/scene.h) is
  * traced with Embree's BVH and ray kernels and shaded the way Tachyon shades the scenes VMD
- * gives it (vmd-compat.md section 6, render/tachyon.c for the settings): directional lights,
+ * gives it (doc/vmd-behaviour.md section 8, render/tachyon.c for settings): directional lights,
  * ambient, diffuse and Blinn-Phong specular terms, outlines, mirror reflection, shadows,
  * ambient occlusion, angle-modulated transparency with shadows filtered by transparent
  * surfaces, planar depth cueing, background gradients, perspective and orthographic cameras,
@@ -20,6 +20,7 @@
 
 #include "base/base.h"
 #include "image/image.h"
+#include "render/render.h"
 #include "scene/scene.h"
 
 /* Limits: a request beyond them is an error, not an attempt. */
@@ -80,5 +81,8 @@ int ms_rt_session_pass(ms_rt_session *ss);
 int ms_rt_session_passes(const ms_rt_session *ss);
 int ms_rt_session_image(const ms_rt_session *ss, ms_image *img, ms_error *err);
 void ms_rt_session_end(ms_rt_session *ss);
+
+/* The `TachyonInternal` render device (tachyon_internal.c). */
+extern const ms_render_device ms_render_tachyon_internal;
 
 #endif

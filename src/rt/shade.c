@@ -1,4 +1,4 @@
-/* shade.c: the integrator, Tachyon's shaders as VMD drives them (vmd-compat.md section 6).
+/* shade.c: the integrator, Tachyon's shaders as VMD drives them (doc/vmd-behaviour.md sec. 8).
  * At the nearest hit: the lights' diffuse terms (N.L, scaled by aodirect when ambient
  * occlusion is on) and Blinn highlights, each light tested by a shadow ray in the Full
  * shader (shadows or AO on); ambient occlusion added to the diffuse light; outline

@@ -76,7 +76,7 @@ void ms_color_scale_set_method(ms_colors *c, int method);
 void ms_color_scale_set_values(ms_colors *c, float mid, float min, float max);
 void ms_color_scale_set_colors(ms_colors *c, int method, const float rgb[3][3]);
 /* The RGB VMD's formula gives for position x in [0, 1] with the given method colours,
- * midpoint and offset (vmd-compat section 3). */
+ * midpoint and offset (doc/vmd-behaviour.md section 4). */
 void ms_color_scale_eval(const float rgb[3][3], float mid, float offset, float x, float out[3]);
 /* Colour id of a value on the scale: 33 + int((v - min) * 1023 / (max - min)), clamped;
  * 33 + 512 when min == max. */

@@ -1,26 +1,10 @@
-/* scene.c: the scene a device draws: placing display lists, VMD's camera projection, and
- * assembling the scene from the molecules, user graphics, axes and stage. */
+/* scene.c: the scene a device draws: placing display lists and VMD's camera projection (the
+ * scene is assembled from the molecules in assemble/build.c). */
 #include "config.h"
 #include "scene/scene.h"
-#include "scene/color.h"
-#include "scene/mat4.h"
-#include "view/view.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-#define MAX_SOURCES 8
-static ms_scene_source_fn sources[MAX_SOURCES];
-static int nsources;
-
-int ms_scene_register_source(ms_scene_source_fn fn)
-{
-    for (int i = 0; i < nsources; i++)
-        if (sources[i] == fn) return 0;
-    if (nsources >= MAX_SOURCES) return -1;
-    sources[nsources++] = fn;
-    return 0;
-}
 
 void ms_scene_init(ms_scene *s)
 {
@@ -82,7 +66,7 @@ static float screen_dist(const ms_camera *c)
 
 int ms_scene_project(const ms_scene *s, const float world[3], float *px, float *py, float *depth)
 {
-    const ms_camera *c = &s->cam;
+    const ms_camera *c = &s->settings.cam;
     float right[3] = {c->dir[1] * c->up[2] - c->dir[2] * c->up[1],
                       c->dir[2] * c->up[0] - c->dir[0] * c->up[2],
                       c->dir[0] * c->up[1] - c->dir[1] * c->up[0]};
@@ -108,78 +92,7 @@ int ms_scene_project(const ms_scene *s, const float world[3], float *px, float *
 
 float ms_scene_pixel_size(const ms_scene *s, float depth)
 {
-    const ms_camera *c = &s->cam;
+    const ms_camera *c = &s->settings.cam;
     if (c->projection == MS_PROJ_ORTHOGRAPHIC) return c->height / 2.0f / (float)s->height;
     return c->height * depth / (screen_dist(c) * (float)s->height);
-}
-
-/* ---------------------------------------------------------------- assembling */
-
-static void display_color(const ms_colors *c, const char *item, float rgb[3])
-{
-    int id = ms_color_item_get(c, ms_color_category_index(c, "Display"), item);
-    memcpy(rgb, ms_color_rgb(c, id < 0 ? 16 : id), 3 * sizeof(float));
-}
-
-static void copy_settings(ms_app *app, ms_scene *s)
-{
-    const ms_view *v = app->view;
-    s->width = app->width;
-    s->height = app->height;
-    s->cam = v->cam;
-    memcpy(s->lights, v->lights, sizeof s->lights);
-    display_color(app->colors, "Background", s->background);
-    display_color(app->colors, "BackgroundTop", s->bg_top);
-    display_color(app->colors, "BackgroundBot", s->bg_bottom);
-    s->bg_gradient = v->bg_gradient;
-    s->depthcue = v->depthcue;
-    s->cuemode = v->cuemode;
-    s->cue_start = v->cue_start;
-    s->cue_end = v->cue_end;
-    s->cue_density = v->cue_density;
-    s->shadows = v->shadows;
-    s->ao = v->ao;
-    s->ao_ambient = v->ao_ambient;
-    s->ao_direct = v->ao_direct;
-}
-
-static int add_decorations(ms_app *app, ms_scene *s, ms_error *err)
-{
-    const ms_view *v = app->view;
-    float xform[16];
-    if (v->axes != MS_AXES_OFF) {
-        ms_displaylist *dl = ms_scene_new_list(s, err);
-        if (!dl || ms_view_axes_list(v, app->colors, (float)s->width / (float)s->height, dl,
-                                     xform, err) ||
-            ms_scene_add(s, dl, xform, app->materials, err))
-            return -1;
-    }
-    if (v->stage != MS_STAGE_OFF) {
-        ms_displaylist *dl = ms_scene_new_list(s, err);
-        if (!dl || ms_view_stage_list(v, app->colors, dl, xform, err) ||
-            ms_scene_add(s, dl, xform, app->materials, err))
-            return -1;
-    }
-    return 0;
-}
-
-unsigned long ms_scene_builds;
-
-int ms_scene_build(ms_app *app, ms_scene *s, ms_error *err)
-{
-    ms_scene_builds++;
-    ms_scene_init(s);
-    copy_settings(app, s);
-    for (size_t i = 0; i < app->mols.n; i++) {
-        ms_molecule *m = app->mols.mols[i];
-        if (!m->displayed) continue;
-        float model[16];
-        ms_view_mol_model(m, model);
-        for (int k = 0; k < nsources; k++)
-            if (sources[k](app, m, s, model, err)) goto fail;
-    }
-    if (add_decorations(app, s, err) == 0) return 0;
-fail:
-    ms_scene_free(s);
-    return -1;
 }

@@ -7,14 +7,11 @@
  * z = distance (-2) and is `height` (6) tall. Perspective: a point projects through the eye
  * onto the screen plane. Orthographic: the visible height is height / 2 at every depth.
  *
- * A scene is assembled from the application state by ms_scene_build: the displayed
- * molecules (each molecule's model = global * rotate * scale * center) with the display
- * lists that registered sources give for them (user graphics now, representations later),
- * then the axes and the stage. */
+ * A scene is assembled from the molecules, their reps and user graphics, the axes and the
+ * stage by ms_world_build_scene (assemble/world.h); a device only reads it. */
 #ifndef MS_SCENE_H
 #define MS_SCENE_H
 
-#include "app/app.h"
 #include "scene/displaylist.h"
 #include "scene/material.h"
 
@@ -40,6 +37,20 @@ typedef struct ms_light {
     float color[3];
 } ms_light;
 
+/* How a scene is drawn: the camera and lights, background gradient, depth cueing, shadows and
+ * ambient occlusion (VMD's `display` and `light` settings). The view (assemble/view.h) keeps
+ * one and a built scene takes it whole. */
+typedef struct ms_scene_settings {
+    ms_camera cam;
+    ms_light lights[MS_SCENE_LIGHTS];
+    int bg_gradient;
+    int depthcue;
+    ms_cuemode cuemode;
+    float cue_start, cue_end, cue_density;
+    int shadows, ao;
+    float ao_ambient, ao_direct;
+} ms_scene_settings;
+
 /* One display list placed in the world. */
 typedef struct ms_scene_item {
     const ms_displaylist *dl;
@@ -49,16 +60,9 @@ typedef struct ms_scene_item {
 
 typedef struct ms_scene {
     int width, height;
-    ms_camera cam;
-    ms_light lights[MS_SCENE_LIGHTS];
+    ms_scene_settings settings;
     float background[3];
-    int bg_gradient;
     float bg_top[3], bg_bottom[3];
-    int depthcue;
-    ms_cuemode cuemode;
-    float cue_start, cue_end, cue_density;
-    int shadows, ao;
-    float ao_ambient, ao_direct;
     int aa_samples, ao_samples;      /* filled in by the renderer that draws it */
     ms_scene_item *items;
     size_t nitems, capitems;
@@ -82,18 +86,5 @@ ms_displaylist *ms_scene_new_list(ms_scene *s, ms_error *err);
 int ms_scene_project(const ms_scene *s, const float world[3], float *px, float *py, float *depth);
 /* World-space size of one pixel at a given depth (distance along the view direction). */
 float ms_scene_pixel_size(const ms_scene *s, float depth);
-
-/* Sources of per-molecule display lists. fn appends lists for molecule m to s, with
- * `model` as the molecule's model-to-world transform. Registered once per program. */
-typedef int (*ms_scene_source_fn)(ms_app *app, ms_molecule *m, ms_scene *s,
-                                  const float model[16], ms_error *err);
-int ms_scene_register_source(ms_scene_source_fn fn);
-
-/* Assemble the scene from the application state (see above). On failure the scene is
- * freed and err says why. */
-int ms_scene_build(ms_app *app, ms_scene *s, ms_error *err);
-/* How many scenes were built so far: building may rebuild stale display lists, so a holder
- * of an older scene (the live view's ray tracer) knows its lists may have changed. */
-extern unsigned long ms_scene_builds;
 
 #endif

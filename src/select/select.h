@@ -4,7 +4,7 @@
  * linear in the number of atoms. Macros (VMD's defaults plus `atomselect macro`) are global,
  * as in VMD.
  *
- * This is the interface the representation, measure and atomselect modules use. */
+ * This is the interface the reps, measure and atomselect (commands/atomsel.h) use. */
 #ifndef MS_SELECT_H
 #define MS_SELECT_H
 

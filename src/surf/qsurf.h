@@ -179,7 +179,8 @@ typedef struct ms_qsurf_grid {
     size_t natoms;           /* atoms that contribute */
 } ms_qsurf_grid;
 
-/* Lay out the grid for these atoms and parameters (VMD's rules, vmd-compat section 5).
+/* Lay out the grid for these atoms and parameters (VMD's rules, doc/vmd-behaviour.md
+ * section 7).
  * Returns -1 when no atom can contribute or the parameters are out of range. */
 int ms_qsurf_grid_setup(const ms_qsurf_atoms *a, const ms_qsurf_params *p, ms_qsurf_grid *g,
                         ms_error *err);

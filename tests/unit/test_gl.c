@@ -10,10 +10,10 @@
  * 255); bad sizes are errors. */
 #include "config.h"
 #include "ms_test.h"
+#include "assemble/view.h"
 #include "fileio/load.h"
 #include "gl/gl.h"
 #include "scene/mat4.h"
-#include "view/view.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -35,7 +35,7 @@ static void scene_init(ms_scene *s, int ortho)
     ms_scene_init(s);
     s->width = W;
     s->height = H;
-    ms_camera *c = &s->cam;
+    ms_camera *c = &s->settings.cam;
     c->projection = ortho ? MS_PROJ_ORTHOGRAPHIC : MS_PROJ_PERSPECTIVE;
     c->eye[2] = 2;
     c->dir[2] = -1;
@@ -44,9 +44,9 @@ static void scene_init(ms_scene *s, int ortho)
     c->distance = -2;
     c->near_clip = 0.5f;
     c->far_clip = 10;
-    s->lights[0].on = 1;
-    memcpy(s->lights[0].pos, ms_view_default_light(0), sizeof s->lights[0].pos);
-    s->lights[0].color[0] = s->lights[0].color[1] = s->lights[0].color[2] = 1;
+    s->settings.lights[0].on = 1;
+    memcpy(s->settings.lights[0].pos, ms_view_default_light(0), sizeof s->settings.lights[0].pos);
+    s->settings.lights[0].color[0] = s->settings.lights[0].color[1] = s->settings.lights[0].color[2] = 1;
 }
 
 static void add(ms_scene *s, ms_displaylist *dl, const ms_material *m)
@@ -121,7 +121,7 @@ static void test_empty(ms_gl *g)
         t_ok(count_not(&img, bg) == 0, "spheres behind the eye, past the far plane and off the screen draw nothing");
         ms_image_free(&img);
     }
-    s.bg_gradient = 1;
+    s.settings.bg_gradient = 1;
     s.bg_top[0] = 1; s.bg_bottom[2] = 1;
     if (draw(g, &s, &img) == 0) {
         const uint8_t *top = px(&img, 0, 0), *bot = px(&img, W - 1, H - 1);
@@ -217,9 +217,9 @@ static void test_depthcue(ms_gl *g)
         ms_displaylist dl;
         ms_image img;
         scene_init(&s, 1);
-        s.depthcue = 1;
-        s.cuemode = (ms_cuemode)m;
-        s.cue_start = 0.5f; s.cue_end = 10; s.cue_density = 0.32f;
+        s.settings.depthcue = 1;
+        s.settings.cuemode = (ms_cuemode)m;
+        s.settings.cue_start = 0.5f; s.settings.cue_end = 10; s.settings.cue_density = 0.32f;
         ms_dl_init(&dl);
         float c1[3] = {-0.6f, 0, 1}, c2[3] = {0.6f, 0, -4}, n[3] = {0, 0, 1}, x1, y1, x2, y2;
         ms_dl_sphere(&dl, c1, 0.3f, WHITE, 12);
@@ -229,8 +229,8 @@ static void test_depthcue(ms_gl *g)
         ms_scene_project(&s, c2, &x2, &y2, NULL);
         if (draw(g, &s, &img) == 0) {
             int near = px(&img, (int)x1, (int)y1)[1], far = px(&img, (int)x2, (int)y2)[1];
-            double e1 = fog_factor(s.cuemode, 2 - 1 - 0.3) * lambert(1, n);
-            double e2 = fog_factor(s.cuemode, 2 + 4 - 0.3) * lambert(1, n);
+            double e1 = fog_factor(s.settings.cuemode, 2 - 1 - 0.3) * lambert(1, n);
+            double e2 = fog_factor(s.settings.cuemode, 2 + 4 - 0.3) * lambert(1, n);
             t_ok(fabs(near - e1) <= 2 && fabs(far - e2) <= 2 && far < near,
                  "depth cue %s: near %d (expected %.1f), far %d (expected %.1f)", names[m], near,
                  e1, far, e2);
@@ -646,9 +646,9 @@ static void test_agreement(ms_gl *g[2], const ms_displaylist *mol, const float x
     ms_dl_cone(&dl, a, c, 0.2f, 0, RED, 12);
     ms_dl_text(&dl, c, "agree", 1, 1, WHITE);
     scene_init(&s, 0);
-    s.depthcue = 1;
-    s.cue_density = 0.32f;
-    s.cuemode = MS_CUE_EXP2;
+    s.settings.depthcue = 1;
+    s.settings.cue_density = 0.32f;
+    s.settings.cuemode = MS_CUE_EXP2;
     add_xform(&s, (ms_displaylist *)mol, xform);
     add(&s, &dl, &DIFFUSE);
     if (draw(g[0], &s, &img[0]) == 0 && draw(g[1], &s, &img[1]) == 0) {

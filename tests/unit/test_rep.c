@@ -1,7 +1,7 @@
-/* test_rep.c: unit tests of the rep module's parts that are clearest in C: VMD's style
- * string rules (defaults of vmd-compat's table, omitted parameters, '-', too many numbers,
- * Off), colouring strings, drawframes specs, smoothing (window averages worked out by hand,
- * periodic unwrapping), the spline bases, and the colour data mapping (VMD's formula
+/* test_rep.c: unit tests of the rep module's parts that are clearest in C: VMD's style string
+ * rules (the defaults of doc/vmd-behaviour.md's table, omitted parameters, '-', too many
+ * numbers, Off), colouring strings, drawframes specs, smoothing (window averages worked out by
+ * hand, periodic unwrapping), the spline bases, and the colour data mapping (VMD's formula
  * index = int((v - min) * 1023 / (max - min))). */
 #include "config.h"
 #include "ms_test.h"
@@ -33,7 +33,7 @@ static void test_style(void)
     ms_error err = {{0}};
     t_ok(!strcmp(ms_rep_method_at((size_t)s.method)->name, "Lines") && !strcmp(s.text, "Lines 1.000000"),
          "a new style is Lines (VMD's text: \"Lines 1.000000\")");
-    /* vmd-compat section 3 */
+    /* doc/vmd-behaviour.md section 5 */
     const float *p = params(&s, "CPK");
     t_ok(p[0] == 1.0f && p[1] == 0.3f && p[2] == 12 && p[3] == 12 && p[4] == 0, "CPK defaults");
     p = params(&s, "NewCartoon");
@@ -215,9 +215,7 @@ static void test_color_data(void)
 {
     t_suite = "rep colour data";
     ms_error err = {{0}};
-    ms_app app;
-    memset(&app, 0, sizeof app);
-    app.colors = ms_colors_new(&err);
+    ms_colors *colors = ms_colors_new(&err);
     /* five atoms, one frame */
     ms_molecule *m = ms_mol_new(&err);
     for (int i = 0; i < 5; i++) ms_mol_add_blank_atom(m, &err);
@@ -235,33 +233,33 @@ static void test_color_data(void)
     ms_rep_coloring c;
     ms_rep_coloring_init(&c);
     ms_rep_coloring_parse(&c, "Index", &err);
-    ms_rep_color_ids(&app, m, &c, 0, 1, &lo, &hi, col, &err);
+    ms_rep_color_ids(colors, m, &c, 0, 1, &lo, &hi, col, &err);
     t_ok(lo == 0 && hi == 4 && col[0] == 33 && col[2] == 33 + 511 && col[4] == 33 + 1023,
          "Index: 33 + int(i 1023 / 4) (%d %d %d)", col[0], col[2], col[4]);
     ms_rep_coloring_parse(&c, "Beta", &err);
-    ms_rep_color_ids(&app, m, &c, 0, 1, &lo, &hi, col, &err);
+    ms_rep_color_ids(colors, m, &c, 0, 1, &lo, &hi, col, &err);
     t_ok(lo == 10 && hi == 50 && col[1] == 33 + 255 && col[3] == 33 + 767,
          "Beta over its range: int(10 x 1023 / 40) = 255 (%d %d)", col[1], col[3]);
     lo = 30;
     hi = 30;
-    ms_rep_color_ids(&app, m, &c, 0, 0, &lo, &hi, col, &err);
+    ms_rep_color_ids(colors, m, &c, 0, 0, &lo, &hi, col, &err);
     t_ok(col[0] == 33 + 512 && col[4] == 33 + 512, "min == max: the middle of the scale");
     lo = 20;
     hi = 30;
-    ms_rep_color_ids(&app, m, &c, 0, 0, &lo, &hi, col, &err);
+    ms_rep_color_ids(colors, m, &c, 0, 0, &lo, &hi, col, &err);
     t_ok(col[0] == 33 && col[4] == 1056 && col[2] == 1056, "a given range clamps");
     ms_rep_coloring_parse(&c, "ResID", &err);
-    ms_rep_color_ids(&app, m, &c, 0, 1, &lo, &hi, col, &err);
+    ms_rep_color_ids(colors, m, &c, 0, 1, &lo, &hi, col, &err);
     t_ok(col[0] == 1 && col[1] == 1 && col[2] == 31 && col[3] == 0 && col[4] == 8, "ResID mod 32");
     ms_rep_coloring_parse(&c, "Timestep", &err);
-    ms_rep_color_ids(&app, m, &c, 0, 1, &lo, &hi, col, &err);
+    ms_rep_color_ids(colors, m, &c, 0, 1, &lo, &hi, col, &err);
     t_ok(col[0] == 33, "Timestep of a single frame: the scale's start");
     ms_rep_coloring_parse(&c, "Beta", &err);
-    ms_rep_color_ids(&app, m, &c, -1, 1, &lo, &hi, col, &err);
-    int mol = ms_color_item_get(app.colors, ms_color_category_index(app.colors, "Molecule"), "0");
+    ms_rep_color_ids(colors, m, &c, -1, 1, &lo, &hi, col, &err);
+    int mol = ms_color_item_get(colors, ms_color_category_index(colors, "Molecule"), "0");
     t_ok(col[0] == mol, "no frame: VMD colours by molecule (%d %d)", col[0], mol);
     ms_mol_free(m);
-    ms_colors_free(app.colors);
+    ms_colors_free(colors);
 }
 
 int main(void)

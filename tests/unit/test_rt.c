@@ -1,5 +1,5 @@
 /* test_rt.c: unit tests of TachyonInternal on scenes built in C, against values worked out
- * here from the camera model and Tachyon's shading formulas (vmd-compat.md section 6):
+ * here from the camera model and Tachyon's shading formulas (doc/vmd-behaviour.md section 8):
  * one sphere under one light (the centre pixel's value, the silhouette's radius), a sphere
  * seen through a 50% transparent one (plain and angle-modulated), ambient occlusion in a 90
  * degree crevice (half the sky) and on an open plane (all of it), a shadow where the light
@@ -54,19 +54,19 @@ static void scene_new(ms_scene *s, int w, int h, int ortho)
     ms_scene_init(s);
     s->width = w;
     s->height = h;
-    ms_camera *c = &s->cam;
+    ms_camera *c = &s->settings.cam;
     c->projection = ortho ? MS_PROJ_ORTHOGRAPHIC : MS_PROJ_PERSPECTIVE;
     c->eye[2] = 2, c->dir[2] = -1, c->up[1] = 1;
     c->height = 6, c->distance = -2;
     c->near_clip = 0.5f, c->far_clip = 10;
-    s->ao_ambient = 0.8f, s->ao_direct = 0.3f;
+    s->settings.ao_ambient = 0.8f, s->settings.ao_direct = 0.3f;
 }
 
 static void light(ms_scene *s, int i, float x, float y, float z)
 {
-    s->lights[i].on = 1;
-    s->lights[i].pos[0] = x, s->lights[i].pos[1] = y, s->lights[i].pos[2] = z;
-    s->lights[i].color[0] = s->lights[i].color[1] = s->lights[i].color[2] = 1;
+    s->settings.lights[i].on = 1;
+    s->settings.lights[i].pos[0] = x, s->settings.lights[i].pos[1] = y, s->settings.lights[i].pos[2] = z;
+    s->settings.lights[i].color[0] = s->settings.lights[i].color[1] = s->settings.lights[i].color[2] = 1;
 }
 
 /* Place dl (identity transform) with a material of these terms. */
@@ -316,7 +316,7 @@ static void test_ao(void)
     float expect = c8(128);
     for (int g = 0; g < 2; g++) {
         scene_new(&s, 41, 41, 1);
-        s.ao = 1, s.ao_ambient = 1.0f, s.ao_direct = 1.0f;
+        s.settings.ao = 1, s.settings.ao_ambient = 1.0f, s.settings.ao_direct = 1.0f;
         place(&s, g ? &groove : &plane, 0, 1, 0, 40, 1);
         if (render(&s, 15, 64, &img)) return t_ok(0, "render"), (void)0;
         /* the pixel right of the centre column: 0.04 units from the crease */
@@ -349,7 +349,7 @@ static void test_shadow(void)
         ms_scene s;
         ms_image img;
         scene_new(&s, 61, 61, 1);
-        s.shadows = on;
+        s.settings.shadows = on;
         light(&s, 0, 1, 0, 1);
         place(&s, &plane, 0.1f, 0.8f, 0, 40, 1);
         place(&s, &ball, 0.1f, 0.8f, 0, 40, 1);
@@ -396,7 +396,7 @@ static void test_shadow_glass(void)
         ms_scene s;
         ms_image img;
         scene_new(&s, 61, 61, 1);
-        s.shadows = 1;
+        s.settings.shadows = 1;
         light(&s, 0, 1, 0, 1);
         place(&s, &plane, 0.1f, 0.8f, 0, 40, 1);
         place(&s, &ball, 0.0f, 0.0f, 0, 40, 0.5f);
@@ -435,8 +435,8 @@ static void test_fog(void)
         ms_scene s;
         ms_image img;
         scene_new(&s, 61, 21, 1);
-        s.depthcue = 1, s.cuemode = modes[m];
-        s.cue_start = 1, s.cue_end = 3, s.cue_density = 0.5f;
+        s.settings.depthcue = 1, s.settings.cuemode = modes[m];
+        s.settings.cue_start = 1, s.settings.cue_end = 3, s.settings.cue_density = 0.5f;
         place(&s, &dl, 1, 0, 0, 40, 1);
         if (render(&s, 0, 0, &img)) return t_ok(0, "render"), (void)0;
         int ok = 1;
@@ -617,7 +617,7 @@ static void test_gradient(void)
     ms_scene s;
     ms_image img;
     scene_new(&s, 40, 30, 0);
-    s.bg_gradient = 1;
+    s.settings.bg_gradient = 1;
     s.bg_top[0] = 1.0f, s.bg_bottom[2] = 1.0f;
     if (render(&s, 0, 0, &img)) return t_ok(0, "render"), (void)0;
     int ok = 1;
@@ -651,7 +651,7 @@ static void test_dof(void)
     ms_scene s;
     ms_image img;
     scene_new(&s, 120, 60, 0);
-    s.cam.dof = 1, s.cam.dof_fnumber = 1, s.cam.dof_focaldist = 2;
+    s.settings.cam.dof = 1, s.settings.cam.dof_fnumber = 1, s.settings.cam.dof_focaldist = 2;
     place(&s, &dl, 1, 0, 0, 40, 1);
     if (render(&s, 63, 0, &img)) return t_ok(0, "render"), (void)0;
     int soft[2] = {0, 0};
@@ -800,17 +800,17 @@ static void test_degenerate(void)
     ms_image img;
     scene_new(&s, 16, 16, 0);
     s.background[0] = 1.0f;
-    s.shadows = s.ao = 1;
+    s.settings.shadows = s.settings.ao = 1;
     light(&s, 0, 0, 0, 1);
     place(&s, &dl, 0.2f, 0.6f, 0.5f, 40, 0.5f);
     int rc = render(&s, 2, 4, &img);
     t_ok(rc == 0 && near8(px(&img, 8, 8), 255, 0, 0, 0), "NaN, zero and infinite sizes are left out: background");
     if (!rc) ms_image_free(&img);
-    s.cam.distance = s.cam.eye[2];
+    s.settings.cam.distance = s.settings.cam.eye[2];
     rc = render(&s, 0, 0, &img);
     t_ok(rc == 0, "a camera whose screen is at the eye renders");
     if (!rc) ms_image_free(&img);
-    s.cam.distance = -2;
+    s.settings.cam.distance = -2;
     dl.mesh.tri[2] = 7;
     ms_rt_options opt;
     ms_rt_options_default(&opt);
@@ -1000,7 +1000,7 @@ static void test_own_bvh(void)
     quad(&plane, pl, (ms_rgba8){128, 128, 128, 255});
     ms_scene s;
     scene_new(&s, 96, 96, 0);
-    s.shadows = s.ao = 1;
+    s.settings.shadows = s.settings.ao = 1;
     light(&s, 0, 1, 1, 1);
     place(&s, &dl, 0.2f, 0.6f, 0.4f, 30, 1);
     place(&s, &plane, 0.2f, 0.6f, 0, 30, 1);

@@ -2,7 +2,7 @@
  * quantization (OpenGL 1.2.1 table 2.6), VMD's colour scale formula and default colours,
  * materials' shininess scale, matrices, the camera projection, tessellation, the stroke
  * font, and user graphics ids (VMD's replace and delete rules). Expected values are worked
- * out by hand from the formulas in vmd-compat.md. */
+ * out by hand from the formulas in doc/vmd-behaviour.md. */
 #include "config.h"
 #include "ms_test.h"
 #include "render/export.h"
@@ -154,12 +154,12 @@ static void test_matrices_and_camera(void)
     ms_scene_init(&s);
     s.width = 400;
     s.height = 200;
-    s.cam.projection = MS_PROJ_PERSPECTIVE;
-    s.cam.eye[2] = 2;
-    s.cam.dir[2] = -1;
-    s.cam.up[1] = 1;
-    s.cam.height = 6;
-    s.cam.distance = -2;
+    s.settings.cam.projection = MS_PROJ_PERSPECTIVE;
+    s.settings.cam.eye[2] = 2;
+    s.settings.cam.dir[2] = -1;
+    s.settings.cam.up[1] = 1;
+    s.settings.cam.height = 6;
+    s.settings.cam.distance = -2;
     float px, py, d, o[3] = {0, 0, 0}, top[3] = {0, 1.5f, 0}, side[3] = {1.5f, 0, -2};
     ms_scene_project(&s, o, &px, &py, &d);
     t_ok(px == 200 && py == 100 && d == 2, "the origin is the image centre, 2 from the eye");
@@ -167,7 +167,7 @@ static void test_matrices_and_camera(void)
     t_ok(near(py, 0, 1e-4f), "y 1.5 at z 0 is the top edge (half-height 0.75 per unit depth)");
     ms_scene_project(&s, side, &px, &py, &d);
     t_ok(near(px, 200 + 200 * (1.5f * 4 / 4) / (3 * 2), 1e-3f), "x at depth 4 (%g)", px);
-    s.cam.projection = MS_PROJ_ORTHOGRAPHIC;
+    s.settings.cam.projection = MS_PROJ_ORTHOGRAPHIC;
     ms_scene_project(&s, top, &px, &py, &d);
     t_ok(near(py, 0, 1e-4f) && near(ms_scene_pixel_size(&s, 5), 3.0f / 200, 1e-6f),
          "orthographic: half-height 1.5 at every depth");

@@ -11,7 +11,7 @@
  * `$sel global` and `$sel uplevel L` move the variable. The object's methods are in
  * atomsel_getset.c and atomsel_methods.c. */
 #include "config.h"
-#include "select/atomsel_int.h"
+#include "commands/atomsel_int.h"
 #include "commands/commands.h"
 
 #include <stdio.h>
@@ -348,7 +348,7 @@ static int atomsel_obj_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj 
     if (ms_args_enter(&call, interp, s->name, typed ? w : m->name, m->usage, objc - 2, m->min,
                       m->max))
         return TCL_ERROR;
-    if (m->changes) st->app->scene_version++;   /* atoms or bonds change, and the reps */
+    if (m->changes) st->app->world.scene_version++;   /* atoms or bonds change, and the reps */
     int rc = m->fn(st->app, interp, s, objc, objv);
     ms_args_leave(&call);
     return rc;
@@ -356,9 +356,8 @@ static int atomsel_obj_cmd(ClientData cd, Tcl_Interp *interp, int objc, Tcl_Obj 
 
 /* ---------------------------------------------------------------- registration */
 
-/* For `animate write ... sel $sel` and others that take a selection by name. */
-static int resolve(ms_app *app, Tcl_Interp *interp, const char *name, const char *cmd,
-                   int *molid, long *frame, uint32_t **atoms, size_t *natoms)
+int ms_atomsel_resolve(ms_app *app, Tcl_Interp *interp, const char *name, const char *cmd,
+                       int *molid, long *frame, uint32_t **atoms, size_t *natoms)
 {
     ms_atomsel *s = ms_atomsel_lookup(app, interp, name, cmd);
     if (!s || !ms_atomsel_fresh(app, interp, s, cmd)) return TCL_ERROR;
@@ -397,5 +396,4 @@ void ms_atomsel_register(ms_app *app)
     ms_cmdset_quiet(app, "atomselect");
     Tcl_Eval(app->interp, "namespace eval ::molscope {}");
     for (size_t i = 0; i < MS_COUNTOF(cmds); i++) ms_cmd_create(app, &cmds[i]);
-    ms_cmd_sel_resolver = resolve;
 }

@@ -4,7 +4,7 @@
  * give 0/1. set: one value for every atom, one per atom, or (several keywords) one list per
  * atom. Every value is checked before anything changes. */
 #include "config.h"
-#include "select/atomsel_int.h"
+#include "commands/atomsel_int.h"
 #include "commands/commands.h"
 
 #include <stdlib.h>

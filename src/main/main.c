@@ -8,9 +8,10 @@
 #include "app/app.h"
 #include "app/options.h"
 #include "app/shell.h"
-#include "parallel/parallel.h"
+#include "assemble/view.h"
+#include "commands/commands.h"
 #include "gl/gl.h"
-#include "view/view.h"
+#include "parallel/parallel.h"
 
 #include <malloc.h>
 #include <stdint.h>
@@ -71,7 +72,7 @@ static void choose_dispdev(ms_app *app, const char *dev)
     ms_gl *g = ms_gl_display_current();
     snprintf(app->dispdev, sizeof app->dispdev, "%s", ms_gl_kind_name(ms_gl_kind_of(g)));
     if (i >= 4 && talk) fprintf(stderr, "molscope: -dispdev %s: using %s\n", dev, msg);
-    if (app->view) app->view->depthcue = 1;
+    app->world.view->settings.depthcue = 1;
 }
 
 /* Run one startup stage; in batch mode an error ends the program. Returns 0 to continue,
@@ -165,7 +166,7 @@ int main(int argc, char **argv)
      * system when freed: without it glibc raises the threshold after the first large free
      * and the big transient buffers of a load (bond pairs, grids) stay resident. */
     mallopt(M_MMAP_THRESHOLD, 256 * 1024);
-    ms_app *app = ms_app_new(argv[0]);
+    ms_app *app = ms_app_new(argv[0], ms_command_sets);
     if (!app) {
         fprintf(stderr, "molscope: cannot start (out of memory)\n");
         return ms_par_exit(1);
@@ -190,8 +191,8 @@ int main(int argc, char **argv)
     app->interactive = isatty(0) && ms_par_size() == 1;
     choose_dispdev(app, o.dispdev);
     if (o.width) {
-        app->width = o.width;
-        app->height = o.height;
+        app->world.width = o.width;
+        app->world.height = o.height;
     }
     set_tcl_argv(app, argv[0], &o);
 

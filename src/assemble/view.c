@@ -1,7 +1,8 @@
 /* view.c: display settings with VMD's text-mode defaults, the transform commands' semantics,
  * resetview, and the axes and stage geometry. */
 #include "config.h"
-#include "view/view.h"
+#include "assemble/view.h"
+#include "rep/rep.h"
 #include "scene/graphics.h"
 #include "scene/mat4.h"
 
@@ -9,8 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-
-int (*ms_view_cov_hook)(ms_app *app, ms_molecule *m, float center[3], float *scale) = NULL;
 
 static const char *const axes_names[MS_AXES_NLOCS] = {
     "Off", "Origin", "LowerLeft", "LowerRight", "UpperLeft", "UpperRight"};
@@ -52,7 +51,7 @@ ms_view *ms_view_new(void)
 {
     ms_view *v = calloc(1, sizeof *v);
     if (!v) return NULL;
-    ms_camera *c = &v->cam;
+    ms_camera *c = &v->settings.cam;
     c->projection = MS_PROJ_PERSPECTIVE;
     c->eye[2] = 2.0f;
     c->dir[2] = -1.0f;
@@ -66,16 +65,16 @@ ms_view *ms_view_new(void)
     c->dof_fnumber = 64.0f;
     c->dof_focaldist = 0.7f;
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
-        v->lights[i].on = i < 2;
-        memcpy(v->lights[i].pos, light_pos[i], sizeof light_pos[i]);
-        v->lights[i].color[0] = v->lights[i].color[1] = v->lights[i].color[2] = 1.0f;
+        v->settings.lights[i].on = i < 2;
+        memcpy(v->settings.lights[i].pos, light_pos[i], sizeof light_pos[i]);
+        v->settings.lights[i].color[0] = v->settings.lights[i].color[1] = v->settings.lights[i].color[2] = 1.0f;
     }
-    v->cuemode = MS_CUE_EXP2;
-    v->cue_start = 0.5f;
-    v->cue_end = 10.0f;
-    v->cue_density = 0.32f;
-    v->ao_ambient = 0.8f;
-    v->ao_direct = 0.3f;
+    v->settings.cuemode = MS_CUE_EXP2;
+    v->settings.cue_start = 0.5f;
+    v->settings.cue_end = 10.0f;
+    v->settings.cue_density = 0.32f;
+    v->settings.ao_ambient = 0.8f;
+    v->settings.ao_direct = 0.3f;
     v->update = 1;
     strcpy(v->stereo, "Off");
     strcpy(v->rendermode, "Normal");
@@ -107,81 +106,81 @@ void ms_view_mol_model(const ms_molecule *m, float out[16])
     ms_mat4_mul(r, t, out);
 }
 
-static ms_view *view_of(ms_app *app)
+static ms_view *view_of(ms_world *w)
 {
-    return app->view;
+    return w->view;
 }
 
 /* Pre-multiply (by) or set (to) a rotation on the non-fixed molecules and the axes. */
-static void apply_rotation(ms_app *app, const float r[16], int by)
+static void apply_rotation(ms_world *w, const float r[16], int by)
 {
-    app->scene_version++;
-    for (size_t i = 0; i < app->mols.n; i++) {
-        ms_molecule *m = app->mols.mols[i];
+    w->scene_version++;
+    for (size_t i = 0; i < w->mols->n; i++) {
+        ms_molecule *m = w->mols->mols[i];
         if (m->fixed) continue;
         if (by) ms_mat4_mul(r, m->rotate, m->rotate);
         else memcpy(m->rotate, r, 16 * sizeof(float));
     }
-    ms_view *v = view_of(app);
+    ms_view *v = view_of(w);
     if (by) ms_mat4_mul(r, v->axes_rotate, v->axes_rotate);
     else memcpy(v->axes_rotate, r, 16 * sizeof(float));
 }
 
-void ms_view_rotate_by(ms_app *app, char axis, float deg)
+void ms_view_rotate_by(ms_world *w, char axis, float deg)
 {
     float r[16];
     ms_mat4_rotation(r, axis, deg);
-    apply_rotation(app, r, 1);
+    apply_rotation(w, r, 1);
 }
 
-void ms_view_rotate_to(ms_app *app, char axis, float deg)
+void ms_view_rotate_to(ms_world *w, char axis, float deg)
 {
     float r[16];
     ms_mat4_rotation(r, axis, deg);
-    apply_rotation(app, r, 0);
+    apply_rotation(w, r, 0);
 }
 
-void ms_view_rotmat(ms_app *app, const float r[16], int by)
+void ms_view_rotmat(ms_world *w, const float r[16], int by)
 {
-    apply_rotation(app, r, by);
+    apply_rotation(w, r, by);
 }
 
-void ms_view_translate(ms_app *app, float x, float y, float z, int by)
+void ms_view_translate(ms_world *w, float x, float y, float z, int by)
 {
-    app->scene_version++;
-    for (size_t i = 0; i < app->mols.n; i++) {
-        ms_molecule *m = app->mols.mols[i];
+    w->scene_version++;
+    for (size_t i = 0; i < w->mols->n; i++) {
+        ms_molecule *m = w->mols->mols[i];
         if (m->fixed) continue;
         float d[3] = {x, y, z};
         for (int k = 0; k < 3; k++) m->global[k] = by ? m->global[k] + d[k] : d[k];
     }
 }
 
-int ms_view_scale(ms_app *app, float s, int by)
+int ms_view_scale(ms_world *w, float s, int by)
 {
     if (!(s > 0)) return -1;
-    app->scene_version++;
-    for (size_t i = 0; i < app->mols.n; i++) {
-        ms_molecule *m = app->mols.mols[i];
+    w->scene_version++;
+    for (size_t i = 0; i < w->mols->n; i++) {
+        ms_molecule *m = w->mols->mols[i];
         if (!m->fixed) m->scale = by ? m->scale * s : s;
     }
     return 0;
 }
 
-void ms_view_rock(ms_app *app, char axis, float step, int steps)
+void ms_view_rock(ms_world *w, char axis, float step, int steps)
 {
-    ms_view *v = view_of(app);
+    ms_view *v = view_of(w);
     v->rock_axis = axis;
     v->rock_step = step;
     v->rock_steps = steps;
     v->rock_count = 0;
 }
 
-void ms_view_rock_step(ms_app *app)
+void ms_view_rock_step(ms_world *w)
 {
-    ms_view *v = view_of(app);
+    ms_view *v = view_of(w);
     if (!v->rock_axis) return;
-    ms_view_rotate_by(app, v->rock_axis, v->rock_step);
+    ms_view_rotate_by(w, v->rock_axis, v->rock_step);
     if (v->rock_steps > 0 && ++v->rock_count >= v->rock_steps) {
         v->rock_count = 0;
         v->rock_step = -v->rock_step;   /* swing back */
@@ -217,12 +216,6 @@ static void atoms_cov(const float *pos, const uint32_t *idx, size_t n, float cen
     *scale = 1.5f / ext;
 }
 
-void ms_view_points_cov(const float *pos, const uint32_t *idx, size_t n, float center[3],
-                        float *scale)
-{
-    atoms_cov(pos, idx, n, center, scale);
-}
-
 /* A molecule of volumes alone: the centre of their boxes' union, scaled as atoms at its
  * corners would be. */
 static void volumes_cov(const ms_molecule *m, float center[3], float *scale)
@@ -241,10 +234,16 @@ static void volumes_cov(const ms_molecule *m, float center[3], float *scale)
     atoms_cov(pts, NULL, 2, center, scale);
 }
 
-int ms_view_mol_cov(ms_app *app, ms_molecule *m, float center[3], float *scale)
+int ms_view_mol_cov(ms_world *w, ms_molecule *m, float center[3], float *scale)
 {
-    if (ms_view_cov_hook && ms_view_cov_hook(app, m, center, scale)) return 1;
     const float *pos = ms_mol_pos(m);
+    uint32_t *shown;
+    size_t nshown;
+    if (ms_rep_shown_atoms(w->reps, m, &shown, &nshown)) {
+        atoms_cov(pos, shown, nshown, center, scale);
+        free(shown);
+        return 1;
+    }
     if (pos && m->atoms.n) {
         atoms_cov(pos, NULL, m->atoms.n, center, scale);
         return 1;
@@ -253,24 +252,24 @@ int ms_view_mol_cov(ms_app *app, ms_molecule *m, float center[3], float *scale)
         volumes_cov(m, center, scale);
         return 1;
     }
-    if (app->ugraphics_slot >= 0 && m->ext[app->ugraphics_slot])
-        return ms_ugraphics_cov(m->ext[app->ugraphics_slot], center, scale);
+    if (w->ugraphics_slot >= 0 && m->ext[w->ugraphics_slot])
+        return ms_ugraphics_cov(m->ext[w->ugraphics_slot], center, scale);
     return 0;
 }
 
-void ms_view_reset(ms_app *app)
+void ms_view_reset(ms_world *w)
 {
-    app->scene_version++;
-    ms_view *v = view_of(app);
-    ms_molecule *top = ms_molset_top(&app->mols);
+    w->scene_version++;
+    ms_view *v = view_of(w);
+    ms_molecule *top = ms_molset_top(w->mols);
     float c[3], s;
-    if (top && ms_view_mol_cov(app, top, c, &s)) {
+    if (top && ms_view_mol_cov(w, top, c, &s)) {
         memcpy(v->last_center, c, sizeof c);
         v->last_scale = s;
     }
     ms_mat4_identity(v->axes_rotate);
-    for (size_t i = 0; i < app->mols.n; i++) {
-        ms_molecule *m = app->mols.mols[i];
+    for (size_t i = 0; i < w->mols->n; i++) {
+        ms_molecule *m = w->mols->mols[i];
         ms_mat4_identity(m->rotate);
         memset(m->global, 0, sizeof m->global);
         m->scale = v->last_scale;

@@ -1,6 +1,7 @@
 /* view.h: the view and display state and VMD's semantics for changing it: the camera and
- * display settings (`display ...`), the lights, the axes and the stage, and the molecule
- * transforms that rotate / translate / scale / rock / rotmat / resetview change.
+ * display settings (`display ...`) and the lights (the scene settings a built scene takes
+ * whole), the axes and the stage, and the transforms that rotate / translate / scale / rock
+ * / rotmat / resetview make on the world's molecules (world.h).
  *
  * VMD's rules: rotations are pre-multiplied into every non-fixed molecule's rotate matrix
  * (so they turn about the screen axes) and into the axes; translate and scale act on each
@@ -10,7 +11,7 @@
 #ifndef MS_VIEW_H
 #define MS_VIEW_H
 
-#include "app/app.h"
+#include "assemble/world.h"
 #include "scene/color.h"
 #include "scene/displaylist.h"
 #include "scene/scene.h"
@@ -26,15 +27,8 @@ typedef enum ms_stage_loc {
 } ms_stage_loc;
 
 typedef struct ms_view {
-    ms_camera cam;
-    ms_light lights[MS_SCENE_LIGHTS];
+    ms_scene_settings settings;  /* what a scene built now is drawn with */
     int light_highlight[MS_SCENE_LIGHTS];
-    int depthcue;
-    ms_cuemode cuemode;
-    float cue_start, cue_end, cue_density;
-    int shadows, ao;
-    float ao_ambient, ao_direct;
-    int bg_gradient;
     int antialias, culling, fps, stereoswap, update;
     char stereo[16], rendermode[16], cachemode[16];
     ms_axes_loc axes;
@@ -66,29 +60,25 @@ int ms_projection_from_name(const char *s);
 void ms_view_mol_model(const ms_molecule *m, float out[16]);
 
 /* rotate x|y|z by deg: pre-multiplied into every non-fixed molecule and the axes. */
-void ms_view_rotate_by(ms_app *app, char axis, float deg);
+void ms_view_rotate_by(ms_world *w, char axis, float deg);
 /* rotate x|y|z to deg: every non-fixed molecule's rotation becomes that one rotation. */
-void ms_view_rotate_to(ms_app *app, char axis, float deg);
+void ms_view_rotate_to(ms_world *w, char axis, float deg);
 /* rotmat by|to with a 4x4 rotation (row-major). */
-void ms_view_rotmat(ms_app *app, const float r[16], int by);
-void ms_view_translate(ms_app *app, float x, float y, float z, int by);
+void ms_view_rotmat(ms_world *w, const float r[16], int by);
+void ms_view_translate(ms_world *w, float x, float y, float z, int by);
 /* scale by|to s (s > 0; returns -1 otherwise). */
-int ms_view_scale(ms_app *app, float s, int by);
+int ms_view_scale(ms_world *w, float s, int by);
 /* rock: start (steps < 0: forever) or stop (axis '\0'); ms_view_rock_step advances it. */
-void ms_view_rock(ms_app *app, char axis, float step, int steps);
-void ms_view_rock_step(ms_app *app);
+void ms_view_rock(ms_world *w, char axis, float step, int steps);
+void ms_view_rock_step(ms_world *w);
 
-/* VMD's centre of the top molecule's displayed atoms and the scale 1.5 / largest extent
- * (single atom: 0.5), or of its user graphics when it has no coordinates. Returns 0 when the
- * molecule has neither. The representation module may replace the atom choice. */
-int ms_view_mol_cov(ms_app *app, ms_molecule *m, float center[3], float *scale);
-/* The same centre and scale for the atoms idx[0..n) (n > 0) of coordinates pos. */
-void ms_view_points_cov(const float *pos, const uint32_t *idx, size_t n, float center[3],
-                        float *scale);
-extern int (*ms_view_cov_hook)(ms_app *app, ms_molecule *m, float center[3], float *scale);
+/* VMD's centre of a molecule's displayed atoms (its shown reps' atoms, else all its atoms)
+ * and the scale 1.5 / largest extent (single atom: 0.5), else of its volumes' boxes, else of
+ * its user graphics. Returns 0 when the molecule has none of them. */
+int ms_view_mol_cov(ms_world *w, ms_molecule *m, float center[3], float *scale);
 /* display resetview: reset the axes and every molecule's transform, centred on the top
  * molecule (or on the last centre when it has nothing to centre on). */
-void ms_view_reset(ms_app *app);
+void ms_view_reset(ms_world *w);
 
 /* Geometry of the axes and the stage in world coordinates; the aspect ratio places the axes
  * in their corner. Append to dl (which the caller placed with an identity transform). */

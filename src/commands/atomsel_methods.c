@@ -7,7 +7,7 @@
  * Coordinates change on the selection's frame; changes are announced to listeners
  * (MS_EV_FRAME for coordinates, MS_EV_STRUCTURE for bonds). */
 #include "config.h"
-#include "select/atomsel_int.h"
+#include "commands/atomsel_int.h"
 #include "commands/commands.h"
 #include "fileio/write.h"
 

@@ -29,7 +29,14 @@ ms_atomsel *ms_atomsel_lookup(ms_app *app, Tcl_Interp *interp, const char *name,
 ms_molecule *ms_atomsel_mol(ms_app *app, const ms_atomsel *s);
 long ms_atomsel_frame(ms_app *app, const ms_atomsel *s);
 
-/* Register atomselect and install the resolver commands.h declares. */
+/* A selection object named by a command word, for the commands that take one (`animate write
+ * ... sel`, `measure`, `volmap`): TCL_OK with the molecule id, the resolved frame (-1 when the
+ * molecule has none) and malloc'd ascending atom indices; TCL_ERROR with a message naming cmd
+ * and the word otherwise. */
+int ms_atomsel_resolve(ms_app *app, Tcl_Interp *interp, const char *name, const char *cmd,
+                       int *molid, long *frame, uint32_t **atoms, size_t *natoms);
+
+/* Register atomselect (and VMD's upproc helper). */
 void ms_atomsel_register(ms_app *app);
 
 #endif

@@ -4,7 +4,7 @@
 #ifndef MS_ATOMSEL_INT_H
 #define MS_ATOMSEL_INT_H
 
-#include "select/atomsel.h"
+#include "commands/atomsel.h"
 
 /* frame values besides frame numbers */
 #define MS_ATOMSEL_NOW (-1)
