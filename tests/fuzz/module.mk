@@ -7,6 +7,7 @@
 # libFuzzer binaries tests/fuzz/lf_<format> with clang instead; run one with a scratch corpus
 # folder first (new inputs go there) and the seeds second, e.g.
 #   mkdir -p /tmp/c && tests/fuzz/lf_dcd -max_total_time=60 /tmp/c tests/fuzz/corpus/dcd
+# tests/fuzz-run builds them and runs every one for FUZZ_SECONDS on a copy of its corpus.
 FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin
 FUZZ_CORE = \
 	src/base/base.c src/base/strtab.c src/base/threads.c src/base/bitset.c \
