@@ -42,8 +42,10 @@ SRC = os.path.join(SRCDIR, "src")
 
 
 def modules():
+    # a folder with sources (an old build may leave a folder of objects behind)
     return sorted(d for d in os.listdir(SRC)
-                  if os.path.isdir(os.path.join(SRC, d)) and not d.startswith("."))
+                  if os.path.isdir(os.path.join(SRC, d)) and not d.startswith(".")
+                  and any(f.endswith((".c", ".h")) for f in os.listdir(os.path.join(SRC, d))))
 
 
 def sources(mod):
