@@ -97,15 +97,7 @@ static size_t file_number(const char *path)
 
 size_t rt_mem_available(void)
 {
-    FILE *f = fopen("/proc/meminfo", "r");
-    size_t kb = 0, avail;
-    if (f) {
-        char line[256];
-        while (fgets(line, sizeof line, f))
-            if (sscanf(line, "MemAvailable: %zu kB", &kb) == 1) break;
-        fclose(f);
-    }
-    avail = kb * 1024;
+    size_t avail = ms_mem_available();
     /* a batch job's memory limit (cgroup v2) may be lower than the machine's */
     size_t max = file_number("/sys/fs/cgroup/memory.max"), cur = file_number("/sys/fs/cgroup/memory.current");
     if (max && max > cur && (!avail || max - cur < avail)) avail = max - cur;

@@ -34,13 +34,8 @@ size_t ms_qsurf_parse_bytes(const char *s)
 /* MemAvailable from /proc/meminfo, else free RAM from sysinfo. */
 static size_t available_memory(void)
 {
-    FILE *f = fopen("/proc/meminfo", "r");
-    char line[256];
-    unsigned long long kb = 0;
-    while (f && fgets(line, sizeof line, f))
-        if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) break;
-    if (f) fclose(f);
-    if (kb) return (size_t)kb * 1024u;
+    size_t avail = ms_mem_available();
+    if (avail) return avail;
     struct sysinfo si;
     if (sysinfo(&si) == 0) return (size_t)si.freeram * si.mem_unit;
     return (size_t)1 << 30;
