@@ -25,7 +25,7 @@
 extern "C" {
 #endif
 
-#define MS_PLUGIN_ABI 2
+#define MS_PLUGIN_ABI 3
 #define MS_PLUGIN_ABI_MIN 1  /* the oldest ABI the host still loads */
 
 enum { MS_PLUGIN_OK = 0, MS_PLUGIN_EOF = 1, MS_PLUGIN_ERROR = -1 };
@@ -80,6 +80,10 @@ enum {
     MS_SS_BRIDGE = 'B', MS_SS_TURN = 'T', MS_SS_COIL = 'C'
 };
 
+/* The kinds of term a force field lists besides bonds (ABI 3): an angle names 3 atoms, a
+ * dihedral or an improper 4, in the order the file gives them. */
+enum { MS_PTERM_ANGLE = 0, MS_PTERM_DIHEDRAL = 1, MS_PTERM_IMPROPER = 2 };
+
 /* Where a structure reader puts what it reads. Each function returns 0, or -1 when the host
  * ran out of memory (the plugin then returns MS_PLUGIN_ERROR with a message). */
 typedef struct ms_struct_sink ms_struct_sink;
@@ -108,6 +112,11 @@ struct ms_struct_sink {
      * several generators is their copies in the order reported. Call it after the atoms. */
     int (*add_assembly)(ms_struct_sink *s, const char *id, size_t nranges,
                         const size_t (*ranges)[2], size_t nops, const double (*ops)[12]);
+    /* ABI 3. add_bond with a type name (a force field's bond type; NULL or "" for none). */
+    int (*add_typed_bond)(ms_struct_sink *s, size_t i, size_t j, float order, const char *type);
+    /* ABI 3. One angle, dihedral or improper (kind MS_PTERM_*): 3 or 4 atoms, 0-based in the
+     * order added, with a type name (NULL for none). Call it after the atoms. */
+    int (*add_term)(ms_struct_sink *s, int kind, const size_t *atoms, const char *type);
 };
 
 /* One frame to fill. pos (3*natoms floats) is NULL when the host only skips this frame;
@@ -130,6 +139,14 @@ struct ms_struct_view {
     /* Bonds of atom i: *to points at count view indices (each bond appears for both atoms). */
     size_t (*get_bonds)(const ms_struct_view *v, size_t i, const unsigned **to);
     const char *remarks; /* may be NULL */
+    /* ABI 3. Order and type ("" when none) of the k-th bond get_bonds lists for atom i. */
+    void (*get_bond_info)(const ms_struct_view *v, size_t i, size_t k, float *order,
+                          const char **type);
+    /* ABI 3. The terms of a kind (MS_PTERM_*) whose atoms are all in the view, and term k:
+     * its atoms as view indices (3 or 4) and its type ("" when none). */
+    size_t (*count_terms)(const ms_struct_view *v, int kind);
+    void (*get_term)(const ms_struct_view *v, int kind, size_t k, size_t *atoms,
+                     const char **type);
 };
 
 typedef struct ms_frame_in {

@@ -233,52 +233,97 @@ static int bond_line_values(char *l, size_t len, size_t w, long *v, int max)
     return n;
 }
 
-static int read_bonds(psf_reader *r, ms_struct_sink *sink, ms_perr *err)
+/* The sections of connectivity after the atoms, in the order a PSF has them. */
+static const struct psf_section {
+    const char *tag, *what;
+    int width, kind; /* kind -1: bonds, else MS_PTERM_* */
+} psf_sections[] = {{"!NBOND", "bond", 2, -1},
+                    {"!NTHETA", "angle", 3, MS_PTERM_ANGLE},
+                    {"!NPHI", "dihedral", 4, MS_PTERM_DIHEDRAL},
+                    {"!NIMPHI", "improper", 4, MS_PTERM_IMPROPER}};
+
+/* Which connectivity section a header line opens (its count in *count), -1 for another
+ * section, -2 for a bad count. */
+static int which_section(const char *l, long *count)
+{
+    for (int k = 0; k < (int)(sizeof psf_sections / sizeof psf_sections[0]); k++) {
+        long c = section_count(l, psf_sections[k].tag);
+        if (c == -2) return -2;
+        if (c >= 0) {
+            *count = c;
+            return k;
+        }
+    }
+    return -1;
+}
+
+/* Hand one record of a section to the sink (v: 1-based atom numbers). */
+static int emit_record(ms_struct_sink *sink, const struct psf_section *sec, const long *v)
+{
+    size_t at[4];
+    for (int q = 0; q < sec->width; q++) at[q] = (size_t)(v[q] - 1);
+    if (sec->kind < 0) return sink->add_bond(sink, at[0], at[1], 1.0f);
+    return sink->add_term(sink, sec->kind, at, NULL);
+}
+
+/* The `count` records of one section, width atom numbers each, any number a line. */
+static int read_records(psf_reader *r, ms_struct_sink *sink, const struct psf_section *sec,
+                        long count, ms_perr *err)
 {
     ms_lines *in = &r->in;
     const char *l;
-    long count = -1;
-    while ((l = ms_lines_next(in))) {
-        count = section_count(l, "!NBOND");
-        if (count == -2) return ms_perr_set(err, "line %ld: bad !NBOND count", in->line_no);
-        if (count >= 0) break;
-        const char *p = l + strspn(l, " \t");
-        if (*p && strchr(l, '!')) return MS_PLUGIN_OK; /* another section: no bonds given */
-    }
-    if (in->error) return ms_perr_set(err, "read error after line %ld", in->line_no);
-    if (count < 0) return MS_PLUGIN_OK; /* the file ends after the atoms */
-    /* A bond is two numbers, each a digit and a separator at the least. */
-    if (ms_check_room(err, (double)count, 4, ms_lines_left(in), "bonds",
-                      "line %ld: !NBOND declares %ld bonds", in->line_no, count))
+    /* A record is width numbers, each a digit and a separator at the least. */
+    if (ms_check_room(err, (double)count, 2 * sec->width, ms_lines_left(in), sec->what,
+                      "line %ld: %s declares %ld records", in->line_no, sec->tag, count))
         return MS_PLUGIN_ERROR;
-    long found = 0, pending = -1;
+    long found = 0, v[4];
+    int have = 0;
     while (found < count) {
         if (!(l = ms_lines_next(in))) {
             if (in->error) return ms_perr_set(err, "read error after line %ld", in->line_no);
-            return ms_perr_set(err, "!NBOND says %ld, found %ld at the end of the file (line %ld)",
-                               count, found, in->line_no);
+            return ms_perr_set(err, "%s says %ld, found %ld at the end of the file (line %ld)",
+                               sec->tag, count, found, in->line_no);
         }
         if (strchr(l, '!') || l[strspn(l, " \t")] == '\0')
-            return ms_perr_set(err, "line %ld: !NBOND says %ld, found %ld", in->line_no, count,
-                               found);
-        long v[64];
-        int nv = bond_line_values(in->line, in->line_len, r->ext ? 10 : 8, v, 64);
-        if (nv < 0) return ms_perr_set(err, "line %ld: bad bond record", in->line_no);
+            return ms_perr_set(err, "line %ld: %s says %ld, found %ld", in->line_no, sec->tag,
+                               count, found);
+        long vals[64];
+        int nv = bond_line_values(in->line, in->line_len, r->ext ? 10 : 8, vals, 64);
+        if (nv < 0) return ms_perr_set(err, "line %ld: bad %s record", in->line_no, sec->what);
         for (int k = 0; k < nv && found < count; k++) {
-            if (v[k] < 1 || v[k] > r->natoms)
-                return ms_perr_set(err, "line %ld: bond names atom %ld, but there are %ld atoms",
-                                   in->line_no, v[k], r->natoms);
-            if (pending < 0) {
-                pending = v[k] - 1;
-                continue;
-            }
-            if (sink->add_bond(sink, (size_t)pending, (size_t)(v[k] - 1), 1.0f))
-                return ms_perr_set(err, "out of memory");
-            pending = -1;
+            if (vals[k] < 1 || vals[k] > r->natoms)
+                return ms_perr_set(err, "line %ld: %s names atom %ld, but there are %ld atoms",
+                                   in->line_no, sec->what, vals[k], r->natoms);
+            v[have++] = vals[k];
+            if (have < sec->width) continue;
+            if (emit_record(sink, sec, v)) return ms_perr_set(err, "out of memory");
+            have = 0;
             found++;
         }
     }
-    sink->bonds_complete(sink);
+    return MS_PLUGIN_OK;
+}
+
+/* Bonds, angles, dihedrals and impropers, each when the file has its section; reading
+ * stops at the first other section (donors, acceptors ...) or the end of the file. */
+static int read_connectivity(psf_reader *r, ms_struct_sink *sink, ms_perr *err)
+{
+    ms_lines *in = &r->in;
+    const char *l;
+    int next = 0;
+    while ((l = ms_lines_next(in))) {
+        const char *p = l + strspn(l, " \t");
+        if (*p == '\0' || !strchr(l, '!')) continue;
+        long count = 0;
+        int k = which_section(l, &count);
+        if (k == -2) return ms_perr_set(err, "line %ld: bad section count", in->line_no);
+        if (k < next) break; /* another section, or one out of order: the rest is not ours */
+        if (read_records(r, sink, &psf_sections[k], count, err) != MS_PLUGIN_OK)
+            return MS_PLUGIN_ERROR;
+        if (k == 0) sink->bonds_complete(sink);
+        next = k + 1;
+    }
+    if (in->error) return ms_perr_set(err, "read error after line %ld", in->line_no);
     return MS_PLUGIN_OK;
 }
 
@@ -289,7 +334,7 @@ static int psf_read_structure(void *h, ms_struct_sink *sink, ms_perr *err)
     if (count < 0) return MS_PLUGIN_ERROR;
     if (count == 0) return ms_perr_set(err, "line %ld: !NATOM says 0 atoms", r->in.line_no);
     if (read_atoms(r, sink, count, err) != MS_PLUGIN_OK) return MS_PLUGIN_ERROR;
-    return read_bonds(r, sink, err);
+    return read_connectivity(r, sink, err);
 }
 
 /* ---------------------------------------------------------------- writing */
@@ -398,6 +443,25 @@ static void write_bonds(ms_out *o, const ms_struct_view *v, const char *idfmt)
     ms_out_printf(o, col || nb == 0 ? "\n\n" : "\n");
 }
 
+/* The angles (3 atoms, three a line), dihedrals or impropers (4 atoms, two a line) of the
+ * view, as CHARMM lays them out. */
+static void write_terms(ms_out *o, const ms_struct_view *v, int kind, const char *name,
+                        const char *idfmt)
+{
+    size_t n = v->count_terms ? v->count_terms(v, kind) : 0, width = kind ? 4 : 3;
+    size_t per_line = kind ? 2 : 3;
+    ms_out_printf(o, idfmt, (long)n);
+    ms_out_printf(o, " %s\n", name);
+    for (size_t k = 0; k < n; k++) {
+        size_t at[4];
+        const char *type;
+        v->get_term(v, kind, k, at, &type);
+        for (size_t q = 0; q < width; q++) ms_out_printf(o, idfmt, (long)at[q] + 1);
+        if ((k + 1) % per_line == 0 || k + 1 == n) ms_out_printf(o, "\n");
+    }
+    ms_out_printf(o, "\n\n");
+}
+
 static int psf_write_structure(void *h, const ms_struct_view *v, ms_perr *err)
 {
     psf_writer *w = h;
@@ -411,10 +475,11 @@ static int psf_write_structure(void *h, const ms_struct_view *v, ms_perr *err)
     ms_out_printf(o, " !NTITLE\n REMARKS written by molscope\n\n");
     write_atoms(o, v, layout, idfmt);
     write_bonds(o, v, idfmt);
+    static const char *const names[] = {"!NTHETA: angles", "!NPHI: dihedrals",
+                                        "!NIMPHI: impropers"};
+    for (int kind = 0; kind < 3; kind++) write_terms(o, v, kind, names[kind], idfmt);
     /* Empty sections, so readers that expect them find them. */
-    static const char *const rest[] = {"!NTHETA: angles", "!NPHI: dihedrals",
-                                       "!NIMPHI: impropers", "!NDON: donors",
-                                       "!NACC: acceptors"};
+    static const char *const rest[] = {"!NDON: donors", "!NACC: acceptors"};
     for (size_t k = 0; k < sizeof rest / sizeof rest[0]; k++) {
         ms_out_printf(o, idfmt, 0L);
         ms_out_printf(o, " %s\n\n\n", rest[k]);

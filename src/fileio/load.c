@@ -54,6 +54,8 @@ typedef struct sink_state {
     float *orders;
     size_t npairs, pairs_cap, orders_cap;
     int any_order, bonds_complete;
+    ms_str *btypes;        /* per file bond, MS_STR_NONE for none; NULL until one has one */
+    size_t btypes_cap, nbtypes;  /* btypes[0 .. nbtypes) are set */
     ms_ss_range *ss;
     size_t nss, ss_cap;
     ms_str last_id[F_NFIELDS];
@@ -177,6 +179,44 @@ static int sink_add_bond(ms_struct_sink *s, size_t i, size_t j, float order)
     return 0;
 }
 
+static int sink_add_typed_bond(ms_struct_sink *s, size_t i, size_t j, float order,
+                               const char *type)
+{
+    sink_state *st = (sink_state *)s;
+    if (sink_add_bond(s, i, j, order)) return -1;
+    if ((!type || !*type) && !st->btypes) return 0;
+    size_t k = st->npairs - 1;
+    if (ms_grow((void **)&st->btypes, &st->btypes_cap, st->npairs, sizeof *st->btypes))
+        goto oom;
+    for (size_t q = st->nbtypes; q <= k; q++) st->btypes[q] = MS_STR_NONE;
+    st->nbtypes = st->npairs;
+    if (type && *type &&
+        (st->btypes[k] = ms_strtab_intern_cstr(st->m->strings, type)) == MS_STR_NONE)
+        goto oom;
+    return 0;
+oom:
+    ms_error_set(st->err, "out of memory for bond types");
+    return -1;
+}
+
+static int sink_add_term(ms_struct_sink *s, int kind, const size_t *atoms, const char *type)
+{
+    sink_state *st = (sink_state *)s;
+    if (kind < 0 || kind >= MS_TERM_KINDS) {
+        ms_error_set(st->err, "the reader gave a term of unknown kind %d", kind);
+        return -1;
+    }
+    uint32_t idx[4];
+    size_t w = ms_term_width(kind);
+    for (size_t k = 0; k < w; k++) idx[k] = atoms[k] > UINT32_MAX ? UINT32_MAX : (uint32_t)atoms[k];
+    ms_str ty = MS_STR_NONE;
+    if (type && *type && (ty = ms_strtab_intern_cstr(st->m->strings, type)) == MS_STR_NONE) {
+        ms_error_set(st->err, "out of memory for term types");
+        return -1;
+    }
+    return ms_terms_add(st->m, kind, idx, ty, st->err);
+}
+
 static void sink_bonds_complete(ms_struct_sink *s) { ((sink_state *)s)->bonds_complete = 1; }
 
 static int sink_add_ss(ms_struct_sink *s, char code, const char *chain, int resid0, char ins0,
@@ -250,6 +290,8 @@ static void sink_init(sink_state *st, ms_molecule *m, ms_error *err)
     st->sink.set_time = sink_set_time;
     st->sink.add_remark = sink_add_remark;
     st->sink.add_assembly = sink_add_assembly;
+    st->sink.add_typed_bond = sink_add_typed_bond;
+    st->sink.add_term = sink_add_term;
 }
 
 static void sink_free(sink_state *st)
@@ -258,6 +300,7 @@ static void sink_free(sink_state *st)
     free(st->vel);
     free(st->pairs);
     free(st->orders);
+    free(st->btypes);
     free(st->ss);
     free(st->remarks);
     ms_asm_plan_free(&st->asm_all);
@@ -354,6 +397,9 @@ static int finish_structure(ms_molecule *m, sink_state *st, const ms_load_opts *
     }
     int rc = ms_bonds_build(m, st->pairs, st->npairs, orders, err);
     free(orders);
+    if (!rc && st->btypes && nfile)  /* after a later add_bond, the tail is not typed */
+        rc = ms_bonds_set_types(m, st->pairs, st->btypes,
+                                MS_MIN(nfile, st->nbtypes), err);
     if (rc || ms_analysis_classify(m, err)) return -1;
     if (st->nss) ms_analysis_apply_ss(m, st->ss, st->nss);
     return 0;

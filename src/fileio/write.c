@@ -26,6 +26,10 @@ typedef struct write_view {
     const ms_molecule *m;
     const uint32_t *atoms;     /* view index -> molecule index; NULL = identity */
     uint32_t *bond_start, *bond_to;  /* renumbered CSR */
+    uint32_t *bond_src;        /* parallel to bond_to: the slot in the molecule's table */
+    int32_t *map;              /* molecule index -> view index or -1; NULL = identity */
+    uint32_t *terms[MS_TERM_KINDS]; /* the molecule's terms wholly in the view */
+    size_t nterms[MS_TERM_KINDS];
     char chain_buf[2], ins_buf[2];
 } write_view;
 
@@ -72,18 +76,77 @@ static size_t view_get_bonds(const ms_struct_view *v, size_t i, const unsigned *
     return w->bond_start[i + 1] - w->bond_start[i];
 }
 
+static void view_get_bond_info(const ms_struct_view *v, size_t i, size_t k, float *order,
+                               const char **type)
+{
+    const write_view *w = (const write_view *)v;
+    const ms_bonds *b = &w->m->bonds;
+    uint32_t src = w->bond_src[w->bond_start[i] + k];
+    *order = b->order ? b->order[src] : 1.0f;
+    *type = b->type ? ms_mol_str(w->m, b->type[src]) : "";
+}
+
+static size_t view_count_terms(const ms_struct_view *v, int kind)
+{
+    const write_view *w = (const write_view *)v;
+    return kind >= 0 && kind < MS_TERM_KINDS ? w->nterms[kind] : 0;
+}
+
+static void view_get_term(const ms_struct_view *v, int kind, size_t k, size_t *atoms,
+                          const char **type)
+{
+    const write_view *w = (const write_view *)v;
+    const ms_terms *t = &w->m->terms[kind];
+    size_t src = w->terms[kind] ? w->terms[kind][k] : k, width = ms_term_width(kind);
+    for (size_t q = 0; q < width; q++) {
+        uint32_t a = t->atoms[width * src + q];
+        atoms[q] = w->map ? (size_t)w->map[a] : a;
+    }
+    *type = t->type ? ms_mol_str(w->m, t->type[src]) : "";
+}
+
+/* The selection's map from molecule to view indices, and the terms wholly inside it. */
+static int view_build_map(write_view *w, size_t n, ms_error *err)
+{
+    const ms_molecule *m = w->m;
+    for (int kind = 0; kind < MS_TERM_KINDS; kind++) w->nterms[kind] = m->terms[kind].n;
+    if (!w->atoms) return 0;
+    if (!(w->map = ms_alloc_array(m->atoms.n, sizeof *w->map))) goto oom;
+    for (size_t i = 0; i < m->atoms.n; i++) w->map[i] = -1;
+    for (size_t i = 0; i < n; i++) w->map[w->atoms[i]] = (int32_t)i;
+    for (int kind = 0; kind < MS_TERM_KINDS; kind++) {
+        const ms_terms *t = &m->terms[kind];
+        size_t width = ms_term_width(kind), kept = 0;
+        if (!t->n) continue;
+        if (!(w->terms[kind] = ms_alloc_array(t->n, sizeof(uint32_t)))) goto oom;
+        for (size_t k = 0; k < t->n; k++) {
+            size_t q = 0;
+            while (q < width && w->map[t->atoms[width * k + q]] >= 0) q++;
+            if (q == width) w->terms[kind][kept++] = (uint32_t)k;
+        }
+        w->nterms[kind] = kept;
+    }
+    return 0;
+oom:
+    ms_error_set(err, "out of memory renumbering atoms");
+    return -1;
+}
+
+static void view_free(write_view *w)
+{
+    free(w->bond_start);
+    free(w->bond_to);
+    free(w->bond_src);
+    free(w->map);
+    for (int kind = 0; kind < MS_TERM_KINDS; kind++) free(w->terms[kind]);
+}
+
 /* Renumber the bonds among the selected atoms. */
 static int view_build_bonds(write_view *w, size_t n, ms_error *err)
 {
     const ms_molecule *m = w->m;
     if (!m->has_bonds) return 0;
-    int32_t *map = NULL;
-    if (w->atoms) {
-        map = ms_alloc_array(m->atoms.n, sizeof *map);
-        if (!map) goto oom;
-        for (size_t i = 0; i < m->atoms.n; i++) map[i] = -1;
-        for (size_t i = 0; i < n; i++) map[w->atoms[i]] = (int32_t)i;
-    }
+    const int32_t *map = w->map;
     w->bond_start = ms_alloc_array(n + 1, sizeof *w->bond_start);
     size_t total = 0;
     for (size_t i = 0; w->bond_start && i < n; i++) {
@@ -92,10 +155,8 @@ static int view_build_bonds(write_view *w, size_t n, ms_error *err)
             total += !map || map[m->bonds.to[b]] >= 0;
     }
     w->bond_to = ms_alloc_array(total, sizeof *w->bond_to);
-    if (!w->bond_start || !w->bond_to) {
-        free(map);
-        goto oom;
-    }
+    w->bond_src = ms_alloc_array(total, sizeof *w->bond_src);
+    if (!w->bond_start || !w->bond_to || !w->bond_src) goto oom;
     size_t pos = 0;
     for (size_t i = 0; i < n; i++) {
         w->bond_start[i] = (uint32_t)pos;
@@ -103,11 +164,11 @@ static int view_build_bonds(write_view *w, size_t n, ms_error *err)
         for (uint32_t b = m->bonds.start[k]; b < m->bonds.start[k + 1]; b++) {
             uint32_t j = m->bonds.to[b];
             if (map && map[j] < 0) continue;
+            w->bond_src[pos] = b;
             w->bond_to[pos++] = map ? (uint32_t)map[j] : j;
         }
     }
     w->bond_start[n] = (uint32_t)pos;
-    free(map);
     return 0;
 oom:
     ms_error_set(err, "out of memory renumbering bonds");
@@ -184,10 +245,13 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     w.view.get_atom = view_get_atom;
     w.view.get_bonds = view_get_bonds;
     w.view.remarks = m->remarks;
+    w.view.get_bond_info = view_get_bond_info;
+    w.view.count_terms = view_count_terms;
+    w.view.get_term = view_get_term;
     float *buf = NULL;
     long written = 0;
     ms_ofile *out = NULL;
-    if (view_build_bonds(&w, n, err)) goto fail_view;
+    if (view_build_map(&w, n, err) || view_build_bonds(&w, n, err)) goto fail_view;
     if (o->atoms && !(buf = ms_alloc_array(3 * n, sizeof *buf))) {
         ms_error_set(err, "out of memory");
         goto fail_view;
@@ -216,14 +280,12 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     out = NULL;
     if (failed) goto fail_view;
     free(buf);
-    free(w.bond_start);
-    free(w.bond_to);
+    view_free(&w);
     return written;
 fail_view:
     ms_ofile_abort(out);
     free(buf);
-    free(w.bond_start);
-    free(w.bond_to);
+    view_free(&w);
     return -1;
 }
 

@@ -25,6 +25,11 @@ int ms_bond_search(const ms_molecule *m, const float *pos, uint32_t **pairs, siz
 int ms_bonds_build(ms_molecule *m, const uint32_t *pairs, size_t npairs, const float *order,
                    ms_error *err);
 
+/* Give the built bond table types: pair k (atoms pairs[2k], pairs[2k+1]) gets types[k]
+ * (MS_STR_NONE leaves it as it is); bonds without a type read "". */
+int ms_bonds_set_types(ms_molecule *m, const uint32_t *pairs, const ms_str *types,
+                       size_t npairs, ms_error *err);
+
 /* Residues (consecutive atoms sharing resid, insertion, chain and segname), fragments
  * (connected components), protein/nucleic/backbone/water flags. Needs bonds. */
 int ms_analysis_classify(ms_molecule *m, ms_error *err);

@@ -429,3 +429,39 @@ oom:
     ms_error_set(err, "out of memory building the bond table (%zu bonds)", npairs);
     return -1;
 }
+
+/* Where atom j is among atom i's partners (rows are sorted), or -1. */
+static long bond_slot(const ms_bonds *b, uint32_t i, uint32_t j)
+{
+    uint32_t lo = b->start[i], hi = b->start[i + 1];
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (b->to[mid] < j) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo < b->start[i + 1] && b->to[lo] == j ? (long)lo : -1;
+}
+
+int ms_bonds_set_types(ms_molecule *m, const uint32_t *pairs, const ms_str *types,
+                       size_t npairs, ms_error *err)
+{
+    ms_bonds *b = &m->bonds;
+    size_t n = m->atoms.n, nb = m->has_bonds ? b->start[n] : 0;
+    if (!nb) return 0;
+    if (!b->type) {
+        ms_str blank = ms_strtab_intern_cstr(m->strings, "");
+        if (blank == MS_STR_NONE || !(b->type = ms_alloc_array(nb, sizeof *b->type))) {
+            ms_error_set(err, "out of memory for bond types");
+            return -1;
+        }
+        for (size_t k = 0; k < nb; k++) b->type[k] = blank;
+    }
+    for (size_t k = 0; k < npairs; k++) {
+        uint32_t i = pairs[2 * k], j = pairs[2 * k + 1];
+        if (types[k] == MS_STR_NONE || i >= n || j >= n) continue;
+        long a = bond_slot(b, i, j), c = bond_slot(b, j, i);
+        if (a >= 0) b->type[a] = types[k];
+        if (c >= 0) b->type[c] = types[k];
+    }
+    return 0;
+}

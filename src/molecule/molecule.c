@@ -72,6 +72,7 @@ void ms_mol_free_contents(ms_molecule *m)
 {
     for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) free(*atom_field(&m->atoms, k));
     free_bonds(&m->bonds);
+    for (int k = 0; k < MS_TERM_KINDS; k++) ms_terms_clear(&m->terms[k]);
     for (size_t f = 0; f < m->nframes; f++) {
         free(m->frames[f].pos);
         free(m->frames[f].vel);
@@ -211,6 +212,52 @@ int ms_mol_set_bonds(ms_molecule *m, size_t npairs, const uint32_t *pairs, const
     return ms_analysis_classify(m, err);
 }
 
+int ms_terms_add(ms_molecule *m, int kind, const uint32_t *atoms, ms_str type, ms_error *err)
+{
+    ms_terms *t = &m->terms[kind];
+    size_t w = ms_term_width(kind);
+    for (size_t k = 0; k < w; k++)
+        if (atoms[k] >= m->atoms.n) {
+            ms_error_set(err, "a term names atom %lu, but there are %zu atoms",
+                         (unsigned long)atoms[k], m->atoms.n);
+            return -1;
+        }
+    if (t->n == t->cap) { /* atoms and types grow together, so their capacities agree */
+        size_t cap = t->cap ? 2 * t->cap : 64;
+        uint32_t *at = realloc(t->atoms, cap * w * sizeof *at);
+        if (!at) goto oom;
+        t->atoms = at;
+        if (t->type) {
+            ms_str *ty = realloc(t->type, cap * sizeof *ty);
+            if (!ty) goto oom;
+            t->type = ty;
+        }
+        t->cap = cap;
+    }
+    ms_str blank = MS_STR_NONE;
+    if ((type != MS_STR_NONE || t->type) &&
+        (blank = ms_strtab_intern_cstr(m->strings, "")) == MS_STR_NONE)
+        goto oom;
+    if (type != MS_STR_NONE && !t->type) {
+        if (!(t->type = ms_alloc_array(t->cap, sizeof *t->type))) goto oom;
+        for (size_t k = 0; k < t->n; k++) t->type[k] = blank;
+    }
+    if (t->type) t->type[t->n] = type != MS_STR_NONE ? type : blank;
+    memcpy(t->atoms + w * t->n, atoms, w * sizeof *atoms);
+    t->n++;
+    return 0;
+oom:
+    ms_error_set(err, "out of memory for %zu terms", t->n + 1);
+    return -1;
+}
+
+void ms_terms_clear(ms_terms *t)
+{
+    free(t->atoms);
+    free(t->type);
+    memset(t, 0, sizeof *t);
+}
+
 size_t ms_mol_structure_bytes(const ms_molecule *m)
 {
     size_t per_atom = 0;
@@ -223,6 +270,11 @@ size_t ms_mol_structure_bytes(const ms_molecule *m)
         if (m->bonds.type) bytes += nb * sizeof(ms_str);
     }
     bytes += (m->nresidues + 1) * sizeof(uint32_t);
+    for (int k = 0; k < MS_TERM_KINDS; k++) {
+        const ms_terms *t = &m->terms[k];
+        bytes += t->cap * ms_term_width(k) * sizeof(uint32_t);
+        if (t->type) bytes += t->cap * sizeof(ms_str);
+    }
     return bytes;
 }
 

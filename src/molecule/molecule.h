@@ -51,6 +51,21 @@ typedef struct ms_bonds {
     ms_str *type;      /* parallel to `to`, NULL when no bond has a type */
 } ms_bonds;
 
+/* Angles, dihedrals and impropers as a file lists them (PSF, AMBER prmtop, LAMMPS data) or as
+ * topotools makes them: width atom indices a term (3 for an angle, 4 for the others), in
+ * the order given, and a type name a term when some term has one. Bonds cannot tell a
+ * molecule's angles (VMD keeps them apart too), so nothing derives these from bonds. */
+enum { MS_TERM_ANGLE, MS_TERM_DIHEDRAL, MS_TERM_IMPROPER, MS_TERM_KINDS };
+
+typedef struct ms_terms {
+    size_t n, cap;
+    uint32_t *atoms;   /* width * n atom indices */
+    ms_str *type;      /* n types, NULL when no term has a type */
+} ms_terms;
+
+/* Atoms a term of this kind names: 3 for an angle, 4 for a dihedral or an improper. */
+static inline size_t ms_term_width(int kind) { return kind == MS_TERM_ANGLE ? 3 : 4; }
+
 /* One frame: coordinates (and velocities when the file had them), cell and time. */
 typedef struct ms_frame {
     float *pos;        /* 3 * natoms, x y z interleaved */
@@ -73,6 +88,7 @@ typedef struct ms_molecule {
     ms_atoms atoms;
     ms_bonds bonds;
     int has_bonds;            /* bonds.start allocated */
+    ms_terms terms[MS_TERM_KINDS]; /* angles, dihedrals, impropers (MS_TERM_*) */
     int ss_known;             /* secondary structure came from the file or was computed */
     size_t nresidues;         /* residue numbers are 0..nresidues-1, contiguous runs */
     uint32_t *res_start;      /* nresidues + 1: first atom of each residue */
@@ -140,6 +156,12 @@ int ms_cell_vectors(const float cell[6], double v[3][3]);
  * self-bonds are dropped). order may be NULL. Recomputes fragments and classification. */
 int ms_mol_set_bonds(ms_molecule *m, size_t npairs, const uint32_t *pairs, const float *order,
                      ms_error *err);
+
+/* Append one term of `kind` (ms_term_width(kind) atom indices, each < natoms) with type
+ * `type` (MS_STR_NONE: untyped; the first typed term gives the earlier ones type ""). */
+int ms_terms_add(ms_molecule *m, int kind, const uint32_t *atoms, ms_str type, ms_error *err);
+/* Drop every term of `kind`. */
+void ms_terms_clear(ms_terms *t);
 
 /* Per-atom strings. */
 static inline const char *ms_mol_str(const ms_molecule *m, ms_str id)

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char mol_magic[8] = "MSMOL01";
+static const char mol_magic[8] = "MSMOL02";
 static const char frm_magic[8] = "MSFRM01";
 #define ENDIAN_MARK 0x01020304u
 #define NO_STRING UINT64_MAX
@@ -15,7 +15,8 @@ static const char frm_magic[8] = "MSFRM01";
 enum {
     HF_BONDS = 1 << 0, HF_ORDER = 1 << 1, HF_BTYPE = 1 << 2, HF_SS_KNOWN = 1 << 3,
     HF_AUTOBONDS = 1 << 4, HF_RES_START = 1 << 5, HF_POLYFRAG = 1 << 6, HF_ACTIVE = 1 << 7,
-    HF_DISPLAYED = 1 << 8, HF_FIXED = 1 << 9, HF_USER0 = 1 << 10 /* .. HF_USER0 << 3 */
+    HF_DISPLAYED = 1 << 8, HF_FIXED = 1 << 9, HF_USER0 = 1 << 10, /* .. HF_USER0 << 3 */
+    HF_TTYPE0 = 1 << 14 /* .. HF_TTYPE0 << 2: terms of kind k have types */
 };
 
 void ms_molser_free(ms_molser *s)
@@ -175,6 +176,12 @@ static void structure_blocks(ms_molecule *m, uint64_t flags, uint64_t nb, blist 
         add_block(b, m->pfrag, n * sizeof *m->pfrag);
         add_block(b, m->nfrag, n * sizeof *m->nfrag);
     }
+    for (int k = 0; k < MS_TERM_KINDS; k++) {
+        const ms_terms *t = &m->terms[k];
+        if (!t->n) continue;
+        add_block(b, t->atoms, t->n * ms_term_width(k) * sizeof *t->atoms);
+        if (flags & ((uint64_t)HF_TTYPE0 << k)) add_block(b, t->type, t->n * sizeof *t->type);
+    }
 }
 
 /* ---------------------------------------------------------------- the structure */
@@ -194,6 +201,8 @@ static uint64_t structure_flags(const ms_molecule *m)
     if (m->fixed) f |= HF_FIXED;
     for (int k = 0; k < 4; k++)
         if (m->user[k]) f |= (uint64_t)HF_USER0 << k;
+    for (int k = 0; k < MS_TERM_KINDS; k++)
+        if (m->terms[k].n && m->terms[k].type) f |= (uint64_t)HF_TTYPE0 << k;
     return f;
 }
 
@@ -217,6 +226,7 @@ int ms_molser_pack(const ms_molecule *m, ms_molser *out, ms_error *err)
     put_u64(&w, m->nresidues);
     put_u64(&w, m->nfragments);
     put_u64(&w, flags);
+    for (int k = 0; k < MS_TERM_KINDS; k++) put_u64(&w, m->terms[k].n);
     put_view(&w, m);
     put_str(&w, m->name);
     put_str(&w, m->remarks);
@@ -273,7 +283,8 @@ static int unpack_text(rbuf *r, ms_molecule *m, ms_error *err)
 }
 
 /* Allocate every array the header announces. */
-static int unpack_alloc(ms_molecule *m, uint64_t n, uint64_t nb, uint64_t flags, ms_error *err)
+static int unpack_alloc(ms_molecule *m, uint64_t n, uint64_t nb, uint64_t flags,
+                        const uint64_t *nterms, ms_error *err)
 {
     if (n && ms_mol_reserve_atoms(m, (size_t)n, err)) return -1;
     m->atoms.n = (size_t)n;
@@ -294,12 +305,21 @@ static int unpack_alloc(ms_molecule *m, uint64_t n, uint64_t nb, uint64_t flags,
         oom |= !(m->pfrag = ms_alloc_array((size_t)n, sizeof(int32_t)));
         oom |= !(m->nfrag = ms_alloc_array((size_t)n, sizeof(int32_t)));
     }
+    for (int k = 0; k < MS_TERM_KINDS; k++) {
+        ms_terms *t = &m->terms[k];
+        if (!nterms[k]) continue;
+        t->n = t->cap = (size_t)nterms[k];
+        oom |= !(t->atoms = ms_alloc_array(t->n * ms_term_width(k), sizeof *t->atoms));
+        if (flags & ((uint64_t)HF_TTYPE0 << k))
+            oom |= !(t->type = ms_alloc_array(t->n, sizeof *t->type));
+    }
     if (oom) ms_error_set(err, "out of memory for a molecule of %llu atoms", (unsigned long long)n);
     return oom ? -1 : 0;
 }
 
 /* Bytes of the blocks that follow a structure header with these counts. */
-static uint64_t structure_bytes(uint64_t n, uint64_t nb, uint64_t nres, uint64_t flags)
+static uint64_t structure_bytes(uint64_t n, uint64_t nb, uint64_t nres, uint64_t flags,
+                                const uint64_t *nterms)
 {
     ms_atoms none = {0};
     uint64_t per_atom = 0, total;
@@ -314,6 +334,8 @@ static uint64_t structure_bytes(uint64_t n, uint64_t nb, uint64_t nres, uint64_t
     if (flags & HF_BONDS)
         total += 4 * (n + 1) + 4 * nb * (1 + !!(flags & HF_ORDER) + !!(flags & HF_BTYPE));
     if (flags & HF_RES_START) total += 4 * (nres + 1);
+    for (int k = 0; k < MS_TERM_KINDS; k++)
+        total += nterms[k] * 4 * (ms_term_width(k) + !!(flags & ((uint64_t)HF_TTYPE0 << k)));
     return total;
 }
 
@@ -325,10 +347,15 @@ static ms_molecule *unpack_limited(const void *head, size_t len, uint64_t limit,
     rbuf r = {.p = head, .len = len};
     if (check_magic(&r, mol_magic, "molecule", err)) return NULL;
     uint64_t n = get_u64(&r), nb = get_u64(&r), nres = get_u64(&r), nfrag = get_u64(&r);
-    uint64_t flags = get_u64(&r);
+    uint64_t flags = get_u64(&r), nterms[MS_TERM_KINDS];
+    int terms_ok = 1;
+    for (int k = 0; k < MS_TERM_KINDS; k++) {
+        nterms[k] = get_u64(&r);
+        terms_ok &= nterms[k] <= UINT32_MAX;
+    }
     if (r.bad || n > 0x7fffffffu || nb > UINT32_MAX || (nb && !(flags & HF_BONDS)) ||
-        nres > n || nfrag > n || (nres && !(flags & HF_RES_START)) ||
-        structure_bytes(n, nb, nres, flags) > limit) {
+        nres > n || nfrag > n || (nres && !(flags & HF_RES_START)) || !terms_ok ||
+        structure_bytes(n, nb, nres, flags, nterms) > limit) {
         ms_error_set(err, "damaged molecule header (counts)");
         return NULL;
     }
@@ -345,7 +372,7 @@ static ms_molecule *unpack_limited(const void *head, size_t len, uint64_t limit,
     m->active = (flags & HF_ACTIVE) != 0;
     m->displayed = (flags & HF_DISPLAYED) != 0;
     m->fixed = (flags & HF_FIXED) != 0;
-    if (unpack_text(&r, m, err) || unpack_alloc(m, n, nb, flags, err)) goto fail;
+    if (unpack_text(&r, m, err) || unpack_alloc(m, n, nb, flags, nterms, err)) goto fail;
     if (r.pos != r.len) {
         ms_error_set(err, "damaged molecule header (%zu bytes too many)", r.len - r.pos);
         goto fail;
@@ -430,9 +457,26 @@ bad:
     return -1;
 }
 
+static int check_terms(const ms_molecule *m, ms_error *err)
+{
+    uint32_t ns = ms_strtab_count(m->strings);
+    for (int k = 0; k < MS_TERM_KINDS; k++) {
+        const ms_terms *t = &m->terms[k];
+        for (size_t q = 0; q < t->n * ms_term_width(k); q++)
+            if (t->atoms[q] >= m->atoms.n) goto bad;
+        for (size_t q = 0; t->type && q < t->n; q++)
+            if (t->type[q] >= ns) goto bad;
+    }
+    return 0;
+bad:
+    ms_error_set(err, "damaged angle, dihedral or improper table");
+    return -1;
+}
+
 int ms_molser_finish(ms_molecule *m, const ms_molser *s, ms_error *err)
 {
-    if (check_atoms(m, err) || check_residues(m, err) || check_bonds(m, s->nbonds, err))
+    if (check_atoms(m, err) || check_residues(m, err) || check_bonds(m, s->nbonds, err) ||
+        check_terms(m, err))
         return -1;
     m->frame = m->nframes ? (int)m->nframes - 1 : -1;
     return 0;

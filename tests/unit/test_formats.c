@@ -494,6 +494,69 @@ static ms_molecule *round_trip(const ms_molecule *m, const char *ext, ms_error *
     return r;
 }
 
+/* A PSF with every connectivity section: five atoms in a chain. */
+static const char psf_terms_text[] =
+    "PSF\n\n       1 !NTITLE\n REMARKS terms\n\n       5 !NATOM\n"
+    "       1 A    1    ALA  C1   C1     0.000000       12.0110           0\n"
+    "       2 A    1    ALA  C2   C1     0.000000       12.0110           0\n"
+    "       3 A    1    ALA  C3   C1     0.000000       12.0110           0\n"
+    "       4 A    1    ALA  C4   C1     0.000000       12.0110           0\n"
+    "       5 A    1    ALA  C5   C1     0.000000       12.0110           0\n\n"
+    "       4 !NBOND: bonds\n       1       2       2       3       3       4       4       5\n\n"
+    "       3 !NTHETA: angles\n       1       2       3       2       3       4       3       4"
+    "       5\n\n"
+    "       2 !NPHI: dihedrals\n       1       2       3       4       2       3       4       5\n\n"
+    "       1 !NIMPHI: impropers\n       3       1       2       4\n\n"
+    "       0 !NDON: donors\n\n\n";
+
+static int terms_are(const ms_molecule *m, int kind, size_t n, const uint32_t *want)
+{
+    const ms_terms *t = &m->terms[kind];
+    return t->n == n && !memcmp(t->atoms, want, n * ms_term_width(kind) * sizeof *want);
+}
+
+static void test_psf_terms(void)
+{
+    t_suite = "psf";
+    ms_error err = {{0}};
+    ms_molecule *m = load(write_text("psf", psf_terms_text), &err);
+    if (!t_ok(m != NULL, "load a PSF with angles (%s)", err.msg)) return;
+    static const uint32_t ang[] = {0, 1, 2, 1, 2, 3, 2, 3, 4}, dih[] = {0, 1, 2, 3, 1, 2, 3, 4},
+                          imp[] = {2, 0, 1, 3};
+    t_ok(nbonds(m) == 4, "4 bonds");
+    t_ok(terms_are(m, MS_TERM_ANGLE, 3, ang), "3 angles, as listed");
+    t_ok(terms_are(m, MS_TERM_DIHEDRAL, 2, dih), "2 dihedrals, as listed");
+    t_ok(terms_are(m, MS_TERM_IMPROPER, 1, imp), "1 improper, as listed");
+    ms_molecule *r = round_trip(m, "psf", &err);
+    t_ok(r && terms_are(r, MS_TERM_ANGLE, 3, ang) && terms_are(r, MS_TERM_DIHEDRAL, 2, dih) &&
+             terms_are(r, MS_TERM_IMPROPER, 1, imp),
+         "angles, dihedrals and impropers written and read back (%s)", r ? "" : err.msg);
+    ms_mol_free(r);
+    /* A selection of atoms 1-4 keeps the terms wholly inside it, renumbered. */
+    static const uint32_t sel[] = {1, 2, 3, 4}, ang2[] = {0, 1, 2, 1, 2, 3}, dih2[] = {0, 1, 2, 3};
+    const char *dir = getenv("MS_TEST_OUT");
+    char out[4096];
+    snprintf(out, sizeof out, "%s/terms_%ld.psf", dir ? dir : "/tmp", (long)getpid());
+    ms_write_opts wo;
+    ms_write_opts_default(&wo);
+    wo.atoms = sel;
+    wo.natoms = 4;
+    r = ms_write_file(&reg, m, out, &wo, &err) < 0 ? NULL : load(out, &err);
+    unlink(out);
+    t_ok(r && terms_are(r, MS_TERM_ANGLE, 2, ang2) && terms_are(r, MS_TERM_DIHEDRAL, 1, dih2) &&
+             r->terms[MS_TERM_IMPROPER].n == 0,
+         "a selection writes the terms inside it, renumbered (%s)", r ? "" : err.msg);
+    ms_mol_free(r);
+    ms_mol_free(m);
+    char bad[sizeof psf_terms_text + 16];
+    snprintf(bad, sizeof bad, "%s", psf_terms_text);
+    memcpy(strstr(bad, "       3       4       5\n\n       2 !NPHI") + 16, "       9", 8);
+    m = load(write_text("psf", bad), &err);
+    t_ok(!m && strstr(err.msg, "angle names atom 9, but there are 5 atoms"),
+         "an angle out of range is refused: %s", err.msg);
+    ms_mol_free(m);
+}
+
 static void test_round_trips(void)
 {
     t_suite = "roundtrip";
@@ -553,6 +616,7 @@ int main(void)
     test_psf_helix();
     test_psf_variants();
     test_psf_errors();
+    test_psf_terms();
     test_dcd_variants(xyz);
     test_dcd_mdanalysis(xyz);
     test_dcd_errors();

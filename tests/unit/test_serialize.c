@@ -66,6 +66,12 @@ static const char *difference(ms_molecule *a, ms_molecule *b)
         return "bond orders";
     if (!a->bonds.type != !b->bonds.type || !same_bytes(a->bonds.type, b->bonds.type, nb * 4))
         return "bond types";
+    for (int k = 0; k < MS_TERM_KINDS; k++) {
+        const ms_terms *x = &a->terms[k], *y = &b->terms[k];
+        if (x->n != y->n || !same_bytes(x->atoms, y->atoms, x->n * ms_term_width(k) * 4) ||
+            !x->type != !y->type || !same_bytes(x->type, y->type, x->n * 4))
+            return "angles, dihedrals or impropers";
+    }
     if (a->nresidues != b->nresidues || a->nfragments != b->nfragments ||
         !same_bytes(a->res_start, b->res_start, (a->nresidues + 1) * 4))
         return "residues or fragments";
@@ -129,6 +135,13 @@ static ms_molecule *rich_1tii(ms_error *err)
         m->bonds.order[k] = 1.0f + (float)(k % 3);
         m->bonds.type[k] = k % 5 ? 0 : ar;
     }
+    /* Angles untyped, dihedrals typed, no impropers. */
+    for (uint32_t i = 0; i + 3 < 200; i++) {
+        uint32_t at[4] = {i, i + 1, i + 2, i + 3};
+        if (ms_terms_add(m, MS_TERM_ANGLE, at, MS_STR_NONE, err) ||
+            ms_terms_add(m, MS_TERM_DIHEDRAL, at, i % 2 ? ar : MS_STR_NONE, err))
+            return NULL;
+    }
     m->center[1] = 3.5f;
     m->scale = 0.02f;
     m->rotate[1] = 0.5f;
@@ -157,6 +170,12 @@ static void test_round_trip(void)
         t_ok(c->frames[2].vel && !c->frames[1].vel && c->frames[2].time == 5.0,
              "velocities only where they were, times kept");
         t_ok(!strcmp(ms_mol_str(c, c->bonds.type[0]), "ar"), "bond types name the same strings");
+        t_ok(c->terms[MS_TERM_ANGLE].n == 197 && !c->terms[MS_TERM_ANGLE].type &&
+                 c->terms[MS_TERM_DIHEDRAL].n == 197 &&
+                 !strcmp(ms_mol_str(c, c->terms[MS_TERM_DIHEDRAL].type[1]), "ar") &&
+                 !strcmp(ms_mol_str(c, c->terms[MS_TERM_DIHEDRAL].type[0]), "") &&
+                 c->terms[MS_TERM_IMPROPER].n == 0,
+             "197 angles, 197 typed dihedrals, no impropers");
         ms_mol_free(c);
     }
     free(buf);
