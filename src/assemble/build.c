@@ -90,7 +90,9 @@ int ms_world_build_scene(ms_world *w, ms_scene *s, ms_error *err)
         for (size_t k = 0; k < MS_COUNTOF(sources); k++)
             if (sources[k](w, m, s, model, err)) goto fail;
     }
-    if (add_decorations(w, s, err) == 0) return 0;
+    if (ms_labels_to_scene(&w->labels, w->mols, w->colors, w->materials, s, err) == 0 &&
+        add_decorations(w, s, err) == 0)
+        return 0;
 fail:
     ms_scene_free(s);
     return -1;

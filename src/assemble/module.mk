@@ -5,4 +5,5 @@
 src_libmscore_la_SOURCES += \
 	src/assemble/world.h src/assemble/world.c src/assemble/build.c \
 	src/assemble/view.h src/assemble/view.c \
+	src/assemble/labels.h src/assemble/labels.c \
 	src/assemble/devices.h src/assemble/devices.c

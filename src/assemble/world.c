@@ -24,6 +24,7 @@ static void free_ugraphics(void *p)
 static void on_mol_event(void *ud, ms_mol_event ev, ms_molecule *m, const char *arg)
 {
     ms_world *w = ud;
+    if (ev == MS_EV_MOL_DELETE) ms_labels_forget_molecule(&w->labels, m->id);
     if (ev != MS_EV_MOL_NEW && ev != MS_EV_STRUCTURE) return;
     ms_error err = {{0}};
     if (ms_colors_add_molecule(w->colors, m, &err))
@@ -36,6 +37,7 @@ int ms_world_init(ms_world *w, ms_molset *mols, ms_error *err)
     w->mols = mols;
     w->width = w->height = 512;
     w->ugraphics_slot = -1;
+    ms_labels_init(&w->labels);
     if (!(w->colors = ms_colors_new(err)) || !(w->materials = ms_materials_new(err)))
         goto fail;
     w->view = ms_view_new();
@@ -59,6 +61,7 @@ fail:
 void ms_world_free(ms_world *w)
 {
     ms_rep_state_free(w->reps);
+    ms_labels_free(&w->labels);
     ms_renderers_free(w->renderers);
     ms_view_free(w->view);
     ms_materials_free(w->materials);

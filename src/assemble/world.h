@@ -14,6 +14,7 @@
 #ifndef MS_WORLD_H
 #define MS_WORLD_H
 
+#include "assemble/labels.h"
 #include "molecule/molset.h"
 #include "rep/rep.h"
 #include "scene/color.h"
@@ -29,6 +30,7 @@ typedef struct ms_world {
     struct ms_renderers *renderers;    /* devices.h: every device's settings */
     ms_rep_state *reps;            /* the reps of every molecule, current settings */
     int ugraphics_slot;            /* molecule attachment of user graphics */
+    ms_labels labels;              /* VMD's labels (labels.h) */
     int width, height;             /* display size in pixels (VMD's text mode: 512 x 512) */
     unsigned long scene_version;   /* bumped by whatever may change the picture: molecule
                                     * events, view changes, scene-changing commands (the

@@ -13,6 +13,8 @@
  *   mol selupdate|colupdate repid molid ?on|off?
  *   mol repname molid repid             mol repindex molid name      (-1 when none)
  *   mol default color|style|selection|material ?value?
+ *   mol clipplane center|normal|color clipid repid molid ?{x y z}?
+ *   mol clipplane status clipid repid molid ?0|1|2?     mol clipplane num      (6)
  *   mol repinfo molid repid ?kind?      (molscope: what a rep draws, for tests and scripts)
  *   molinfo <molid> get {numreps "rep i" "selection i" "color i" "material i"}
  *
@@ -283,6 +285,77 @@ static int m_periodic(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     return rc ? ms_cmd_error(interp, "%s: %s", cmd, err.msg) : TCL_OK;
 }
 
+/* ---------------------------------------------------------------- clip planes */
+
+/* The plane of "<clipid> <repid> <molid>" at objv[3..5]. */
+static ms_clip *clip_target(ms_app *app, Tcl_Interp *interp, Tcl_Obj *const objv[])
+{
+    const char *cmd = ms_args_where();
+    int k;
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[5], cmd);
+    if (!m || ms_arg_int(interp, objv[3], "clipid", 0, MS_SCENE_CLIPS - 1, &k)) return NULL;
+    ms_rep *r = get_rep(app, interp, m, objv[4], cmd, NULL);
+    return r ? &r->clip[k] : NULL;
+}
+
+static Tcl_Obj *vec_obj(const float v[3])
+{
+    Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    for (int i = 0; i < 3; i++) Tcl_ListObjAppendElement(NULL, l, Tcl_NewDoubleObj(v[i]));
+    return l;
+}
+
+/* mol clipplane center|normal|color <clipid> <repid> <molid> ?{x y z}? */
+static int clip_vector(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    ms_clip *c = clip_target(app, interp, objv);
+    if (!c) return TCL_ERROR;
+    const char *w = Tcl_GetString(objv[2]);
+    float *v = ms_word_eq(w, "center") ? c->center : ms_word_eq(w, "normal") ? c->normal : c->color;
+    if (objc == 6) {
+        Tcl_SetObjResult(interp, vec_obj(v));
+        return TCL_OK;
+    }
+    float in[3];
+    if (ms_arg_vec3(interp, objv[6], w, in)) return TCL_ERROR;
+    if (v == c->normal && in[0] == 0 && in[1] == 0 && in[2] == 0)
+        return ms_cmd_error(interp, "%s: the normal {0 0 0} has no direction", ms_args_where());
+    if (v == c->color)
+        for (int i = 0; i < 3; i++) in[i] = MS_MIN(1.0f, MS_MAX(0.0f, in[i]));
+    memcpy(v, in, sizeof in);
+    return TCL_OK;
+}
+
+/* mol clipplane status <clipid> <repid> <molid> ?0|1|2? */
+static int clip_status(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    ms_clip *c = clip_target(app, interp, objv);
+    if (!c) return TCL_ERROR;
+    if (objc == 6) {
+        Tcl_SetObjResult(interp, Tcl_NewIntObj(c->mode));
+        return TCL_OK;
+    }
+    return ms_arg_int(interp, objv[6], "status", MS_CLIP_OFF, MS_CLIP_SOLID, &c->mode);
+}
+
+static int clip_num(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    Tcl_SetObjResult(interp, Tcl_NewIntObj(MS_SCENE_CLIPS));
+    return TCL_OK;
+}
+
+static int m_clipplane(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const ms_subcmd table[] = {
+        {"center", clip_vector, 3, 4, "<clipid> <repid> <molid> ?{x y z}?"},
+        {"normal", clip_vector, 3, 4, "<clipid> <repid> <molid> ?{x y z}?"},
+        {"color", clip_vector, 3, 4, "<clipid> <repid> <molid> ?{r g b}?"},
+        {"status", clip_status, 3, 4, "<clipid> <repid> <molid> ?0|1|2?"},
+        {"num", clip_num, 0, 0, ""},
+        {NULL, NULL, 0, 0, NULL}};
+    return ms_args_dispatch(app, interp, objc, objv, 2, table, NULL, "mol clipplane");
+}
+
 /* ---------------------------------------------------------------- names */
 
 static int m_repname(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
@@ -464,6 +537,7 @@ static const ms_subcmd rep_table[] = {
     {"repindex", m_repindex, 2, 2, "<molid> <name>"},
     {"showperiodic", m_periodic, 2, 3, "<molid> <repid> ?<flags of xyzXYZn>?"},
     {"numperiodic", m_periodic, 2, 3, "<molid> <repid> ?<n>?"},
+    {"clipplane", m_clipplane, 1, 5, "center|normal|color|status|num ?<clipid> <repid> <molid> ?<value>??"},
     {"repinfo", m_repinfo, 2, 3,
      "<molid> <repid> ?spheres|cylinders|lines|points|vertices|triangles?"},
     {NULL, NULL, 0, 0, NULL}};

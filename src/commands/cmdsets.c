@@ -24,6 +24,8 @@ const ms_app_cmdset_fn ms_command_sets[] = {
     ms_cmd_trans_register,
     ms_cmd_graphics_register,
     ms_cmd_render_register,
+    ms_cmd_label_register,
+    ms_cmd_state_register,
     ms_cmd_rep_register,
     ms_cmd_vector_register,
     ms_cmd_measure_register,

@@ -16,4 +16,5 @@ src_libmscore_la_SOURCES += \
 	src/commands/scenecmds.h src/commands/cmd_scene.c src/commands/cmd_color.c \
 	src/commands/cmd_material.c src/commands/cmd_display.c src/commands/cmd_trans.c \
 	src/commands/cmd_graphics.c src/commands/cmd_render.c src/commands/cmd_rep.c \
-	src/commands/cmd_live.c
+	src/commands/cmd_live.c src/commands/cmd_label.c \
+	src/commands/cmd_state.c

@@ -16,6 +16,10 @@ void ms_cmd_graphics_register(ms_app *app);
 /* display live (cmd_live.c): the live view in a browser (live/live.h). */
 void ms_cmd_live_register(ms_app *app);
 void ms_cmd_render_register(ms_app *app);
+/* label (cmd_label.c): VMD's labels (assemble/labels.h). */
+void ms_cmd_label_register(ms_app *app);
+/* save_state (cmd_state.c): the session as a VMD state script. */
+void ms_cmd_state_register(ms_app *app);
 
 /* VMD's "%f" text for a number, as its get commands return them. */
 Tcl_Obj *ms_cmd_float_obj(double v);

@@ -390,6 +390,23 @@ static int kind_program(int k)
     return progs[k];
 }
 
+/* The item's clip planes in eye space. */
+static void clip_uniforms(frame *fr, const glitem *gi, const ms_glr_prog *p)
+{
+    const ms_glfn *f = &fr->g->f;
+    const ms_scene_item *it = gi->it;
+    float eq[MS_SCENE_CLIPS][4], col[MS_SCENE_CLIPS][4];
+    for (int i = 0; i < it->nclip; i++) {
+        ms_plane_map(it->clip[i].eq, fr->view, eq[i]);
+        memcpy(col[i], it->clip[i].color, 3 * sizeof(float));
+        col[i][3] = (float)it->clip[i].solid;
+    }
+    f->Uniform1i(p->u[MS_U_NCLIP], it->nclip);
+    if (!it->nclip) return;
+    f->Uniform4fv(p->u[MS_U_CLIP], it->nclip, &eq[0][0]);
+    f->Uniform4fv(p->u[MS_U_CLIPCOL], it->nclip, &col[0][0]);
+}
+
 static void item_uniforms(frame *fr, const glitem *gi, int k, int pass)
 {
     const ms_glfn *f = &fr->g->f;
@@ -405,6 +422,7 @@ static void item_uniforms(frame *fr, const glitem *gi, int k, int pass)
     f->Uniform1i(p->u[MS_U_LIT], gi->it->dl->lit);
     f->Uniform1i(p->u[MS_U_PASS], pass);
     f->Uniform1i(p->u[MS_U_SQUARE], k == K_POINTS);
+    clip_uniforms(fr, gi, p);
 }
 
 /* Bind the arrays of kind k and draw them (n primitives, or n indices of a mesh). */

@@ -16,7 +16,8 @@ static const char *const uniform_names[MS_U_COUNT] = {
     [MS_U_LIT] = "u_lit", [MS_U_FOG] = "u_fog", [MS_U_FOGP] = "u_fogp", [MS_U_BG_TOP] = "u_bg_top",
     [MS_U_BG_BOT] = "u_bg_bot", [MS_U_PASS] = "u_pass", [MS_U_MV] = "u_mv",
     [MS_U_RSCALE] = "u_rscale", [MS_U_SQUARE] = "u_square", [MS_U_ACCUM] = "u_accum",
-    [MS_U_WSUM] = "u_wsum"};
+    [MS_U_WSUM] = "u_wsum", [MS_U_NCLIP] = "u_nclip", [MS_U_CLIP] = "u_clip",
+    [MS_U_CLIPCOL] = "u_clipcol"};
 
 static GLuint compile(ms_gl *g, GLenum type, const char *const src[2], const char *name,
                       ms_error *err)

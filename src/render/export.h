@@ -21,9 +21,15 @@ void ms_tess_sphere(const float c[3], float r, int res, ms_tri_cb cb, void *ud);
 void ms_tess_cone(const float base[3], const float apex[3], float rb, float ra, int res,
                   int caps, ms_tri_cb cb, void *ud);
 
+/* A triangle cut by the item's clip planes: the kept part, as triangles, to cb. */
+void ms_export_clip_tri(const ms_scene_item *it, const float p[9], const float n[9],
+                        ms_tri_cb cb, void *ud);
+
 /* Segments. */
 typedef void (*ms_seg_cb)(void *ud, const float a[3], const float b[3]);
 /* VMD's dashed line: dashes of MS_EXPORT_DASH with gaps of the same length. */
+/* Shorten the segment a-b to the part the item's clip planes keep; 0 when nothing is. */
+int ms_export_clip_seg(const ms_scene_item *it, float a[3], float b[3]);
 void ms_export_dashes(const float a[3], const float b[3], ms_seg_cb cb, void *ud);
 /* Strokes of a string written from anchor along +x with +y up (screen-aligned in VMD's
  * default view), capital height size * MS_EXPORT_TEXT_HEIGHT. */

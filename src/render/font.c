@@ -1,11 +1,11 @@
 /* font.c: molscope's own stroke font for text in exported scenes (VMD draws text as line
  * strokes the same way). Glyphs live on a grid 4 units wide with capitals 6 units tall;
  * each is a list of polylines, points written as two digits "xy" with y counted from 2 below
- * the baseline, polylines separated by '|'. Lower case letters are drawn as small capitals. */
+ * the baseline, polylines separated by '|'. Lower case letters have their own glyphs (x-height
+ * 4 units, descenders to 2 below the baseline), so text keeps its case. */
 #include "config.h"
 #include "render/export.h"
 
-#include <ctype.h>
 #include <math.h>
 #include <string.h>
 
@@ -32,9 +32,16 @@ static const char *const glyphs[95] = {
     /* Z */ "08480242",
     /* [ */ "38181232", /* \ */ "0842", /* ] */ "18383212", /* ^ */ "162836", /* _ */ "0242",
     /* ` */ "1827",
-    /* a..z: drawn from the capitals */
-    "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "",
-    "", "", "", "",
+    /* a..z: x-height 4 units, descenders 2 below the baseline */
+    /* a */ "4642|4536160503123243", /* b */ "0802|0516364543321203",
+    /* c */ "4536160503123243", /* d */ "4842|4536160503123243", /* e */ "04444536160503123243",
+    /* f */ "22273848|1636", /* g */ "4641301001|4536160504133344", /* h */ "0802|0516364542",
+    /* i */ "2622|2827", /* j */ "26211001|2827", /* k */ "0802|4603|1442", /* l */ "18282332",
+    /* m */ "0602|05162522|25364542", /* n */ "0602|0516364542", /* o */ "163645433212030516",
+    /* p */ "0600|0516364543321203", /* q */ "4640|4536160503123243", /* r */ "0602|04152646",
+    /* s */ "45361605143443321203", /* t */ "28233242|1636", /* u */ "0603123243|4642",
+    /* v */ "062246", /* w */ "0612243246", /* x */ "0642|4602", /* y */ "0622|4610",
+    /* z */ "06464202",
     /* { */ "38272615242332", /* | */ "2228", /* } */ "18272635242312", /* ~ */ "15263546"};
 
 void ms_export_text(const char *s, const float anchor[3], float size, ms_seg_cb cb, void *ud)
@@ -43,11 +50,6 @@ void ms_export_text(const char *s, const float anchor[3], float size, ms_seg_cb 
     float x0 = anchor[0];
     for (; *s; s++, x0 += 6.0f * unit) {
         int ch = (unsigned char)*s;
-        float yscale = 1.0f;
-        if (islower(ch)) {
-            ch = toupper(ch);
-            yscale = 0.75f;
-        }
         if (ch < 32 || ch > 126) ch = '?';
         const char *g = glyphs[ch - 32];
         float prev[3];
@@ -60,7 +62,7 @@ void ms_export_text(const char *s, const float anchor[3], float size, ms_seg_cb 
             }
             if (!g[1]) break;
             float p[3] = {x0 + (float)(g[0] - '0') * unit,
-                          anchor[1] + (float)(g[1] - '2') * unit * yscale, anchor[2]};
+                          anchor[1] + (float)(g[1] - '2') * unit, anchor[2]};
             if (have_prev) cb(ud, prev, p);
             memcpy(prev, p, sizeof prev);
             have_prev = 1;

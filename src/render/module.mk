@@ -3,5 +3,6 @@
 # devices is src/assemble/devices.c.
 src_libmscore_la_SOURCES += \
 	src/render/render.h src/render/render.c \
-	src/render/export.h src/render/font.c src/render/tess.c src/render/numfmt.c \
+	src/render/export.h src/render/font.c src/render/tess.c src/render/clip.c \
+	src/render/numfmt.c \
 	src/render/tachyon.c src/render/pov3.c src/render/wavefront.c

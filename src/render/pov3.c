@@ -2,7 +2,7 @@
  * coordinates (POV-Ray is left-handed, so z is negated). Spheres, cylinders and cones are
  * native objects; a display list's triangle mesh becomes one mesh2 with per-vertex colours;
  * lines, points and text are thin unlit cylinders and spheres. Each display list's material
- * becomes a declared finish. */
+ * becomes a declared finish. A list cut by clip planes is a union clipped_by its planes. */
 #include "config.h"
 #include "render/export.h"
 #include "render/render.h"
@@ -242,6 +242,20 @@ static void finishes(FILE *f, const ms_scene *s)
     }
 }
 
+/* The planes that keep what is not cut: POV-Ray keeps the inside of a plane, n . p < d. */
+static void clipped_by(pov *w)
+{
+    fputs("  clipped_by {", w->f);
+    for (int i = 0; i < w->it->nclip; i++) {
+        const float *e = w->it->clip[i].eq;
+        float n[3] = {0.0f - e[0], 0.0f - e[1], 0.0f - e[2]};
+        fputs(" plane { ", w->f);
+        vec(w->f, n);
+        fprintf(w->f, ", %g }", e[3]);
+    }
+    fputs(" }\n}\n", w->f);
+}
+
 static int write_pov(const ms_scene *s, const char *path, ms_error *err)
 {
     ms_ofile *out;
@@ -258,9 +272,12 @@ static int write_pov(const ms_scene *s, const char *path, ms_error *err)
     for (size_t i = 0; i < s->nitems; i++) {
         w.it = &s->items[i];
         w.index = i;
+        int clip = w.it->nclip && ms_dl_count(w.it->dl);
+        if (clip) fputs("union {\n", f);
         solids(&w, w.it->dl, ms_item_scale(w.it));
         mesh(&w, w.it->dl);
         thin(&w, w.it->dl);
+        if (clip) clipped_by(&w);
     }
     return ms_ofile_commit(out, err);
 }

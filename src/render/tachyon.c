@@ -2,7 +2,8 @@
  * (Debian's tachyon 0.99b6 renders it). Tachyon is left-handed, so z is negated; spheres and
  * cylinders are native, triangle meshes and tessellated cones go out as VertexArray/TriMesh,
  * lines and points as thin cylinders and spheres, text as stroked cylinders. Every object
- * carries its own texture block, as VMD's files do. */
+ * carries its own texture block, as VMD's files do. A list cut by clip planes is written
+ * between Start_ClipGroup and End_ClipGroup, VMD's per-object clip groups. */
 #include "config.h"
 #include "render/export.h"
 #include "render/render.h"
@@ -388,6 +389,16 @@ static void lights_and_background(FILE *f, const ms_scene *s)
                 bg[0], bg[1], bg[2]);
 }
 
+/* Tachyon's clip group: a point p (its coordinates) is cut when n . p > d. */
+static void clip_group(FILE *f, const ms_scene_item *it)
+{
+    fprintf(f, "Start_ClipGroup\n  NumPlanes %d\n", it->nclip);
+    for (int i = 0; i < it->nclip; i++) {
+        const float *e = it->clip[i].eq;
+        fprintf(f, "  %g %g %g %g\n", 0.0f - e[0], 0.0f - e[1], e[2], e[3]);
+    }
+}
+
 static int write_tachyon(const ms_scene *s, const char *path, ms_error *err)
 {
     ms_ofile *out;
@@ -403,6 +414,7 @@ static int write_tachyon(const ms_scene *s, const char *path, ms_error *err)
         w.it = &s->items[i];
         const ms_displaylist *dl = w.it->dl;
         float scale = ms_item_scale(w.it);
+        if (w.it->nclip) clip_group(f, w.it);
         spheres(&w, dl, scale);
         cylinders(&w, dl, scale);
         cones(&w, dl, scale);
@@ -410,6 +422,7 @@ static int write_tachyon(const ms_scene *s, const char *path, ms_error *err)
         lines(&w, dl);
         points(&w, dl);
         texts(&w, dl);
+        if (w.it->nclip) fputs("End_ClipGroup\n", f);
     }
     fputs("End_Scene \n", f);
     free(w.p);

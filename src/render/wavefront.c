@@ -2,7 +2,8 @@
  * material library (file.obj and file.mtl), in world coordinates. Spheres, cylinders and
  * cones are tessellated; meshes keep their vertices and normals; lines, points and text are
  * OBJ lines and points. OBJ colours are per face, so each distinct (colour, material,
- * lighting) gets a material; a mesh face takes the average of its vertex colours. */
+ * lighting) gets a material; a mesh face takes the average of its vertex colours. OBJ has no
+ * clip planes: a list cut by clip planes has its triangles and lines cut (render/clip.c). */
 #include "config.h"
 #include "render/export.h"
 #include "render/render.h"
@@ -108,7 +109,7 @@ static void vertex(FILE *f, const float *p)
     fwrite(b, 1, (size_t)n, f);
 }
 
-static void tri(void *ud, const float p[9], const float n[9])
+static void tri_out(void *ud, const float p[9], const float n[9])
 {
     obj *o = ud;
     for (int k = 0; k < 3; k++) vertex(o->f, p + 3 * k);
@@ -120,9 +121,17 @@ static void tri(void *ud, const float p[9], const float n[9])
     o->nn += 3;
 }
 
-static void seg(void *ud, const float a[3], const float b[3])
+static void tri(void *ud, const float p[9], const float n[9])
 {
     obj *o = ud;
+    ms_export_clip_tri(o->it, p, n, tri_out, o);
+}
+
+static void seg(void *ud, const float a0[3], const float b0[3])
+{
+    obj *o = ud;
+    float a[3] = {a0[0], a0[1], a0[2]}, b[3] = {b0[0], b0[1], b0[2]};
+    if (!ms_export_clip_seg(o->it, a, b)) return;
     fprintf(o->f, "v %g %g %g\nv %g %g %g\nl %zu %zu\n", a[0], a[1], a[2], b[0], b[1], b[2],
             o->nv + 1, o->nv + 2);
     o->nv += 2;
@@ -169,10 +178,33 @@ static ms_rgba8 average(const ms_rgba8 *c, const uint32_t *v)
                       (uint8_t)((a + 1) / 3)};
 }
 
+/* A mesh that clip planes cut: each triangle on its own, cut. */
+static void clipped_mesh(obj *o, const ms_displaylist *dl)
+{
+    const ms_dl_mesh *ms = &dl->mesh;
+    const float *m = o->it->xform;
+    for (size_t t = 0; t < ms->ntris; t++) {
+        const uint32_t *v = ms->tri + 3 * t;
+        float p[9], n[9];
+        for (int k = 0; k < 3; k++) {
+            float q[3];
+            ms_mat4_point(m, ms->xyz + 3 * v[k], p + 3 * k);
+            for (int j = 0; j < 3; j++) q[j] = ms_normal_dequantize(ms->normal[3 * v[k] + j]);
+            ms_mat4_normal(m, q, n + 3 * k);
+        }
+        use(o, average(ms->color, v), dl->lit);
+        tri(o, p, n);
+    }
+}
+
 static void mesh(obj *o, const ms_displaylist *dl)
 {
     const ms_dl_mesh *ms = &dl->mesh;
     if (!ms->ntris || !ms->nverts) return;
+    if (o->it->nclip) {
+        clipped_mesh(o, dl);
+        return;
+    }
     const float *m = o->it->xform;
     for (size_t i = 0; i < ms->nverts; i++) {
         float p[3], n[3], q[3];
@@ -206,6 +238,7 @@ static void thin(obj *o, const ms_displaylist *dl)
     for (size_t i = 0; i < dl->points.n; i++) {
         float c[3];
         ms_mat4_point(m, dl->points.xyz + 3 * i, c);
+        if (ms_scene_clipped(o->it, c)) continue;
         use(o, dl->points.color[i], 0);
         fprintf(o->f, "v %g %g %g\np %zu\n", c[0], c[1], c[2], ++o->nv);
     }

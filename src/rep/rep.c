@@ -140,6 +140,8 @@ ms_rep *ms_rep_add(ms_rep_state *reps, ms_molecule *m, ms_error *err)
     r->shown = 1;
     r->range_auto = 1;
     r->npbc = 1;
+    for (int k = 0; k < MS_SCENE_CLIPS; k++)   /* VMD's: off, at the origin, facing +z, grey */
+        r->clip[k] = (ms_clip){{0, 0, 0}, {0, 0, 1}, {0.5f, 0.5f, 0.5f}, MS_CLIP_OFF};
     l->reps[l->n++] = r;
     return r;
 }
@@ -473,6 +475,7 @@ static int place_images(ms_rep_state *reps, const ms_molecule *m, const ms_rep *
         ms_mat4_mul(model, shift, a);
         ms_mat4_mul(a, dl->model, xform);
         rc = ms_scene_add(s, dl, xform, reps->materials, err);
+        if (!rc) ms_scene_clip_last(s, r->clip, MS_SCENE_CLIPS, model);
     }
     free(t);
     return rc;

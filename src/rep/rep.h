@@ -152,6 +152,7 @@ typedef struct ms_rep {
     int range_auto;             /* take the range from the data when colours are next made */
     int pbc;                    /* periodic images drawn: MS_PBC_* bits, 0 = none */
     int npbc;                   /* images in each direction drawn (numperiodic), 1.. */
+    ms_clip clip[MS_SCENE_CLIPS];  /* VMD's clip planes, in the molecule's coordinates */
     ms_rep_cache *cache;
 } ms_rep;
 

@@ -175,13 +175,13 @@ long rt_sources(const ms_scene *s, rt_source *src, ms_displaylist ***lists, size
     for (size_t i = 0; i < s->nitems; i++) {
         const ms_scene_item *it = &s->items[i];
         rt_source *o = &src[n++];
-        o->dl = it->dl, o->xform = it->xform, o->group = 0;
+        o->dl = it->dl, o->xform = it->xform, o->group = 0, o->item = it;
         rt_material_terms(&it->mat, it->dl->lit, &o->mat);
         if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
         ms_displaylist *extra = stroke_list(lists, nlists, cap);
         if (!extra || rt_strokes(it, extra)) return -1;
         o = &src[n++];
-        o->dl = extra, o->xform = identity, o->group = 0;
+        o->dl = extra, o->xform = identity, o->group = 0, o->item = it;
         rt_material_terms(&it->mat, 0, &o->mat);
     }
     return n;

@@ -46,6 +46,7 @@ typedef struct rt_source {
     const float *xform;
     rt_material mat;
     size_t group;
+    const ms_scene_item *item;  /* the scene item it comes from (its clip planes) */
 } rt_source;
 /* The sources of a scene into src (room for 2 * s->nitems); the stroke lists made for them
  * are appended to *lists (grown by ms_grow: *nlists, *cap), which the caller frees with

@@ -69,6 +69,7 @@ typedef struct rt_geom {
     const ms_rgba8 *endcol;
     const ms_dl_spheres *spheres;  /* the spheres the cylinders may take (world.c sets it) */
     uint8_t *taken;             /* per sphere: 1 when a cylinder took it (cylinder.c sets it) */
+    const ms_scene_item *item;  /* the scene item (its clip planes, in world coordinates) */
 } rt_geom;
 
 /* The lists placed by one transform (a molecule's representations share its transform): an

@@ -57,6 +57,21 @@ static const rt_geom *hit_geom(const rt_world *w, const struct RTCHit *h, const 
     return &(*item)->geoms[h->geomID];
 }
 
+/* The inside of a surface seen through a cut of a solid clip plane (VMD's status 2) takes
+ * the plane's colour and faces the viewer as the plane does. */
+static void solid_cut(const ms_scene_item *it, const float d[3], surface *s)
+{
+    for (int i = 0; it && i < it->nclip; i++) {
+        const ms_clip_plane *cp = &it->clip[i];
+        if (!cp->solid) continue;
+        float n[3] = {cp->eq[0], cp->eq[1], cp->eq[2]};
+        if (!(rt_normalize(n) > 0.0f)) continue;
+        float side = rt_dot(n, d) > 0.0f ? -1.0f : 1.0f;
+        for (int k = 0; k < 3; k++) s->n[k] = side * n[k], s->col[k] = cp->color[k];
+        return;
+    }
+}
+
 /* Position, normal facing the ray's origin, colour and material at a hit. */
 static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s)
 {
@@ -80,6 +95,7 @@ static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s
     }
     for (int k = 0; k < 3; k++) s->n[k] *= side;
     ms_rgba8_to_float(c, s->col);
+    if (side < 0.0f) solid_cut(g->item, d, s);
     s->mat = &g->mat;
     s->opacity = g->mat.opacity * (float)c.a * (1.0f / 255.0f);
 }
@@ -224,6 +240,28 @@ static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const fl
     if (sh->fog) fog(sh, primary ? s->t * rt_dot(dir, sh->cam.dir) : s->t, out);
 }
 
+/* The nearest hit that no clip plane of its item cuts away: a cut hit is passed and the ray
+ * goes on beyond it (a bound on the passes keeps a pathological scene finite). */
+static void intersect_unclipped(const rt_shader *sh, rt_thread *th, struct RTCRayHit *rh)
+{
+    for (int pass = 0; pass < 256; pass++) {
+        rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(sh->w->top, &th->ctx.ec, rh);
+        if (rh->hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
+        const rt_item *it;
+        const rt_geom *g = hit_geom(sh->w, &rh->hit, &it);
+        if (!g->item || !g->item->nclip) return;
+        float t = rh->ray.tfar;
+        float p[3] = {rh->ray.org_x + t * rh->ray.dir_x, rh->ray.org_y + t * rh->ray.dir_y,
+                      rh->ray.org_z + t * rh->ray.dir_z};
+        if (!ms_scene_clipped(g->item, p)) return;
+        rh->ray.tnear = t + MS_MAX(sh->w->eps * 1e-3f, t * 1e-6f);
+        rh->ray.tfar = INFINITY;
+    }
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+}
+
 void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
               int depth, int primary, float out[3])
 {
@@ -233,9 +271,7 @@ void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const floa
         return;
     }
     ray_init(&rh.ray, org, dir, primary ? 0.0f : sh->w->eps);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(sh->w->top, &th->ctx.ec, &rh);
+    intersect_unclipped(sh, th, &rh);
     th->rays[primary ? MS_RT_PRIMARY : MS_RT_SECONDARY]++;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         background(sh, org, dir, out);

@@ -220,6 +220,7 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
     rt_geom *g = &w->geoms[w->ngeoms];
     if (fill_geom(w, src->dl, kind, g, err)) return -1;
     g->user = user;
+    g->item = src->item;
     if (kind == RT_CYLINDER && user && kind_translucent(src->dl, &src->mat, RT_SPHERE) == trans)
         g->spheres = &src->dl->spheres;
     if (kind == RT_SPHERE && *taken && keep_spheres(w, g, *taken, err)) return -1;

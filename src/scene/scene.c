@@ -3,6 +3,8 @@
 #include "config.h"
 #include "scene/scene.h"
 
+#include "vecmath/vecmath.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -35,7 +37,41 @@ int ms_scene_add(ms_scene *s, const ms_displaylist *dl, const float xform[16],
     it->dl = dl;
     memcpy(it->xform, xform, sizeof it->xform);
     it->mat = *ms_material_by_id(mats, dl->material);
+    it->nclip = 0;
     return 0;
+}
+
+int ms_plane_map(const float eq[4], const float m[16], float out[4])
+{
+    double a[16], inv[16];
+    for (int i = 0; i < 16; i++) a[i] = m[i];
+    float e[4] = {eq[0], eq[1], eq[2], eq[3]};
+    if (ms_mat4d_inverse(a, inv)) {
+        memcpy(out, e, sizeof e);
+        return -1;
+    }
+    for (int c = 0; c < 4; c++)
+        out[c] = (float)(e[0] * inv[c] + e[1] * inv[4 + c] + e[2] * inv[8 + c] + e[3] * inv[12 + c]);
+    return 0;
+}
+
+void ms_scene_clip_last(ms_scene *s, const ms_clip *clips, int n, const float model[16])
+{
+    if (!s->nitems) return;
+    ms_scene_item *it = &s->items[s->nitems - 1];
+    it->nclip = 0;
+    for (int i = 0; i < n && i < MS_SCENE_CLIPS; i++) {
+        const ms_clip *c = &clips[i];
+        if (c->mode == MS_CLIP_OFF) continue;
+        /* kept: (p - center) . normal <= 0 */
+        float eq[4] = {-c->normal[0], -c->normal[1], -c->normal[2],
+                       c->normal[0] * c->center[0] + c->normal[1] * c->center[1] +
+                           c->normal[2] * c->center[2]};
+        ms_clip_plane *cp = &it->clip[it->nclip++];
+        ms_plane_map(eq, model, cp->eq);
+        memcpy(cp->color, c->color, sizeof cp->color);
+        cp->solid = c->mode == MS_CLIP_SOLID;
+    }
 }
 
 ms_displaylist *ms_scene_new_list(ms_scene *s, ms_error *err)

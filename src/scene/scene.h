@@ -51,11 +51,31 @@ typedef struct ms_scene_settings {
     float ao_ambient, ao_direct;
 } ms_scene_settings;
 
+/* VMD's clip planes: each rep has six; a plane that is on cuts away the part of the rep on
+ * the side its normal points to. */
+#define MS_SCENE_CLIPS 6
+enum { MS_CLIP_OFF = 0, MS_CLIP_ON = 1, MS_CLIP_SOLID = 2 };
+
+typedef struct ms_clip {
+    float center[3], normal[3];      /* in the coordinates the rep is drawn in */
+    float color[3];                  /* of the cut, for MS_CLIP_SOLID */
+    int mode;                        /* MS_CLIP_* */
+} ms_clip;
+
+/* A clip plane in world coordinates: a point p is kept when eq . (p, 1) >= 0. */
+typedef struct ms_clip_plane {
+    float eq[4];
+    float color[3];
+    int solid;                       /* the cut shows the plane's colour (MS_CLIP_SOLID) */
+} ms_clip_plane;
+
 /* One display list placed in the world. */
 typedef struct ms_scene_item {
     const ms_displaylist *dl;
     float xform[16];                 /* model to world, row-major */
     ms_material mat;                 /* resolved (name not owned) */
+    int nclip;                       /* the planes that are on */
+    ms_clip_plane clip[MS_SCENE_CLIPS];
 } ms_scene_item;
 
 typedef struct ms_scene {
@@ -76,6 +96,22 @@ void ms_scene_free(ms_scene *s);
 /* Place a display list (not copied: it must outlive the scene) with a transform. */
 int ms_scene_add(ms_scene *s, const ms_displaylist *dl, const float xform[16],
                  const ms_materials *mats, ms_error *err);
+/* Clip the item placed last by the planes of clips that are on (n of them, given in the
+ * coordinates that model takes to the world). */
+void ms_scene_clip_last(ms_scene *s, const ms_clip *clips, int n, const float model[16]);
+/* Is a world point cut away by one of the item's planes? */
+static inline int ms_scene_clipped(const ms_scene_item *it, const float p[3])
+{
+    for (int i = 0; i < it->nclip; i++) {
+        const float *e = it->clip[i].eq;
+        if (e[0] * p[0] + e[1] * p[1] + e[2] * p[2] + e[3] < 0.0f) return 1;
+    }
+    return 0;
+}
+/* A plane eq (a x + b y + c z + d = 0) carried by the transform m to the space m maps onto
+ * (out = eq m^-1). Returns -1 (out the plane unchanged) when m is singular. */
+int ms_plane_map(const float eq[4], const float m[16], float out[4]);
+
 /* A new empty display list the scene owns (freed with it); NULL when memory runs out. Fill
  * it, then place it with ms_scene_add. */
 ms_displaylist *ms_scene_new_list(ms_scene *s, ms_error *err);

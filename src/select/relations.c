@@ -249,7 +249,7 @@ int ms_sel_eval_withinbonds(ms_selctx *c, long depth, const ms_bitset *src,
 
 /* ---------------------------------------------------------------- sequence */
 
-static char one_letter(const char *resname, int nucleic)
+char ms_sel_one_letter(const char *resname, int nucleic)
 {
     static const char *const protein[][2] = {
         {"GLY", "G"}, {"ALA", "A"}, {"VAL", "V"}, {"PHE", "F"}, {"PRO", "P"}, {"MET", "M"},
@@ -273,7 +273,7 @@ static void match_chain(const ms_selctx *c, const ms_selnode *nd, size_t r0, siz
     const ms_molecule *m = c->m;
     size_t n = r1 - r0;
     for (size_t i = 0; i < n; i++)
-        seq[i] = one_letter(ms_mol_str(m, m->atoms.resname[m->res_start[r0 + i]]), nucleic);
+        seq[i] = ms_sel_one_letter(ms_mol_str(m, m->atoms.resname[m->res_start[r0 + i]]), nucleic);
     seq[n] = '\0';
     for (size_t v = 0; v < nd->nvals; v++) {
         size_t start = 0;

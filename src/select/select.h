@@ -17,6 +17,8 @@ typedef struct ms_selexpr ms_selexpr;
 /* Compile a selection. On a syntax error, err names the position and the token
  * ("syntax error near 'of' at position 12"); unknown keywords and macros are named. */
 ms_selexpr *ms_sel_compile(const char *text, ms_error *err);
+/* The one-letter code of a residue name (protein, or nucleic), 'X' when it has none. */
+char ms_sel_one_letter(const char *resname, int nucleic);
 void ms_sel_free(ms_selexpr *e);
 /* The text it was compiled from. */
 const char *ms_sel_text(const ms_selexpr *e);
