@@ -62,8 +62,6 @@ static int change_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     if (objc == 6) return ms_args_usage(interp);
     int id;
     if (get_color(app, interp, objv[3], cmd, &id)) return TCL_ERROR;
-    if (id >= MS_COLOR_NUM)
-        return ms_cmd_error(interp, "%s: color %d is on the color scale; use color scale", cmd, id);
     float rgb[3];
     if (objc == 4) {
         ms_color_default_rgb(id, rgb);
@@ -98,8 +96,6 @@ static int change_rgblist(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
             if (get_color(app, interp, f[0], cmd, &ids[i])) return TCL_ERROR;
             Tcl_Obj *v = m == 2 ? f[1] : Tcl_NewListObj(3, f + 1);
             if (ms_arg_vec3(interp, v, NULL, rgb[i])) return TCL_ERROR;
-            if (ids[i] >= MS_COLOR_NUM)
-                return ms_cmd_error(interp, "%s: color %d is on the color scale", cmd, ids[i]);
         } else {
             return ms_cmd_error(interp, "%s: bad entry '%s': expected {r g b} or {color r g b}",
                                 cmd, Tcl_GetString(e[i]));

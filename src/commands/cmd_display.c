@@ -223,6 +223,16 @@ static int disp_choice(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
         const char *const *modes = stereo ? stereo_modes : render ? render_modes : cache_modes;
         char *field = stereo ? v->stereo : render ? v->rendermode : v->cachemode;
         const char *val = Tcl_GetString(objv[2]);
+        static const char *const vmd_render_modes[] = {"GLSL", "Acrobat3D", "Tachyon RTRT",
+                                                       "Tachyon OptiX", "Tachyon OSPRay",
+                                                       "Tachyon ANARI", NULL};
+        if (render && ms_args_find(vmd_render_modes, sizeof *vmd_render_modes, val) >= 0) {
+            /* VMD's OpenGL modes: the pictures come from the renderers here */
+            printf("Info) display rendermode: '%s' is not available here; keeping %s\n", val,
+                   field);
+            fflush(stdout);
+            return TCL_OK;
+        }
         if ((i = ms_args_find(modes, sizeof *modes, val)) < 0)
             return ms_cmd_error(interp, "%s: mode '%s' is not available (this display has: %s)",
                                 ms_args_where(), val, modes[0]);

@@ -171,7 +171,7 @@ int ms_color_default_rgb(int id, float rgb[3])
 
 int ms_color_set_rgb(ms_colors *c, int id, const float rgb[3])
 {
-    if (id < 0 || id >= MS_COLOR_NUM) return -1;
+    if (id < 0 || id >= MS_COLOR_MAX) return -1;
     for (int k = 0; k < 3; k++)
         c->rgb[id][k] = rgb[k] < 0 ? 0 : rgb[k] > 1 ? 1 : rgb[k];
     c->version++;

@@ -67,7 +67,8 @@ static inline const float *ms_color_rgb(const ms_colors *c, int id)
 }
 /* The default RGB of colour id (0..1056, the scale entries as the default scale makes them). */
 int ms_color_default_rgb(int id, float rgb[3]);
-/* Change the RGB of a named colour (0..32); values are clamped to [0, 1]. */
+/* Change the RGB of a colour (0..32 named, 33..1056 a colour-scale entry until the scale is
+ * next rebuilt); values are clamped to [0, 1]. */
 int ms_color_set_rgb(ms_colors *c, int id, const float rgb[3]);
 
 /* --- the colour scale */
