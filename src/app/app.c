@@ -81,6 +81,9 @@ ms_app *ms_app_new(const char *argv0, const ms_app_cmdset_fn *commands)
         /* Tcl works without its own script library, with fewer conveniences. */
     }
     Tcl_SetVar2(app->interp, "env", "MOLSCOPE_TCLLIB", app->tcllib_dir, TCL_GLOBAL_ONLY);
+    /* VMD's install folder, which scripts read: molscope's library (its tachyon_LINUXAMD64
+     * runs the system's tachyon), unless the environment names one */
+    if (!getenv("VMDDIR")) Tcl_SetVar2(app->interp, "env", "VMDDIR", app->tcllib_dir, TCL_GLOBAL_ONLY);
     ms_app_register(app);      /* first: the trace variables are set before others hear */
     ms_error err = {{0}};
     if (ms_world_init(&app->world, &app->mols, &err)) {
