@@ -401,6 +401,10 @@ static int molinfo_mol(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
         {"get", molinfo_get, 1, 3, "<keywords> ?frame <n>?"},
         {"set", molinfo_set, 2, 4, "<keywords> <values> ?frame <n>?"},
         {NULL, NULL, 0, 0, NULL}};
+    int id;
+    if (Tcl_GetIntFromObj(NULL, objv[1], &id) == TCL_OK && !ms_molset_get(&app->mols, id))
+        return ms_cmd_error(interp, "molinfo: %s: no molecule exists with id %d",   /* VMD's words */
+                            ms_word_eq(Tcl_GetString(objv[2]), "set") ? "set" : "get", id);
     if (!ms_cmd_mol(app, interp, objv[1], "molinfo")) return TCL_ERROR;
     char where[64];
     snprintf(where, sizeof where, "molinfo %.40s", Tcl_GetString(objv[1]));
