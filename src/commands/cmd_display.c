@@ -303,15 +303,14 @@ static int disp_resetview(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
 
 static int disp_update(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc == 2) {
-        ms_app_finish_loading(app);   /* the frames still being read arrive now */
-        ms_view_rock_step(&app->world);   /* a redraw advances rocking, as VMD's display loop does */
-        return TCL_OK;
-    }
-    const char *w = Tcl_GetString(objv[2]);
+    const char *w = objc == 2 ? "ui" : Tcl_GetString(objv[2]);
     int b;
-    if (ms_word_eq(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->world.view->update));
-    else if (ms_word_eq(w, "ui")) return TCL_OK;
+    if (ms_word_eq(w, "ui")) {
+        /* a redraw (and, with ui, the interface's turn, which has nothing more to do here):
+         * the frames still being read arrive now, and rocking advances, as in VMD's loop */
+        ms_app_finish_loading(app);
+        ms_view_rock_step(&app->world);
+    } else if (ms_word_eq(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->world.view->update));
     else if (ms_arg_bool(NULL, objv[2], NULL, &b) == TCL_OK) app->world.view->update = b;
     else return ms_args_usage(interp);
     return TCL_OK;
