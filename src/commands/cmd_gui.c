@@ -26,22 +26,28 @@ static const char *const builtin_menus[] = {"main", "files", "graphics", "labels
 
 /* ---------------------------------------------------------------- menu */
 
+/* The dict kept in *slot, made when there is none, unshared so that it can be changed. */
+static Tcl_Obj *own_dict(Tcl_Obj **slot)
+{
+    if (!*slot) {
+        *slot = Tcl_NewDictObj();
+        Tcl_IncrRefCount(*slot);
+    } else if (Tcl_IsShared(*slot)) {
+        Tcl_Obj *copy = Tcl_DuplicateObj(*slot);
+        Tcl_IncrRefCount(copy);
+        Tcl_DecrRefCount(*slot);
+        *slot = copy;
+    }
+    return *slot;
+}
+
 static Tcl_Obj *menus(ms_app *app)
 {
-    if (!app->menus) {
-        app->menus = Tcl_NewDictObj();
-        Tcl_IncrRefCount(app->menus);
+    if (!app->menus)
         for (int i = 0; builtin_menus[i]; i++)
-            Tcl_DictObjPut(NULL, app->menus, Tcl_NewStringObj(builtin_menus[i], -1),
+            Tcl_DictObjPut(NULL, own_dict(&app->menus), Tcl_NewStringObj(builtin_menus[i], -1),
                            Tcl_NewStringObj("off 0 0", -1));
-    }
-    if (Tcl_IsShared(app->menus)) {
-        Tcl_Obj *copy = Tcl_DuplicateObj(app->menus);
-        Tcl_IncrRefCount(copy);
-        Tcl_DecrRefCount(app->menus);
-        app->menus = copy;
-    }
-    return app->menus;
+    return own_dict(&app->menus);
 }
 
 /* A menu's state {on|off x y}; a menu not seen before is added (extension menus). */
@@ -144,16 +150,7 @@ static int accept(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
 
 static Tcl_Obj *user_keys(ms_app *app)
 {
-    if (!app->user_keys) {
-        app->user_keys = Tcl_NewDictObj();
-        Tcl_IncrRefCount(app->user_keys);
-    } else if (Tcl_IsShared(app->user_keys)) {
-        Tcl_Obj *copy = Tcl_DuplicateObj(app->user_keys);
-        Tcl_IncrRefCount(copy);
-        Tcl_DecrRefCount(app->user_keys);
-        app->user_keys = copy;
-    }
-    return app->user_keys;
+    return own_dict(&app->user_keys);
 }
 
 static int user_add(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
