@@ -7,6 +7,10 @@ lassign $argv file png
 if {$png eq ""} { set png example.png }
 set m [mol new $file waitfor all]
 puts [mol list $m]
+set all [atomselect $m all]
+puts "residues [llength [lsort -unique -integer [$all get residue]]]\
+      fragments [llength [lsort -unique -integer [$all get fragment]]]"
+$all delete
 puts "center [lindex [molinfo $m get center] 0]"
 puts "cell   [molinfo $m get {a b c alpha beta gamma}]"
 

@@ -1,5 +1,7 @@
 # tcl: the Tcl library shipped with molscope.
 dist_tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl
+# $env(VMDDIR)/tachyon_LINUXAMD64, which VMD scripts run: the system's tachyon
+dist_tcllib_SCRIPTS = tcl/tachyon_LINUXAMD64
 
 # The page of the live view (display live, doc/live.md).
 livepagedir = $(tcllibdir)/live

@@ -81,6 +81,9 @@ ms_app *ms_app_new(const char *argv0, const ms_app_cmdset_fn *commands)
         /* Tcl works without its own script library, with fewer conveniences. */
     }
     Tcl_SetVar2(app->interp, "env", "MOLSCOPE_TCLLIB", app->tcllib_dir, TCL_GLOBAL_ONLY);
+    /* VMD's install folder, which scripts read: molscope's library (its tachyon_LINUXAMD64
+     * runs the system's tachyon), unless the environment names one */
+    if (!getenv("VMDDIR")) Tcl_SetVar2(app->interp, "env", "VMDDIR", app->tcllib_dir, TCL_GLOBAL_ONLY);
     ms_app_register(app);      /* first: the trace variables are set before others hear */
     ms_error err = {{0}};
     if (ms_world_init(&app->world, &app->mols, &err)) {
@@ -97,6 +100,10 @@ void ms_app_free(ms_app *app)
     if (!app) return;
     ms_app_stop_loading(app);
     for (size_t i = 0; i < app->mols.n; i++) ms_loader_cancel(app->mols.mols[i]);
+    ms_error err = {{0}};
+    if (ms_app_log_close(app, &err)) fprintf(stderr, "molscope: logfile: %s\n", err.msg);
+    if (app->user_keys) Tcl_DecrRefCount(app->user_keys);
+    if (app->menus) Tcl_DecrRefCount(app->menus);
     if (app->interp) {
         Tcl_SetVar(app->interp, "vmd_quit", "1", TCL_GLOBAL_ONLY);
         /* Whatever lives on the interpreter ends with it (the live view stops there),
@@ -170,11 +177,4 @@ void ms_app_register(ms_app *app)
 {
     ms_app_register_loading(app);
     ms_molset_listen(&app->mols, on_mol_event, app);
-}
-
-int ms_app_eval_file(ms_app *app, const char *path)
-{
-    int rc = Tcl_EvalFile(app->interp, path);
-    if (rc != TCL_OK && app->quit_requested) return TCL_OK;
-    return rc;
 }

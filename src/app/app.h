@@ -10,6 +10,7 @@
 #include <tcl.h>
 
 #include "assemble/world.h"
+#include "base/base.h"
 #include "fileio/registry.h"
 #include "molecule/molset.h"
 
@@ -24,6 +25,13 @@ typedef struct ms_app {
     int interactive;           /* stdin is a terminal */
     int quit_requested, quit_status;
     int idle_scheduled;        /* a background frame-loading callback is queued */
+    int failed;                /* commands of scripts and standard input that failed */
+    char first_failure[1024];   /* where the first one was, and its message */
+    struct ms_ofile *log;      /* the command log (logfile <file>), or NULL */
+    int log_console;           /* logfile console: the log goes to stdout */
+    int con_loglevel;          /* vmdcon -loglevel: 0 all, 1 info, 2 warn, 3 err, 5 none */
+    Tcl_Obj *user_keys;        /* user add key: a dict key -> command (NULL: none yet) */
+    Tcl_Obj *menus;            /* menu states: a dict name -> {on x y} (NULL: defaults) */
 } ms_app;
 
 /* A set of Tcl commands to create on the application's interpreter (commands/commands.h
@@ -58,8 +66,25 @@ void ms_app_register_loading(ms_app *app);
  * commands/, cmd_quit.c) and the trace-variable listener. */
 void ms_app_register(ms_app *app);
 
-/* Evaluate a script as a top-level command (batch: an error prints the message and stack
- * trace). Returns TCL_OK, TCL_ERROR, or TCL_OK after a quit (check app->quit_requested). */
-int ms_app_eval_file(ms_app *app, const char *path);
+/* Scripts read as VMD reads them (script.c). */
+/* Run the file's commands one complete command at a time at the global level, echoing
+ * results and printing errors (counted) and going on; stops at quit. TCL_ERROR when the
+ * file cannot be opened, or when a command failed and ms_app_stop_on_error. */
+int ms_app_play(ms_app *app, const char *path);
+/* Log, evaluate one complete command at the global level, echo its result (rank 0) or
+ * report its failure (ms_app_note_failure). A quit is TCL_OK. */
+int ms_app_run_command(ms_app *app, Tcl_Obj *cmd, const char *where, int line);
+/* Print the interpreter's error (the message on stdout as VMD does; where, line and the
+ * stack trace on stderr) and count it. where may be NULL, line 0 when unknown. */
+void ms_app_note_failure(ms_app *app, const char *where, int line);
+/* Whether a failed command ends the run (several MPI ranks: the others would hang). */
+int ms_app_stop_on_error(void);
+/* The exit status of a batch run: status, or 1 when it is 0 and commands failed (then a
+ * line on stderr says how many and which was first). Interactive runs keep status. */
+int ms_app_exit_status(ms_app *app, int status);
+/* The command log: open it on path (NULL: the console, stdout), replacing any log open;
+ * close it (the file is put in place). 0, or -1 with err set. */
+int ms_app_log_open(ms_app *app, const char *path, ms_error *err);
+int ms_app_log_close(ms_app *app, ms_error *err);
 
 #endif

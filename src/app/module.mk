@@ -3,4 +3,4 @@
 src_libmscore_la_SOURCES += \
 	src/app/app.h src/app/app.c src/app/loading.c \
 	src/app/options.h src/app/options.c \
-	src/app/shell.h src/app/shell.c
+	src/app/shell.h src/app/shell.c src/app/script.c

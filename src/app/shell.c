@@ -1,13 +1,16 @@
 /* shell.c: the read-evaluate loop. Interactive when stdin is a terminal (line editing and
  * history through tclreadline when it is installed, loaded at run time; a plain prompt
- * otherwise); batch otherwise, where an error prints the message with its stack trace and
- * ends the program with status 1. Tcl events (background frame loading, servers) run while
- * the shell waits for input; while a command runs, standard input is not watched, so a
- * command that runs the event loop itself (update, vwait) sees only the other events.
+ * otherwise); batch otherwise. Either way standard input is read as VMD reads it (script.c):
+ * one complete command at a time, results echoed, an error printed and the next command
+ * run; a batch run counts the failures for its exit status. Tcl events (background frame
+ * loading, servers) run while the shell waits for input; while a command runs, standard
+ * input is not watched, so a command that runs the event loop itself (update, vwait) sees
+ * only the other events.
  *
  * Under MPI only rank 0 has standard input: it reads each line and broadcasts it, and every
  * rank evaluates it, so `mpirun -np 4 molscope < script.tcl` runs the script on every rank.
- * Only rank 0 echoes results (the informational output); `puts` prints on every rank. */
+ * Only rank 0 echoes results (the informational output); `puts` prints on every rank. With
+ * several ranks an error ends the job (a rank going on alone would hang the others). */
 #include "config.h"
 #include "app/shell.h"
 #include "parallel/parallel.h"
@@ -24,6 +27,7 @@ typedef struct shell {
     Tcl_Obj *pending;   /* lines of an incomplete command */
     int done;           /* EOF reached */
     int status;         /* exit status */
+    int line, first;    /* lines read; the line the pending command starts on */
 } shell;
 
 void ms_shell_report_error(ms_app *app, const char *context)
@@ -41,31 +45,36 @@ void ms_shell_report_error(ms_app *app, const char *context)
 static int shell_eval(shell *sh, Tcl_Obj *cmd)
 {
     ms_app *app = sh->app;
-    int rc = Tcl_RecordAndEvalObj(app->interp, cmd, TCL_EVAL_GLOBAL);
+    int rc = ms_app_run_command(app, cmd, "standard input", sh->first);
     if (app->quit_requested) {
         sh->status = app->quit_status;
         return 1;
     }
-    if (rc == TCL_OK) {
-        const char *res = Tcl_GetStringResult(app->interp);
-        if (*res && ms_par_rank() == 0) printf("%s\n", res);
-    } else {
-        ms_shell_report_error(app, NULL);
-        if (!app->interactive) {
-            sh->status = 1;
-            return 1;
-        }
+    if (rc != TCL_OK && ms_app_stop_on_error()) {
+        sh->status = 1;
+        return 1;
     }
-    fflush(stdout);
     return 0;
+}
+
+/* Standard input ended inside an unfinished command: an error, as in a script file. */
+static void shell_unfinished(shell *sh)
+{
+    Tcl_SetObjResult(sh->app->interp, Tcl_NewStringObj("standard input ended inside an "
+                                                       "unfinished command", -1));
+    Tcl_SetVar(sh->app->interp, "errorInfo", "", TCL_GLOBAL_ONLY);
+    ms_app_note_failure(sh->app, "standard input", sh->first);
+    if (ms_app_stop_on_error()) sh->status = 1;
 }
 
 /* Add a line; evaluate when the command is complete. Returns 1 to stop. */
 static int shell_line(shell *sh, const char *line, int len)
 {
+    sh->line++;
     if (!sh->pending) {
         sh->pending = Tcl_NewObj();
         Tcl_IncrRefCount(sh->pending);
+        sh->first = sh->line;
     }
     Tcl_AppendToObj(sh->pending, line, len);
     Tcl_AppendToObj(sh->pending, "\n", 1);
@@ -94,11 +103,7 @@ static void on_stdin(ClientData cd, int mask)
     if (n < 0) {
         if (Tcl_Eof(in) || !Tcl_InputBlocked(in)) {
             sh->done = 1;
-            if (sh->pending && sh->app->interactive == 0) {
-                /* An unfinished command at the end of input is an error, as for a script. */
-                fprintf(stderr, "molscope: standard input ended inside an unfinished command\n");
-                sh->status = 1;
-            }
+            if (sh->pending && sh->app->interactive == 0) shell_unfinished(sh);
         }
         Tcl_DecrRefCount(line);
         return;
@@ -185,10 +190,7 @@ static int bcast_loop(shell *sh)
             if (shell_line(sh, text, (int)len)) sh->done = 1;
         } else {
             sh->done = 1;
-            if (sh->pending) {
-                fprintf(stderr, "molscope: standard input ended inside an unfinished command\n");
-                sh->status = 1;
-            }
+            if (sh->pending) shell_unfinished(sh);
         }
         if (ms_par_rank() != 0) free(text);
         Tcl_DecrRefCount(line);

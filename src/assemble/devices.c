@@ -42,6 +42,28 @@ const ms_render_device *ms_render_find(const char *name)
     return NULL;
 }
 
+/* VMD 1.9.4's render methods for engines molscope has no copy of, and the engine here that
+ * makes the closest picture: the OSPRay tracer runs on the CPU, OptiX and ANARI on a GPU. */
+static const struct {
+    const char *name, *target;
+} aliases[] = {
+    {"TachyonLOSPRayInternal", "TachyonInternal"},
+    {"TachyonLOSPRayInteractive", "TachyonInternal"},
+    {"TachyonLOptiXInteractive", "TachyonLOpenCLInternal"},
+    {"TachyonLOptiXInternalRTX", "TachyonLOpenCLInternal"},
+    {"TachyonLANARIInternal", "TachyonLOpenCLInternal"},
+    {"TachyonLANARIInteractive", "TachyonLOpenCLInternal"},
+    {"ANARIInternal", "TachyonLOpenCLInternal"},
+    {"ANARIInteractive", "TachyonLOpenCLInternal"},
+};
+
+const ms_render_device *ms_render_find_alias(const char *name)
+{
+    for (size_t i = 0; i < MS_COUNTOF(aliases); i++)
+        if (!strcasecmp(aliases[i].name, name)) return ms_render_find(aliases[i].target);
+    return NULL;
+}
+
 /* ---------------------------------------------------------------- settings */
 
 ms_renderers *ms_renderers_new(void)

@@ -20,6 +20,10 @@ size_t ms_render_count(void);
 const ms_render_device *ms_render_device_at(size_t i);
 /* A device by name, case-insensitively; NULL when unknown. */
 const ms_render_device *ms_render_find(const char *name);
+/* For a name VMD 1.9.4 has for an engine molscope lacks (TachyonLOSPRayInternal, the OptiX
+ * interactive and ANARI names), the device that stands in for it; NULL otherwise. Not in
+ * `render list`, which names the engines there are, as VMD's does. */
+const ms_render_device *ms_render_find_alias(const char *name);
 
 /* Per-application settings of every device. */
 typedef struct ms_render_setting {

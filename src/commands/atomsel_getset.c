@@ -207,6 +207,7 @@ int ms_atomsel_set(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, int objc,
         const char *nm = ms_sel_keyword_name(cols[k].kw);
         int is_coord = strlen(nm) <= 2 && (nm[0] == 'x' || nm[0] == 'y' || nm[0] == 'z' ||
                                            nm[0] == 'v');
+        if (is_coord && m->nframes == 0) continue;   /* VMD ignores it: nothing to set */
         coords |= is_coord;
         attrs |= !is_coord;
         int r = cols[k].str ? ms_sel_set_strings(cols[k].kw, m, s->frame, s->indices, s->count,

@@ -62,8 +62,6 @@ static int change_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     if (objc == 6) return ms_args_usage(interp);
     int id;
     if (get_color(app, interp, objv[3], cmd, &id)) return TCL_ERROR;
-    if (id >= MS_COLOR_NUM)
-        return ms_cmd_error(interp, "%s: color %d is on the color scale; use color scale", cmd, id);
     float rgb[3];
     if (objc == 4) {
         ms_color_default_rgb(id, rgb);
@@ -98,8 +96,6 @@ static int change_rgblist(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
             if (get_color(app, interp, f[0], cmd, &ids[i])) return TCL_ERROR;
             Tcl_Obj *v = m == 2 ? f[1] : Tcl_NewListObj(3, f + 1);
             if (ms_arg_vec3(interp, v, NULL, rgb[i])) return TCL_ERROR;
-            if (ids[i] >= MS_COLOR_NUM)
-                return ms_cmd_error(interp, "%s: color %d is on the color scale", cmd, ids[i]);
         } else {
             return ms_cmd_error(interp, "%s: bad entry '%s': expected {r g b} or {color r g b}",
                                 cmd, Tcl_GetString(e[i]));
@@ -167,8 +163,29 @@ static int scale_colors(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
     return TCL_OK;
 }
 
+/* The scale's settings, as colorinfo scale and the setters without a value answer them. */
+static const char *const scale_words[] = {"method", "methods", "midpoint", "min", "max", NULL};
+
+static int scale_answer(ms_app *app, Tcl_Interp *interp, int w)
+{
+    const ms_colors *c = app->world.colors;
+    if (w == 0) {
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(c->methods[c->method].name, -1));
+    } else if (w == 1) {
+        Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+        for (int i = 0; i < MS_COLOR_SCALE_METHODS; i++)
+            Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(c->methods[i].name, -1));
+        Tcl_SetObjResult(interp, l);
+    } else {
+        Tcl_SetObjResult(interp, Tcl_NewDoubleObj(w == 2 ? c->scale_mid : w == 3 ? c->scale_min
+                                                                               : c->scale_max));
+    }
+    return TCL_OK;
+}
+
 static int scale_method(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
+    if (objc == 3) return scale_answer(app, interp, 0);
     int m = ms_color_scale_method_index(app->world.colors, Tcl_GetString(objv[3]));
     if (m < 0)
         return ms_cmd_error(interp, "color scale method: unknown method '%s'", Tcl_GetString(objv[3]));
@@ -182,6 +199,7 @@ static int scale_value(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     ms_colors *c = app->world.colors;
     const char *what = Tcl_GetString(objv[2]);
     float v, mid = c->scale_mid, min = c->scale_min, max = c->scale_max;
+    if (objc == 3) return scale_answer(app, interp, ms_args_find(scale_words, sizeof *scale_words, what));
     if (ms_arg_float(interp, objv[3], NULL, &v)) return TCL_ERROR;
     if (ms_word_eq(what, "midpoint")) {
         if (v < 0 || v > 1)
@@ -199,10 +217,10 @@ static int scale_value(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
 static int color_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     static const ms_subcmd table[] = {
-        {"method", scale_method, 1, 1, "<method>"},
-        {"midpoint", scale_value, 1, 1, "<0..1>"},
-        {"min", scale_value, 1, 1, "<value>"},
-        {"max", scale_value, 1, 1, "<value>"},
+        {"method", scale_method, 0, 1, "?<method>?"},
+        {"midpoint", scale_value, 0, 1, "?<0..1>?"},
+        {"min", scale_value, 0, 1, "?<value>?"},
+        {"max", scale_value, 0, 1, "?<value>?"},
         {"colors", scale_colors, 1, 4, "<method> ?<low> <mid> <high>?"},
         {NULL, NULL, 0, 0, NULL}};
     return ms_args_dispatch(app, interp, objc, objv, 2, table, NULL, NULL);
@@ -331,22 +349,9 @@ static int info_index_rgb(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
 
 static int info_scale(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    static const char *const words[] = {"method", "methods", "midpoint", "min", "max", NULL};
-    const ms_colors *c = app->world.colors;
     int w;
-    if (ms_arg_choice(interp, objv[2], words, NULL, &w)) return TCL_ERROR;
-    if (w == 0) {
-        Tcl_SetObjResult(interp, Tcl_NewStringObj(c->methods[c->method].name, -1));
-    } else if (w == 1) {
-        Tcl_Obj *l = Tcl_NewListObj(0, NULL);
-        for (int i = 0; i < MS_COLOR_SCALE_METHODS; i++)
-            Tcl_ListObjAppendElement(NULL, l, Tcl_NewStringObj(c->methods[i].name, -1));
-        Tcl_SetObjResult(interp, l);
-    } else {
-        Tcl_SetObjResult(interp, Tcl_NewDoubleObj(w == 2 ? c->scale_mid : w == 3 ? c->scale_min
-                                                                               : c->scale_max));
-    }
-    return TCL_OK;
+    if (ms_arg_choice(interp, objv[2], scale_words, NULL, &w)) return TCL_ERROR;
+    return scale_answer(app, interp, w);
 }
 
 static const ms_subcmd color_table[] = {

@@ -223,6 +223,16 @@ static int disp_choice(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
         const char *const *modes = stereo ? stereo_modes : render ? render_modes : cache_modes;
         char *field = stereo ? v->stereo : render ? v->rendermode : v->cachemode;
         const char *val = Tcl_GetString(objv[2]);
+        static const char *const vmd_render_modes[] = {"GLSL", "Acrobat3D", "Tachyon RTRT",
+                                                       "Tachyon OptiX", "Tachyon OSPRay",
+                                                       "Tachyon ANARI", NULL};
+        if (render && ms_args_find(vmd_render_modes, sizeof *vmd_render_modes, val) >= 0) {
+            /* VMD's OpenGL modes: the pictures come from the renderers here */
+            printf("Info) display rendermode: '%s' is not available here; keeping %s\n", val,
+                   field);
+            fflush(stdout);
+            return TCL_OK;
+        }
         if ((i = ms_args_find(modes, sizeof *modes, val)) < 0)
             return ms_cmd_error(interp, "%s: mode '%s' is not available (this display has: %s)",
                                 ms_args_where(), val, modes[0]);
@@ -293,15 +303,14 @@ static int disp_resetview(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *co
 
 static int disp_update(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    if (objc == 2) {
-        ms_app_finish_loading(app);   /* the frames still being read arrive now */
-        ms_view_rock_step(&app->world);   /* a redraw advances rocking, as VMD's display loop does */
-        return TCL_OK;
-    }
-    const char *w = Tcl_GetString(objv[2]);
+    const char *w = objc == 2 ? "ui" : Tcl_GetString(objv[2]);
     int b;
-    if (ms_word_eq(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->world.view->update));
-    else if (ms_word_eq(w, "ui")) return TCL_OK;
+    if (ms_word_eq(w, "ui")) {
+        /* a redraw (and, with ui, the interface's turn, which has nothing more to do here):
+         * the frames still being read arrive now, and rocking advances, as in VMD's loop */
+        ms_app_finish_loading(app);
+        ms_view_rock_step(&app->world);
+    } else if (ms_word_eq(w, "status")) Tcl_SetObjResult(interp, Tcl_NewIntObj(app->world.view->update));
     else if (ms_arg_bool(NULL, objv[2], NULL, &b) == TCL_OK) app->world.view->update = b;
     else return ms_args_usage(interp);
     return TCL_OK;

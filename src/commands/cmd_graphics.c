@@ -90,6 +90,16 @@ static const struct shape {
     {"trinorm", MS_UG_TRINORM, 6, no_options},      {"tricolor", MS_UG_TRICOLOR, 6, no_options},
     {NULL, MS_UG_NONE, 0, NULL}};
 
+/* A colour as graphics takes one: a name, or any integer id, clamped to the ids there are
+ * (0..1056) as VMD clamps it; -1 for anything else. */
+static int graphics_color(ms_app *app, const char *w)
+{
+    char *end;
+    long v = strtol(w, &end, 10);
+    if (*w && *end == '\0') return v < 0 ? 0 : v >= MS_COLOR_MAX ? MS_COLOR_MAX - 1 : (int)v;
+    return ms_color_index(app->world.colors, w);
+}
+
 static int add_shape(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     const struct shape *sh = &shapes[ms_args_find(shapes, sizeof *shapes, Tcl_GetString(objv[2]))];
@@ -103,7 +113,7 @@ static int add_shape(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     if (get_points(interp, np, objv + 3, &it)) return TCL_ERROR;
     if (it.kind == MS_UG_TRICOLOR) {
         for (int k = 0; k < 3; k++) {
-            it.iv[k] = ms_color_index(app->world.colors, Tcl_GetString(objv[9 + k]));
+            it.iv[k] = graphics_color(app, Tcl_GetString(objv[9 + k]));
             if (it.iv[k] < 0)
                 return ms_cmd_error(interp, "%s: unknown color '%s'", ms_args_where(),
                                     Tcl_GetString(objv[9 + k]));
@@ -136,7 +146,7 @@ static int add_state(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     const char *w = Tcl_GetString(objv[2]), *v = Tcl_GetString(objv[3]);
     if (ms_word_eq(w, "color") || ms_word_eq(w, "colour")) {
         it.kind = MS_UG_COLOR;
-        if ((it.iv[0] = ms_color_index(app->world.colors, v)) < 0)
+        if ((it.iv[0] = graphics_color(app, v)) < 0)
             return ms_cmd_error(interp, "%s: unknown color '%s'", ms_args_where(), v);
     } else if (ms_word_eq(w, "material")) {
         it.kind = MS_UG_MATERIAL;

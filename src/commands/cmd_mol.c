@@ -16,6 +16,7 @@
 #include "commands/commands.h"
 #include "fileio/load.h"
 #include "molecule/analysis.h"
+#include "rep/rep.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -126,39 +127,58 @@ static int mol_rename(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     return TCL_OK;
 }
 
-static void list_line(Tcl_Obj *out, const ms_molecule *m, int top)
+/* mol list, in VMD's words: one line per molecule ("<name>  Atoms:<n>  Frames (C): <n>(<c>)
+ * Status:ADFT", lower case for a flag that is off), and for one molecule its reps too. */
+static void list_summary(Tcl_Obj *out, const ms_molecule *m, int top)
 {
-    char line[256];
-    snprintf(line, sizeof line, "%-4d%c %c %c %c  %-24.24s %9zu %6zu %4d\n", m->id,
-             m->id == top ? 'T' : ' ', m->active ? 'A' : ' ', m->displayed ? 'D' : ' ',
-             m->fixed ? 'F' : ' ', m->name ? m->name : "", m->atoms.n, m->nframes,
-             (int)m->nvolumes);
-    Tcl_AppendToObj(out, line, -1);
+    Tcl_AppendPrintfToObj(out, "%s  Atoms:%ld  Frames (C): %ld(%d)  Status:%c%c%c%c\n",
+                          m->name ? m->name : "", (long)m->atoms.n, (long)m->nframes, m->frame,
+                          m->active ? 'A' : 'a', m->displayed ? 'D' : 'd', m->fixed ? 'F' : 'f',
+                          m->id == top ? 'T' : 't');
+}
+
+static void list_reps(ms_app *app, Tcl_Obj *out, ms_molecule *m)
+{
+    size_t n = ms_rep_count(app->world.reps, m);
+    Tcl_AppendPrintfToObj(out, "Atom representations: %ld\n", (long)n);
+    for (size_t i = 0; i < n; i++) {
+        ms_rep *r = ms_rep_get(app->world.reps, m, (long)i);
+        ms_error err = {{0}};
+        size_t nsel = 0;
+        if (m->nframes == 0 || ms_rep_update_data(app->world.reps, m, r, &err) == 0)
+            ms_rep_atoms(r, &nsel);
+        Tcl_AppendPrintfToObj(out, "%ld: %s, %ld atoms selected.\n  Coloring method: %s\n"
+                              "   Representation: %s\n        Selection: %s\n", (long)i,
+                              r->shown ? " on" : "off", (long)nsel,
+                              ms_rep_text(app->world.reps, r, MS_REP_COLOR),
+                              ms_rep_text(app->world.reps, r, MS_REP_STYLE),
+                              ms_rep_text(app->world.reps, r, MS_REP_SELECTION));
+    }
 }
 
 static int mol_list(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    Tcl_Obj *out = Tcl_NewObj();
-    if (objc == 3) {
-        ms_molecule *m = ms_cmd_mol(app, interp, objv[2], "mol list");
-        if (!m) return TCL_ERROR;
-        char line[512];
-        snprintf(line, sizeof line,
-                 "Molecule %d: %s\n  Atoms: %zu  Bonds: %u  Residues: %zu  Fragments: %zu  "
-                 "Frames: %zu\n", m->id, m->name ? m->name : "", m->atoms.n,
-                 m->has_bonds ? m->bonds.start[m->atoms.n] / 2 : 0, m->nresidues,
-                 m->nfragments, m->nframes);
-        Tcl_AppendToObj(out, line, -1);
-        for (size_t i = 0; i < m->nfiles; i++)
-            Tcl_AppendPrintfToObj(out, "  File: %s (%s)\n", m->files[i].path, m->files[i].type);
-    } else {
-        Tcl_AppendToObj(out, "ID  T A D F  Molecule                     Atoms Frames  Vol\n", -1);
-        for (size_t i = 0; i < app->mols.n; i++) list_line(out, app->mols.mols[i], app->mols.top);
+    int *ids, n;
+    if (app->mols.n == 0) {   /* VMD answers, and does not fail */
+        Tcl_SetObjResult(interp, Tcl_NewStringObj("ERROR) No molecules loaded.", -1));
+        return TCL_OK;
     }
-    /* VMD prints the table; returning it lets scripts capture it too. */
+    if (ms_cmd_molspec(app, interp, objc == 3 ? Tcl_GetString(objv[2]) : "all", "mol list",
+                       &ids, &n))
+        return TCL_ERROR;
+    Tcl_Obj *out = Tcl_NewObj();
+    if (n > 1) Tcl_AppendToObj(out, "Molecule Status Overview:\n-------------------------\n", -1);
+    for (int i = 0; i < n; i++) {
+        ms_molecule *m = ms_molset_get(&app->mols, ids[i]);
+        if (n == 1) Tcl_AppendPrintfToObj(out, "Status of molecule %s:\n", m->name ? m->name : "");
+        list_summary(out, m, app->mols.top);
+        if (n == 1) list_reps(app, out, m);
+    }
+    free(ids);
+    /* VMD's console prints the text; returning it lets scripts capture it too */
     int len;
-    const char *s = Tcl_GetStringFromObj(out, &len);
-    if (len && s[len - 1] == '\n') Tcl_SetObjLength(out, len - 1);
+    const char *t = Tcl_GetStringFromObj(out, &len);
+    if (len && t[len - 1] == '\n') Tcl_SetObjLength(out, len - 1);
     Tcl_SetObjResult(interp, out);
     return TCL_OK;
 }

@@ -12,6 +12,7 @@
 #include "commands/molinfo.h"
 
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -41,6 +42,28 @@ Tcl_Obj *ms_matrix_to_obj(const float m[16])
     return rows;
 }
 
+/* A matrix written without blanks between its rows ({1 0 0 0}{0 1 0 0}...), which is not a
+ * Tcl list: its 16 numbers in order, braces read as blanks, as VMD reads it. 0 or -1. */
+static int matrix_from_numbers(const char *text, float m[16])
+{
+    char *copy = ms_strdup(text), *save = NULL;
+    int n = 0;
+    if (!copy) return -1;
+    for (char *p = copy; *p; p++)
+        if (*p == '{' || *p == '}') *p = ' ';
+    for (char *w = strtok_r(copy, " \t\n", &save); w; w = strtok_r(NULL, " \t\n", &save)) {
+        char *end;
+        double v = strtod(w, &end);
+        if (*end || n == 16 || !isfinite(v)) {
+            n = -1;
+            break;
+        }
+        m[n++] = (float)v;
+    }
+    free(copy);
+    return n == 16 ? 0 : -1;
+}
+
 int ms_matrix_from_obj(Tcl_Interp *interp, Tcl_Obj *obj, float m[16], const char *what)
 {
     Tcl_Obj **rows, **cols;
@@ -59,6 +82,7 @@ int ms_matrix_from_obj(Tcl_Interp *interp, Tcl_Obj *obj, float m[16], const char
     }
     return TCL_OK;
 bad:
+    if (matrix_from_numbers(Tcl_GetString(obj), m) == 0) return TCL_OK;
     return ms_cmd_error(interp, "molinfo: %s: expected a 4x4 matrix {{r0} {r1} {r2} {r3}}, got '%s'",
                         what, Tcl_GetString(obj));
 }
@@ -163,10 +187,11 @@ static int get_keyword(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const ch
     case K_FILETYPE: *out = str_list_files(m, 1); break;
     case K_FILESPEC:
         *out = Tcl_NewListObj(0, NULL);
-        for (size_t j = 0; j < m->nfiles; j++) {
-            Tcl_Obj *pair[2] = {Tcl_NewStringObj(m->files[j].type, -1),
-                                Tcl_NewStringObj(m->files[j].path, -1)};
-            Tcl_ListObjAppendElement(NULL, *out, Tcl_NewListObj(2, pair));
+        for (size_t j = 0; j < m->nfiles; j++) {   /* VMD's: the load options, as mol new takes them */
+            const ms_molfile *fl = &m->files[j];
+            Tcl_ListObjAppendElement(NULL, *out, Tcl_ObjPrintf("first %ld last %ld step %ld "
+                                     "filebonds %d autobonds %d", fl->first, fl->last, fl->step,
+                                     fl->filebonds, fl->autobonds));
         }
         break;
     case K_DATABASE: case K_ACCESSION: *out = Tcl_NewStringObj("", 0); break;
@@ -376,6 +401,10 @@ static int molinfo_mol(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
         {"get", molinfo_get, 1, 3, "<keywords> ?frame <n>?"},
         {"set", molinfo_set, 2, 4, "<keywords> <values> ?frame <n>?"},
         {NULL, NULL, 0, 0, NULL}};
+    int id;
+    if (Tcl_GetIntFromObj(NULL, objv[1], &id) == TCL_OK && !ms_molset_get(&app->mols, id))
+        return ms_cmd_error(interp, "molinfo: %s: no molecule exists with id %d",   /* VMD's words */
+                            ms_word_eq(Tcl_GetString(objv[2]), "set") ? "set" : "get", id);
     if (!ms_cmd_mol(app, interp, objv[1], "molinfo")) return TCL_ERROR;
     char where[64];
     snprintf(where, sizeof where, "molinfo %.40s", Tcl_GetString(objv[1]));

@@ -12,14 +12,33 @@
 #include "commands/scenecmds.h"
 #include "assemble/devices.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* A device by name, or the one standing in for an engine of VMD's molscope lacks (with a
+ * one-line note when it renders). */
+static const ms_render_device *find_device(Tcl_Interp *interp, Tcl_Obj *o, const char *cmd,
+                                           int note)
+{
+    const char *name = Tcl_GetString(o);
+    const ms_render_device *d = ms_render_find(name);
+    if (d) return d;
+    if ((d = ms_render_find_alias(name))) {
+        if (note) {
+            printf("Info) render: %s is not built into molscope; rendering with %s\n", name,
+                   d->name);
+            fflush(stdout);
+        }
+        return d;
+    }
+    ms_cmd_error(interp, "%s: no render method '%s' (see render list)", cmd, name);
+    return NULL;
+}
+
 static const ms_render_device *get_device(Tcl_Interp *interp, Tcl_Obj *o, const char *cmd)
 {
-    const ms_render_device *d = ms_render_find(Tcl_GetString(o));
-    if (!d) ms_cmd_error(interp, "%s: no render method '%s' (see render list)", cmd, Tcl_GetString(o));
-    return d;
+    return find_device(interp, o, cmd, 0);
 }
 
 /* Words from objv[from] on joined with spaces (a Tcl_Obj with refcount 0). */
@@ -126,7 +145,7 @@ static int r_format(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 /* render <method> <file> ?cmd...? */
 static int r_render(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
-    const ms_render_device *d = get_device(interp, objv[1], "render");
+    const ms_render_device *d = find_device(interp, objv[1], "render", 1);
     if (!d) return TCL_ERROR;
     Tcl_Obj *cmd = joined(objc, objv, 3);
     Tcl_IncrRefCount(cmd);

@@ -29,6 +29,7 @@
 #include "scene/material.h"
 
 #include <limits.h>
+#include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,15 +45,20 @@ static Tcl_Obj *joined(int objc, Tcl_Obj *const objv[], int from)
     return s;
 }
 
+/* A rep id as VMD reads one: the leading integer of the word, 0 when there is none
+ * (`mol modstyle top 0 ...` has "top" where a rep id goes). */
+static long rep_number(Tcl_Obj *w)
+{
+    long id;
+    if (Tcl_GetLongFromObj(NULL, w, &id) == TCL_OK) return id;
+    return strtol(Tcl_GetString(w), NULL, 10);
+}
+
 /* Rep `w` of molecule m; NULL with an error naming cmd, the word and the molecule. */
 static ms_rep *get_rep(ms_app *app, Tcl_Interp *interp, ms_molecule *m, Tcl_Obj *w, const char *cmd,
                        long *repid)
 {
-    long id;
-    if (Tcl_GetLongFromObj(NULL, w, &id) != TCL_OK) {
-        ms_cmd_error(interp, "%s: '%s' is not a rep id", cmd, Tcl_GetString(w));
-        return NULL;
-    }
+    long id = rep_number(w);
     ms_rep *r = ms_rep_get(app->world.reps, m, id);
     if (!r)
         ms_cmd_error(interp, "%s: molecule %d has no rep %ld (it has %zu)", cmd, m->id, id,
@@ -69,6 +75,22 @@ static ms_rep *target(ms_app *app, Tcl_Interp *interp, Tcl_Obj *const objv[], in
     if (!m) return NULL;
     if (mp) *mp = m;
     return get_rep(app, interp, m, objv[rep_first ? 2 : 3], cmd, repid);
+}
+
+/* The same for the commands VMD lets through when the rep does not exist (modstyle,
+ * modselect, modcolor, modmaterial, modrep, delrep): NULL with *skip set and no error then. */
+static ms_rep *lenient_target(ms_app *app, Tcl_Interp *interp, Tcl_Obj *const objv[],
+                              const char *cmd, ms_molecule **mp, long *repid, int *skip)
+{
+    *skip = 0;
+    ms_molecule *m = ms_cmd_mol(app, interp, objv[3], cmd);
+    if (!m) return NULL;
+    *mp = m;
+    long id = rep_number(objv[2]);
+    if (repid) *repid = id;
+    ms_rep *r = ms_rep_get(app->world.reps, m, id);
+    *skip = r == NULL;
+    return r;
 }
 
 /* The words that name what of a rep a subcommand or keyword is about. */
@@ -154,7 +176,8 @@ static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 {
     ms_molecule *m;
     long id;
-    if (!target(app, interp, objv, 1, "mol delrep", &m, &id)) return TCL_ERROR;
+    int skip;
+    if (!lenient_target(app, interp, objv, "mol delrep", &m, &id, &skip)) return skip ? TCL_OK : TCL_ERROR;
     ms_rep_delete(app->world.reps, m, (size_t)id);
     return TCL_OK;
 }
@@ -162,9 +185,10 @@ static int m_delrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 static int m_modrep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     ms_molecule *m;
-    ms_rep *r = target(app, interp, objv, 1, "mol modrep", &m, NULL);
+    int skip;
+    ms_rep *r = lenient_target(app, interp, objv, "mol modrep", &m, NULL, &skip);
     ms_error err = {{0}};
-    if (!r) return TCL_ERROR;
+    if (!r) return skip ? TCL_OK : TCL_ERROR;
     if (ms_rep_apply_current(app->world.reps, m, r, &err)) return ms_cmd_error(interp, "mol modrep: %s", err.msg);
     return settle(app, interp, m, r, "mol modrep");
 }
@@ -176,8 +200,9 @@ static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     ms_rep_what what = MS_REP_STYLE;
     what_of(Tcl_GetString(objv[1]), &what);
     ms_molecule *m;
-    ms_rep *r = target(app, interp, objv, 1, cmd, &m, NULL);
-    if (!r) return TCL_ERROR;
+    int skip;
+    ms_rep *r = lenient_target(app, interp, objv, cmd, &m, NULL, &skip);
+    if (!r) return skip ? TCL_OK : TCL_ERROR;
     Tcl_Obj *text = joined(objc, objv, 4);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
@@ -493,9 +518,11 @@ static int info_get(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const char 
     char word[32];
     snprintf(word, sizeof word, "%.*s", sp ? (int)(sp - keyword) : 0, keyword);
     what_of(word, &what);
-    char *end;
+    char *end = NULL;
     long i = sp ? strtol(sp + 1, &end, 10) : -1;
-    ms_rep *r = sp && end != sp + 1 && !*end ? ms_rep_get(app->world.reps, m, i) : NULL;
+    int ok = sp && end != sp + 1;
+    while (ok && isspace((unsigned char)*end)) end++;   /* "{selection 0 }" as VMD reads it */
+    ms_rep *r = ok && !*end ? ms_rep_get(app->world.reps, m, i) : NULL;
     if (!r)
         return ms_cmd_error(interp, "%s: %s: molecule %d has no rep '%s' (it has %zu)",
                             ms_args_where(), keyword, m->id, sp ? sp + 1 : "",

@@ -11,6 +11,8 @@
 
 const ms_app_cmdset_fn ms_command_sets[] = {
     ms_cmd_quit_register,
+    ms_cmd_batch_register,
+    ms_cmd_gui_register,
     ms_cmd_mol_register,
     ms_cmd_ss_register,
     ms_cmd_molinfo_register,

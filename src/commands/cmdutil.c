@@ -148,6 +148,23 @@ void ms_cmd_create(ms_app *app, const ms_subcmd *spec)
 
 /* ---------------------------------------------------------------- molecules */
 
+/* A molspec naming exactly one molecule (`all` with one loaded, `active` ...), as VMD takes
+ * one wherever it wants a molecule id. */
+static ms_molecule *one_of_spec(ms_app *app, Tcl_Interp *interp, const char *w, const char *cmd)
+{
+    int *ids, n;
+    if (ms_cmd_molspec(app, interp, w, cmd, &ids, &n) != TCL_OK) {
+        ms_cmd_error(interp, "%s: '%s' is not a molecule id", cmd, w);
+        return NULL;
+    }
+    ms_molecule *m = n == 1 ? ms_molset_get(&app->mols, ids[0]) : NULL;
+    free(ids);
+    if (!m)
+        ms_cmd_error(interp, "%s: '%s' names %d molecules; it operates on one molecule only", cmd,
+                     w, n);
+    return m;
+}
+
 ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const char *cmd)
 {
     const char *w = Tcl_GetString(word);
@@ -157,10 +174,7 @@ ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const ch
         return m;
     }
     int id;
-    if (Tcl_GetIntFromObj(NULL, word, &id) != TCL_OK) {
-        ms_cmd_error(interp, "%s: '%s' is not a molecule id", cmd, w);
-        return NULL;
-    }
+    if (Tcl_GetIntFromObj(NULL, word, &id) != TCL_OK) return one_of_spec(app, interp, w, cmd);
     ms_molecule *m = ms_molset_get(&app->mols, id);
     if (!m) ms_cmd_error(interp, "%s: no molecule with id %d", cmd, id);
     return m;
@@ -295,6 +309,18 @@ static int use_bcast(Tcl_Interp *interp, const char *cmd, const ms_load_opts *o)
     return 1;
 }
 
+/* Remember the options the molecule's last file was read with (molinfo filespec). */
+static void keep_spec(ms_molecule *m, const ms_load_opts *o)
+{
+    if (!m->nfiles) return;
+    ms_molfile *f = &m->files[m->nfiles - 1];
+    f->first = o->first;
+    f->last = o->last;
+    f->step = o->step;
+    f->filebonds = o->filebonds;
+    f->autobonds = o->autobonds;
+}
+
 int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *path,
                 const ms_load_opts *o, ms_molecule *into)
 {
@@ -309,6 +335,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
             ms_mol_free(m);
             return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
         }
+        keep_spec(m, o);
         if (m->nframes) ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
         if (m->atoms.n) ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, m, NULL);
         if (m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES, m, NULL);
@@ -329,6 +356,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
     if (bcast ? ms_par_load_add(&app->plugins, into, path, o, &err)
               : ms_load_add(&app->plugins, into, path, o, &err))
         return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
+    keep_spec(into, o);
     if (atoms_before == 0 && into->atoms.n > 0) {
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE, into, NULL);
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, into, NULL);
@@ -342,6 +370,8 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
     if (into->nframes != frames_before) {
         ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, into, NULL);
         ms_molset_set_frame(&app->mols, into, (long)into->nframes - 1);
+        /* a structure given its first coordinates (a PSF, then a DCD): VMD resets the view */
+        if (frames_before == 0 && atoms_before > 0) ms_view_reset(&app->world);
     }
     if (into->pending) ms_app_schedule_loading(app);
     else ms_molset_emit(&app->mols, MS_EV_TRAJ_DONE, into, path);

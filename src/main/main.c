@@ -2,8 +2,10 @@
  * else, as VMD does), parses VMD's command line, starts the Tcl interpreter, and follows
  * VMD's startup order: the Tcl library's init script, the files named on the command line
  * (loaded by rank 0 and broadcast when there are several ranks), the first startup file
- * found, the -e script, then the shell. Every exit goes through ms_par_exit, so a non-zero
- * status on any rank ends the whole MPI job. */
+ * found, the -e script, then the shell. Scripts and standard input are read as VMD reads
+ * them (app/script.c): a failing command is reported and the next one runs; the exit status
+ * is 1 when any failed. Every exit goes through ms_par_exit, so a non-zero status on any
+ * rank ends the whole MPI job. */
 #include "config.h"
 #include "app/app.h"
 #include "app/options.h"
@@ -75,8 +77,9 @@ static void choose_dispdev(ms_app *app, const char *dev)
     app->world.view->settings.depthcue = 1;
 }
 
-/* Run one startup stage; in batch mode an error ends the program. Returns 0 to continue,
- * or 1 when the program should exit with *status. */
+/* After one startup stage: a quit ends the program with its status; a failure is counted
+ * as a failed command and the startup goes on, as VMD's does (with several MPI ranks it ends
+ * the program, ms_app_stop_on_error). Returns 0 to continue, or 1 to exit with *status. */
 static int stage(ms_app *app, int rc, const char *what, int *status)
 {
     if (app->quit_requested) {
@@ -84,12 +87,24 @@ static int stage(ms_app *app, int rc, const char *what, int *status)
         return 1;
     }
     if (rc == TCL_OK) return 0;
-    ms_shell_report_error(app, what);
-    if (!app->interactive) {
+    ms_app_note_failure(app, what, 0);
+    if (ms_app_stop_on_error()) {
         *status = 1;
         return 1;
     }
     return 0;
+}
+
+/* A script file (-e, the startup file), read as VMD reads it (app/script.c). */
+static int run_script(ms_app *app, const char *path, int *status)
+{
+    int before = app->failed;
+    int rc = ms_app_play(app, path);
+    if (rc != TCL_OK && app->failed != before) {   /* a failure that stops the run */
+        *status = 1;
+        return 1;
+    }
+    return stage(app, rc, path, status);
 }
 
 static int load_cmdline_files(ms_app *app, const ms_options *o, int *status)
@@ -114,7 +129,7 @@ static int load_cmdline_files(ms_app *app, const ms_options *o, int *status)
         }
         int rc = Tcl_EvalObjEx(app->interp, cmd, TCL_EVAL_GLOBAL);
         Tcl_DecrRefCount(cmd);
-        if (stage(app, rc, "molscope", status)) return 1;
+        if (stage(app, rc, "command line", status)) return 1;
     }
     return 0;
 }
@@ -125,14 +140,11 @@ static int run_startup_file(ms_app *app, const ms_options *o, int *status)
     const char *home = getenv("HOME");
     if (o->startup) {
         if (access(o->startup, R_OK) != 0) {
-            fprintf(stderr, "molscope: -startup %s: cannot read the file\n", o->startup);
-            if (!app->interactive) {
-                *status = 1;
-                return 1;
-            }
-            return 0;
+            Tcl_SetObjResult(app->interp, Tcl_ObjPrintf("-startup %s: cannot read the file",
+                                                         o->startup));
+            return stage(app, TCL_ERROR, "command line", status);
         }
-        return stage(app, ms_app_eval_file(app, o->startup), o->startup, status);
+        return run_script(app, o->startup, status);
     }
     const char *names[] = {".molscoperc", ".vmdrc"};
     for (int k = 0; k < 2; k++) {
@@ -141,7 +153,7 @@ static int run_startup_file(ms_app *app, const ms_options *o, int *status)
             if (!dirs[d]) continue;
             snprintf(path, sizeof path, "%s/%s", dirs[d], names[k]);
             if (access(path, R_OK) == 0)
-                return stage(app, ms_app_eval_file(app, path), path, status);
+                return run_script(app, path, status);
         }
     }
     return 0;
@@ -196,12 +208,17 @@ int main(int argc, char **argv)
     }
     set_tcl_argv(app, argv[0], &o);
 
-    if (stage(app, ms_app_source_init(app), "molscope: init.tcl", &status) ||
-        load_cmdline_files(app, &o, &status) || run_startup_file(app, &o, &status) ||
-        (o.escript && stage(app, ms_app_eval_file(app, o.escript), o.escript, &status)))
+    if (ms_app_source_init(app) != TCL_OK) {
+        ms_shell_report_error(app, "molscope: init.tcl");
+        status = 1;
+        goto done;
+    }
+    if (load_cmdline_files(app, &o, &status) || run_startup_file(app, &o, &status) ||
+        (o.escript && run_script(app, o.escript, &status)))
         goto done;
     status = ms_shell_run(app);
 done:
+    status = ms_app_exit_status(app, status);
     ms_options_free(&o);
     Tcl_SetExitProc(NULL);
     ms_app_free(app);

@@ -283,8 +283,8 @@ int ms_mol_add_file(ms_molecule *m, const char *path, const char *type, ms_error
     ms_molfile *f = realloc(m->files, (m->nfiles + 1) * sizeof *f);
     if (!f) goto oom;
     m->files = f;
-    f[m->nfiles].path = ms_strdup(path);
-    f[m->nfiles].type = ms_strdup(type);
+    f[m->nfiles] = (ms_molfile){.path = ms_strdup(path), .type = ms_strdup(type), .first = 0,
+                                .last = -1, .step = 1, .filebonds = 1, .autobonds = 1};
     if (!f[m->nfiles].path || !f[m->nfiles].type) {
         free(f[m->nfiles].path);
         free(f[m->nfiles].type);

@@ -77,6 +77,8 @@ typedef struct ms_frame {
 /* A file that contributed to the molecule (for molinfo filename/filetype). */
 typedef struct ms_molfile {
     char *path, *type;
+    long first, last, step;     /* the load options it was read with (molinfo filespec) */
+    int filebonds, autobonds;
 } ms_molfile;
 
 struct ms_loader;      /* a reader still delivering frames (fileio/load.h) */

@@ -2,6 +2,7 @@
  * scale formula, and residue types. */
 #include "config.h"
 #include "scene/color.h"
+#include "scene/colormaps.h"
 #include "molecule/elements.h"
 
 #include <ctype.h>
@@ -26,18 +27,24 @@ static const float color_defaults[MS_COLOR_NUM][3] = {
     {.89f, .35f, 0}, {.96f, .72f, 0}};
 
 static const ms_color_scale_method scale_defaults[MS_COLOR_SCALE_METHODS] = {
-    {"RWB", {{1, 0, 0}, {1, 1, 1}, {0, 0, 1}}},
-    {"BWR", {{0, 0, 1}, {1, 1, 1}, {1, 0, 0}}},
-    {"RGryB", {{1, 0, 0}, {.5f, .5f, .5f}, {0, 0, 1}}},
-    {"BGryR", {{0, 0, 1}, {.5f, .5f, .5f}, {1, 0, 0}}},
-    {"RGB", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
-    {"BGR", {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}}},
-    {"RWG", {{1, 0, 0}, {1, 1, 1}, {0, 1, 0}}},
-    {"GWR", {{0, 1, 0}, {1, 1, 1}, {1, 0, 0}}},
-    {"GWB", {{0, 1, 0}, {1, 1, 1}, {0, 0, 1}}},
-    {"BWG", {{0, 0, 1}, {1, 1, 1}, {0, 1, 0}}},
-    {"BlkW", {{0, 0, 0}, {.5f, .5f, .5f}, {1, 1, 1}}},
-    {"WBlk", {{1, 1, 1}, {.5f, .5f, .5f}, {0, 0, 0}}}};
+    {"RWB", {{1, 0, 0}, {1, 1, 1}, {0, 0, 1}}, NULL},
+    {"BWR", {{0, 0, 1}, {1, 1, 1}, {1, 0, 0}}, NULL},
+    {"RGryB", {{1, 0, 0}, {.5f, .5f, .5f}, {0, 0, 1}}, NULL},
+    {"BGryR", {{0, 0, 1}, {.5f, .5f, .5f}, {1, 0, 0}}, NULL},
+    {"RGB", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, NULL},
+    {"BGR", {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}}, NULL},
+    {"RWG", {{1, 0, 0}, {1, 1, 1}, {0, 1, 0}}, NULL},
+    {"GWR", {{0, 1, 0}, {1, 1, 1}, {1, 0, 0}}, NULL},
+    {"GWB", {{0, 1, 0}, {1, 1, 1}, {0, 0, 1}}, NULL},
+    {"BWG", {{0, 0, 1}, {1, 1, 1}, {0, 1, 0}}, NULL},
+    {"BlkW", {{0, 0, 0}, {.5f, .5f, .5f}, {1, 1, 1}}, NULL},
+    {"WBlk", {{1, 1, 1}, {.5f, .5f, .5f}, {0, 0, 0}}, NULL},
+    {"viridis", {{0}}, ms_colormap_viridis},
+    {"magma", {{0}}, ms_colormap_magma},
+    {"inferno", {{0}}, ms_colormap_inferno},
+    {"plasma", {{0}}, ms_colormap_plasma},
+    {"cividis", {{0}}, ms_colormap_cividis},
+    {"turbo", {{0}}, ms_colormap_turbo}};
 
 /* Categories in VMD's order of creation. */
 static const char *const category_names[] = {
@@ -139,13 +146,32 @@ void ms_color_scale_eval(const float rgb[3][3], float mid, float offset, float x
     }
 }
 
+/* A perceptual map at x in [0, 1], interpolated linearly between its 256 entries. */
+static void map_eval(const float (*map)[3], float x, float out[3])
+{
+    float f = x * 255.0f;
+    int i = f <= 0 ? 0 : f >= 255 ? 254 : (int)f;
+    float t = f - (float)i;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    for (int k = 0; k < 3; k++) out[k] = map[i][k] + t * (map[i + 1][k] - map[i][k]);
+}
+
+/* The three colours a perceptual map answers for (color scale colors): its ends and middle. */
+static void map_colors(ms_color_scale_method *m)
+{
+    for (int j = 0; j < 3; j++) map_eval(m->map, 0.5f * (float)j, m->rgb[j]);
+}
+
 static void rebuild_scale(ms_colors *c)
 {
     const ms_color_scale_method *m = &c->methods[c->method];
-    for (int i = 0; i < MS_COLOR_SCALE_SIZE; i++)
-        ms_color_scale_eval(m->rgb, c->scale_mid, c->scale_min,
-                            (float)i / (float)(MS_COLOR_SCALE_SIZE - 1),
-                            c->rgb[MS_COLOR_SCALE_BEGIN + i]);
+    for (int i = 0; i < MS_COLOR_SCALE_SIZE; i++) {
+        float x = (float)i / (float)(MS_COLOR_SCALE_SIZE - 1);
+        /* a perceptual map is its published colours: no midpoint, no offset */
+        if (m->map) map_eval(m->map, x, c->rgb[MS_COLOR_SCALE_BEGIN + i]);
+        else ms_color_scale_eval(m->rgb, c->scale_mid, c->scale_min, x,
+                                 c->rgb[MS_COLOR_SCALE_BEGIN + i]);
+    }
     c->version++;
 }
 
@@ -171,7 +197,7 @@ int ms_color_default_rgb(int id, float rgb[3])
 
 int ms_color_set_rgb(ms_colors *c, int id, const float rgb[3])
 {
-    if (id < 0 || id >= MS_COLOR_NUM) return -1;
+    if (id < 0 || id >= MS_COLOR_MAX) return -1;
     for (int k = 0; k < 3; k++)
         c->rgb[id][k] = rgb[k] < 0 ? 0 : rgb[k] > 1 ? 1 : rgb[k];
     c->version++;
@@ -204,6 +230,7 @@ void ms_color_scale_set_colors(ms_colors *c, int method, const float rgb[3][3])
 {
     if (method < 0 || method >= MS_COLOR_SCALE_METHODS) return;
     memcpy(c->methods[method].rgb, rgb, sizeof c->methods[method].rgb);
+    c->methods[method].map = NULL;   /* three colours of the user's: blended from now on */
     rebuild_scale(c);
 }
 
@@ -428,6 +455,8 @@ ms_colors *ms_colors_new(ms_error *err)
     }
     memcpy(c->rgb, color_defaults, sizeof color_defaults);
     memcpy(c->methods, scale_defaults, sizeof scale_defaults);
+    for (int i = 0; i < MS_COLOR_SCALE_METHODS; i++)
+        if (c->methods[i].map) map_colors(&c->methods[i]);
     c->scale_mid = 0.5f;
     c->scale_min = 0.1f;
     c->scale_max = 1.0f;

@@ -18,7 +18,7 @@
 #define MS_COLOR_SCALE_SIZE 1024
 #define MS_COLOR_MAX (MS_COLOR_NUM + MS_COLOR_SCALE_SIZE)   /* 1057 */
 #define MS_COLOR_AUTO_CYCLE 32           /* new items get (item count mod 32) */
-#define MS_COLOR_SCALE_METHODS 12
+#define MS_COLOR_SCALE_METHODS 18   /* 12 of three colours, 6 perceptual maps */
 
 typedef struct ms_color_item {
     char *name;
@@ -34,6 +34,8 @@ typedef struct ms_color_category {
 typedef struct ms_color_scale_method {
     char name[8];
     float rgb[3][3];                     /* low, middle, high */
+    const float (*map)[3];               /* a perceptual map's 256 entries (colormaps.h), or
+                                          * NULL: blended from the three colours */
 } ms_color_scale_method;
 
 typedef struct ms_restype {
@@ -67,7 +69,8 @@ static inline const float *ms_color_rgb(const ms_colors *c, int id)
 }
 /* The default RGB of colour id (0..1056, the scale entries as the default scale makes them). */
 int ms_color_default_rgb(int id, float rgb[3]);
-/* Change the RGB of a named colour (0..32); values are clamped to [0, 1]. */
+/* Change the RGB of a colour (0..32 named, 33..1056 a colour-scale entry until the scale is
+ * next rebuilt); values are clamped to [0, 1]. */
 int ms_color_set_rgb(ms_colors *c, int id, const float rgb[3]);
 
 /* --- the colour scale */

@@ -2,7 +2,7 @@
 src_libmscore_la_SOURCES += \
 	src/scene/mat4.h src/scene/mat4.c \
 	src/scene/displaylist.h src/scene/displaylist.c \
-	src/scene/color.h src/scene/color.c \
+	src/scene/color.h src/scene/color.c src/scene/colormaps.h src/scene/colormaps.c \
 	src/scene/material.h src/scene/material.c \
 	src/scene/graphics.h src/scene/graphics.c \
 	src/scene/scene.h src/scene/scene.c

@@ -40,6 +40,6 @@ esac
 # The README's main job: the example renders 1tii to a PNG.
 out=$($MOLSCOPE -dispdev opengl -e "$MS_SRCDIR/scripts/example.tcl" -args "$MS_TEST_DATA/1tii.pdb" \
       "$scratch/ex.png" 2>&1 < /dev/null); rc=$?
-expect_match "the example renders 1tii" "$rc:$out" "0:*Atoms: 5684*rendered $scratch/ex.png (800x600, *"
+expect_match "the example renders 1tii" "$rc:$out" "0:*Atoms:5684*rendered $scratch/ex.png (800x600, *"
 expect_eq "the example's image is a PNG" "$(head -c 8 "$scratch/ex.png" | od -An -c | tr -d ' ')" '211PNG\r\n032\n'
 rm -rf "$scratch"

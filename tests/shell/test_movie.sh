@@ -47,12 +47,12 @@ if {[parallel noderank] == 0} { puts "RESULT $r" }
 TCL
 mkdir -p one two
 out1=$($M -e movie.tcl -args one one/m.mp4 </dev/null 2>one.err); rc1=$?
-expect_eq "one process: the movie is made" "$rc1:$(printf '%s\n' "$out1" | grep -o 'rendered [0-9]* reused [0-9]*')" \
+expect_eq "one process: the movie is made" "$rc1:$(printf '%s\n' "$out1" | grep '^RESULT' | grep -o 'rendered [0-9]* reused [0-9]*')" \
     "0:rendered 20 reused 0"
 expect_eq "one process: 20 frames, no temporary file" "$(ls one | grep -c '^f\.[0-9]\{5\}\.png$'):$(ls one | grep -c 'part\|\.tmp')" "20:0"
 if [ $have_mpi = 1 ]; then
     out2=$(mpi 2 $M -e movie.tcl -args two two/m.mp4 </dev/null 2>two.err); rc2=$?
-    expect_eq "2 ranks: the movie is made" "$rc2:$(printf '%s\n' "$out2" | grep -o 'rendered [0-9]* reused [0-9]* ranks [0-9]*')" \
+    expect_eq "2 ranks: the movie is made" "$rc2:$(printf '%s\n' "$out2" | grep '^RESULT' | grep -o 'rendered [0-9]* reused [0-9]* ranks [0-9]*')" \
         "0:rendered 20 reused 0 ranks 2"
     expect_eq "2 ranks: every frame rendered exactly once" "$(awk '{print $1}' two/ranks.log | sort -n | tr '\n' ' ')" \
         "$(seq 0 19 | tr '\n' ' ')"
@@ -124,7 +124,7 @@ before=$(ls kill | grep -c '^f\.[0-9]*\.png$')
 expect_eq "kill -9 midway: some frames exist, not all" "$([ "$before" -ge 6 ] && [ "$before" -lt 20 ] && echo yes)" yes
 out=$(run_job kill kill/m.mp4 </dev/null 2>/dev/null); rc=$?
 expect_eq "run again: only the missing frames are rendered" \
-    "$rc:$(printf '%s\n' "$out" | grep -o 'rendered [0-9]* reused [0-9]*')" "0:rendered $((20 - before)) reused $before"
+    "$rc:$(printf '%s\n' "$out" | grep '^RESULT' | grep -o 'rendered [0-9]* reused [0-9]*')" "0:rendered $((20 - before)) reused $before"
 if [ $have_pil = 1 ]; then
     res=$($PY - <<'PY'
 from PIL import Image
