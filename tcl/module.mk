@@ -1,5 +1,5 @@
 # tcl: the Tcl library shipped with molscope.
-dist_tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl
+dist_tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl tcl/vmdplugins.tcl
 
 # The page of the live view (display live, doc/live.md).
 livepagedir = $(tcllibdir)/live
@@ -19,3 +19,10 @@ tcl_parallel_parallel_la_SOURCES = tcl/parallel/parallel.c \
 tcl_parallel_parallel_la_CFLAGS = $(AM_CFLAGS) $(TCL_STUB_CFLAGS)
 tcl_parallel_parallel_la_LDFLAGS = -module -avoid-version -shared
 tcl_parallel_parallel_la_LIBADD = $(TCL_STUB_LIBS) $(MPI_LIBS) $(PTHREAD_LIBS)
+
+# VMD's plugin packages molscope ships (doc/pbctools.md, doc/exectool.md), each a folder of
+# the Tcl library with its pkgIndex.tcl, found through auto_path.
+pbctoolsdir = $(tcllibdir)/pbctools
+dist_pbctools_DATA = tcl/pbctools/pkgIndex.tcl tcl/pbctools/pbctools.tcl
+exectooldir = $(tcllibdir)/exectool
+dist_exectool_DATA = tcl/exectool/pkgIndex.tcl tcl/exectool/exectool.tcl
