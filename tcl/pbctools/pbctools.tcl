@@ -14,7 +14,7 @@ namespace eval ::PBCTools {
 }
 
 foreach ::PBCTools::sub {set get wrap unwrap join} {
-    proc ::PBCTools::pbc$::PBCTools::sub {args} [list uplevel 1 [list pbc $::PBCTools::sub] {{*}$args}]
+    proc ::PBCTools::pbc$::PBCTools::sub {args} "pbc $::PBCTools::sub {*}\$args"
 }
 unset ::PBCTools::sub
 
