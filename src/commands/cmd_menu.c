@@ -214,7 +214,7 @@ static const ms_subcmd menu_table[] = {
 
 void ms_cmd_menu_register(ms_app *app)
 {
-    static const ms_subcmd by_name = {"<name>", menu_named, 1, 3,
+    static const ms_subcmd by_name = {"<name>", menu_named, 1, 4,
                                       "<name> on|off|status|loc|move <x> <y>"};
     ms_cmdset_create(app, "menu", menu_table);
     ms_cmdset_fallback(app, "menu", &by_name);
