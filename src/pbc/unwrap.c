@@ -4,7 +4,7 @@
  * reference atom or, with the bond list, the bonded atom it was reached from. */
 #include "config.h"
 #include "base/threads.h"
-#include "pbc/pbc.h"
+#include "pbc/internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -13,13 +13,12 @@
 /* Move p to the image nearest r. */
 static void nearest_image(const ms_pbc_cell *c, float *p, const float *r)
 {
-    double d[3] = {(double)p[0] - r[0], (double)p[1] - r[1], (double)p[2] - r[2]};
-    double n[3];
-    for (int k = 0; k < 3; k++)
-        n[k] = nearbyint(d[0] * c->inv[0][k] + d[1] * c->inv[1][k] + d[2] * c->inv[2][k]);
+    double d[3] = {(double)p[0] - r[0], (double)p[1] - r[1], (double)p[2] - r[2]}, n[3], t[3];
+    ms_pbc_frac(c, d, n);
+    for (int k = 0; k < 3; k++) n[k] = ms_pbc_round(n[k]);
     if (n[0] == 0 && n[1] == 0 && n[2] == 0) return;
-    for (int k = 0; k < 3; k++)
-        p[k] = (float)(p[k] - (n[0] * c->v[0][k] + n[1] * c->v[1][k] + n[2] * c->v[2][k]));
+    ms_pbc_lattice(c, n, t);
+    for (int k = 0; k < 3; k++) p[k] = (float)(p[k] - t[k]);
 }
 
 typedef struct unwrap_job {

@@ -5,7 +5,7 @@
 #include "config.h"
 #include "base/threads.h"
 #include "measure/measure.h"
-#include "pbc/pbc.h"
+#include "pbc/internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -53,26 +53,47 @@ typedef struct wrap_job {
 static void shift_into(const wrap_job *j, const double q[3], double t[3])
 {
     const double (*v)[3] = j->c->v;
+    double n[3];
     if (j->ortho) {
         double r[3] = {q[0], q[1], q[2]};
         for (int k = 2; k >= 0; k--) {
-            double n = floor(r[k] / v[k][k]);
-            for (int d = 0; d < 3; d++) r[d] -= n * v[k][d];
+            double m = ms_pbc_floor(r[k] / v[k][k]);
+            for (int d = 0; d < 3; d++) r[d] -= m * v[k][d];
         }
         for (int d = 0; d < 3; d++) t[d] = r[d] - q[d];
         return;
     }
-    const double (*inv)[3] = j->c->inv;
-    double n[3];
-    for (int k = 0; k < 3; k++)
-        n[k] = floor(q[0] * inv[0][k] + q[1] * inv[1][k] + q[2] * inv[2][k]);
-    for (int d = 0; d < 3; d++) t[d] = -(n[0] * v[0][d] + n[1] * v[1][d] + n[2] * v[2][d]);
+    ms_pbc_frac(j->c, q, n);
+    for (int k = 0; k < 3; k++) n[k] = -ms_pbc_floor(n[k]);
+    ms_pbc_lattice(j->c, n, t);
+}
+
+static void move(float *p, const double t[3])
+{
+    if (t[0] == 0 && t[1] == 0 && t[2] == 0) return;
+    for (int d = 0; d < 3; d++) p[d] = (float)(p[d] + t[d]);
+}
+
+/* Groups of one atom: no means, no indirection through the groups. */
+static void wrap_atoms(const wrap_job *j, size_t begin, size_t end)
+{
+    const uint32_t *at = j->g->atoms;
+    for (size_t k = begin; k < end; k++) {
+        float *p = j->pos + 3 * (size_t)at[k];
+        double q[3] = {p[0] - j->origin[0], p[1] - j->origin[1], p[2] - j->origin[2]}, t[3];
+        shift_into(j, q, t);
+        move(p, t);
+    }
 }
 
 static void wrap_range(void *ctx, size_t begin, size_t end, int thread)
 {
     (void)thread;
     const wrap_job *j = ctx;
+    if (j->g->n == j->g->start[j->g->n]) {
+        wrap_atoms(j, begin, end);
+        return;
+    }
     for (size_t k = begin; k < end; k++) {
         const uint32_t *at = j->g->atoms + j->g->start[k];
         size_t n = j->g->start[k + 1] - j->g->start[k];
@@ -82,12 +103,7 @@ static void wrap_range(void *ctx, size_t begin, size_t end, int thread)
             for (int d = 0; d < 3; d++) q[d] += j->pos[3 * (size_t)at[i] + d];
         for (int d = 0; d < 3; d++) q[d] = q[d] / (double)n - j->origin[d];
         shift_into(j, q, t);
-        if (t[0] == 0 && t[1] == 0 && t[2] == 0) continue;
-        for (size_t i = 0; i < n; i++)
-            for (int d = 0; d < 3; d++) {
-                float *p = j->pos + 3 * (size_t)at[i] + d;
-                *p = (float)(*p + t[d]);
-            }
+        for (size_t i = 0; i < n; i++) move(j->pos + 3 * (size_t)at[i], t);
     }
 }
 
