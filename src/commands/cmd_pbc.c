@@ -137,6 +137,15 @@ static int frame_range(Tcl_Interp *interp, const pbc_args *a, const ms_molecule 
     return TCL_OK;
 }
 
+/* The options, the molecule and the frame range of a subcommand, in one call. */
+static int pbc_begin(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], int start,
+                     const ms_opt *table, int all_default, pbc_args *a, ms_molecule **m,
+                     size_t *first, size_t *last)
+{
+    if (pbc_parse(app, interp, objc, objv, start, table, a, m)) return TCL_ERROR;
+    return frame_range(interp, a, *m, all_default, first, last);
+}
+
 /* The atoms of a selection text (evaluated on frame f), malloc'd, ascending. */
 static int select_atoms(Tcl_Interp *interp, ms_molecule *m, size_t f, const char *text,
                         const char *what, uint32_t **atoms, size_t *n)
@@ -213,8 +222,7 @@ static int pbc_set(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
     pbc_args a;
     ms_molecule *m;
     size_t first, last;
-    if (pbc_parse(app, interp, objc, objv, 3, cell_options, &a, &m) ||
-        frame_range(interp, &a, m, 1, &first, &last))
+    if (pbc_begin(app, interp, objc, objv, 3, cell_options, 1, &a, &m, &first, &last))
         return TCL_ERROR;
     size_t nf = last - first + 1;
     int list = is_cell_list(objv[2], a.namd), n = 1;
@@ -259,8 +267,7 @@ static int pbc_get(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
     pbc_args a;
     ms_molecule *m;
     size_t first, last;
-    if (pbc_parse(app, interp, objc, objv, 2, cell_options, &a, &m) ||
-        frame_range(interp, &a, m, 0, &first, &last))
+    if (pbc_begin(app, interp, objc, objv, 2, cell_options, 0, &a, &m, &first, &last))
         return TCL_ERROR;
     Tcl_Obj *r = Tcl_NewListObj(0, NULL);
     for (size_t f = first; f <= last; f++)
@@ -310,8 +317,7 @@ static int pbc_wrap(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     pbc_args a;
     ms_molecule *m;
     size_t first, last;
-    if (pbc_parse(app, interp, objc, objv, 2, wrap_options, &a, &m) ||
-        frame_range(interp, &a, m, 0, &first, &last))
+    if (pbc_begin(app, interp, objc, objv, 2, wrap_options, 0, &a, &m, &first, &last))
         return TCL_ERROR;
     if (a.ortho && a.para)
         return ms_cmd_error(interp, "pbc wrap: -orthorhombic and -parallelepiped cannot be "
@@ -334,8 +340,7 @@ static int pbc_unwrap(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const 
     ms_molecule *m;
     size_t first, last, n;
     uint32_t *atoms;
-    if (pbc_parse(app, interp, objc, objv, 2, unwrap_options, &a, &m) ||
-        frame_range(interp, &a, m, 1, &first, &last) ||
+    if (pbc_begin(app, interp, objc, objv, 2, unwrap_options, 1, &a, &m, &first, &last) ||
         select_atoms(interp, m, first, a.sel, "-sel", &atoms, &n))
         return TCL_ERROR;
     ms_error err = {{0}};
@@ -368,8 +373,7 @@ static int pbc_join(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     uint32_t *atoms = NULL;
     uint8_t *ref = NULL;
     if (ms_arg_choice(interp, objv[2], compound_names, "compound", &kind) ||
-        pbc_parse(app, interp, objc, objv, 3, join_options, &a, &m) ||
-        frame_range(interp, &a, m, 0, &first, &last) ||
+        pbc_begin(app, interp, objc, objv, 3, join_options, 0, &a, &m, &first, &last) ||
         ref_flags(interp, m, first, a.ref, &ref) ||
         select_atoms(interp, m, first, a.sel, "-sel", &atoms, &n)) {
         free(ref);
