@@ -3,7 +3,8 @@
 # (plugins/noarch/tcl and plugins/LINUXAMD64/tcl) to auto_path after molscope's library, so
 # `package require` finds VMD's plugins while molscope's own packages of the same version
 # (pbctools, exectool) win. vmd_install_extension, which plugins call to put themselves in
-# VMD's Extensions menu, registers the menu (menu tk register) and draws nothing.
+# VMD's Extensions menu, records the extension, registers its menu with `menu tk register`
+# where the menu command exists, and draws nothing.
 
 namespace eval ::molscope {
     # name -> {proc menupath} of every extension installed
@@ -12,7 +13,7 @@ namespace eval ::molscope {
 
 proc vmd_install_extension {name cmd menupath} {
     set ::molscope::extensions($name) [list $cmd $menupath]
-    menu tk register $name $cmd $menupath
+    if {[info commands menu] ne ""} { menu tk register $name $cmd $menupath }
     return
 }
 

@@ -31,6 +31,5 @@ const ms_app_cmdset_fn ms_command_sets[] = {
     ms_cmd_volmap_register,
     ms_cmd_movie_register,
     ms_cmd_pbc_register,
-    ms_cmd_menu_register,
     NULL,
 };

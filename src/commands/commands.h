@@ -66,8 +66,6 @@ void ms_cmd_ss_register(ms_app *app);
 void ms_cmd_movie_register(ms_app *app);
 /* pbc: pbctools' wrap, unwrap, join, set, get (cmd_pbc.c) */
 void ms_cmd_pbc_register(ms_app *app);
-/* menu: VMD's menus kept with no display, for plugins' registration (cmd_menu.c) */
-void ms_cmd_menu_register(ms_app *app);
 /* The rep subcommands of mol (addrep, modstyle, ...) and molinfo's rep keywords
  * (cmd_rep.c). */
 void ms_cmd_rep_register(ms_app *app);
