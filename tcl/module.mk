@@ -1,5 +1,5 @@
 # tcl: the Tcl library shipped with molscope.
-dist_tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl tcl/vmdplugins.tcl
+dist_tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl
 
 # The page of the live view (display live, doc/live.md).
 livepagedir = $(tcllibdir)/live
@@ -19,6 +19,9 @@ tcl_parallel_parallel_la_SOURCES = tcl/parallel/parallel.c \
 tcl_parallel_parallel_la_CFLAGS = $(AM_CFLAGS) $(TCL_STUB_CFLAGS)
 tcl_parallel_parallel_la_LDFLAGS = -module -avoid-version -shared
 tcl_parallel_parallel_la_LIBADD = $(TCL_STUB_LIBS) $(MPI_LIBS) $(PTHREAD_LIBS)
+
+# VMD's plugin folders on auto_path and vmd_install_extension (sourced by init.tcl).
+dist_tcllib_DATA += tcl/vmdplugins.tcl
 
 # VMD's plugin packages molscope ships (doc/pbctools.md, doc/exectool.md), each a folder of
 # the Tcl library with its pkgIndex.tcl, found through auto_path.
