@@ -37,6 +37,8 @@
  *   ss/         secondary structure computed from the backbone (DSSP), on demand
  *   select/     the atom selection language (compiled to a tree, evaluated to bit sets)
  *   measure/    the numbers behind `measure`: centers, fits, contacts, SASA, g(r) ...
+ *   pbc/        periodic boundaries: cells, compounds, wrap/unwrap/join over frames
+ *               (the loops behind pbctools' `pbc`, ../tcl/pbctools)
  *   surf/       QuickSurf: Gaussian density maps, marching cubes, the surface engine
  *   parallel/   MPI: start-up and shutdown, collectives, the dynamic for-loop, loading a
  *               file on rank 0 and broadcasting the molecule (also the core of the
@@ -95,6 +97,7 @@
 #include "ss/ss.h"
 #include "select/select.h"
 #include "measure/measure.h"
+#include "pbc/pbc.h"
 #include "surf/qsurf.h"
 #include "parallel/parallel.h"
 #include "movie/movie.h"

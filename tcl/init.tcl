@@ -16,8 +16,9 @@ if {[catch {package require molscope::parallel} ::molscope::err]} {
 }
 unset -nocomplain ::molscope::err
 
-# Library scripts, in order; each defines procs only.
-foreach ::molscope::script {vectors.tcl movie.tcl} {
+# Library scripts, in order; each defines procs (vmdplugins.tcl also adds a VMD tree's plugin
+# folders to auto_path, after this library).
+foreach ::molscope::script {vectors.tcl movie.tcl vmdplugins.tcl} {
     source [file join $::molscope::libdir $::molscope::script]
 }
 unset -nocomplain ::molscope::script

@@ -21,3 +21,13 @@ tcl_parallel_parallel_la_SOURCES = tcl/parallel/parallel.c \
 tcl_parallel_parallel_la_CFLAGS = $(AM_CFLAGS) $(TCL_STUB_CFLAGS)
 tcl_parallel_parallel_la_LDFLAGS = -module -avoid-version -shared
 tcl_parallel_parallel_la_LIBADD = $(TCL_STUB_LIBS) $(MPI_LIBS) $(PTHREAD_LIBS)
+
+# VMD's plugin folders on auto_path and vmd_install_extension (sourced by init.tcl).
+dist_tcllib_DATA += tcl/vmdplugins.tcl
+
+# VMD's plugin packages molscope ships (doc/pbctools.md, doc/exectool.md), each a folder of
+# the Tcl library with its pkgIndex.tcl, found through auto_path.
+pbctoolsdir = $(tcllibdir)/pbctools
+dist_pbctools_DATA = tcl/pbctools/pkgIndex.tcl tcl/pbctools/pbctools.tcl
+exectooldir = $(tcllibdir)/exectool
+dist_exectool_DATA = tcl/exectool/pkgIndex.tcl tcl/exectool/exectool.tcl

@@ -34,5 +34,6 @@ const ms_app_cmdset_fn ms_command_sets[] = {
     ms_cmd_measure_geom_register,
     ms_cmd_volmap_register,
     ms_cmd_movie_register,
+    ms_cmd_pbc_register,
     NULL,
 };

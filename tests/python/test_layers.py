@@ -22,7 +22,7 @@ from mstest import Reporter  # noqa: E402
 LAYERS = [
     ("foundation", ["base", "vecmath"]),
     ("data", ["molecule", "fileio", "image", "cl"]),
-    ("core", ["ss", "select", "measure", "surf", "parallel", "movie", "scene"]),
+    ("core", ["ss", "select", "measure", "pbc", "surf", "parallel", "movie", "scene"]),
     ("reps", ["rep"]),
     ("devices", ["render", "gl", "rt", "oclrt"]),
     ("assembly", ["assemble"]),
