@@ -3,9 +3,12 @@
 # NewCartoon for 1tii replicated to 1M atoms, through the real rep code (first build and
 # rebuild), against the targets VDW <= 0.1 s, Licorice <= 0.3 s, NewCartoon <= 0.5 s.
 # Run from a built tree: scripts/bench/bench_reps.sh [--repeat R] [natoms]
+# BENCH_METHODS="Bonds Element CPK Element Licorice Element DynamicBonds Element" times the
+# bond methods instead; MOLSCOPE=path times another binary (an older build, for a comparison).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-[ -x src/molscope ] || { echo "bench_reps: build molscope first (make)" >&2; exit 1; }
+molscope=${MOLSCOPE:-./src/molscope}
+[ -x "$molscope" ] || { echo "bench_reps: build molscope first (make)" >&2; exit 1; }
 repeat=5
 if [ "${1:-}" = "--repeat" ]; then repeat=$2; shift 2; fi
 natoms=${1:-1000000}
@@ -15,7 +18,7 @@ pdb=bench-out/reps$natoms.pdb
 echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg), threads ${MOLSCOPE_THREADS:-all}"
 out=$(BENCH_PDB=$pdb BENCH_SRC=tests/data/1tii.pdb BENCH_REPEAT=$repeat MOLSCOPE_TCLLIB=tcl \
       MOLSCOPE_PLUGINDIR=plugins/.libs MOLSCOPE_NOREADLINE=1 \
-      ./src/molscope -dispdev text -e scripts/bench/bench_reps.tcl < /dev/null)
+      "$molscope" -dispdev text -e scripts/bench/bench_reps.tcl < /dev/null)
 echo "$out" | awk -F'\t' '
     $1 == "load" { printf "loaded %s in %s s\n", $2, $3; next }
     { t[$1] = $1 == "VDW" ? 0.1 : $1 == "Licorice" ? 0.3 : 0.5

@@ -1,7 +1,8 @@
 # bench_reps.tcl: molscope's side of the representation benchmark. Loads $env(BENCH_PDB)
 # (1tii replicated to ~1M atoms: replicate.py drops the HELIX/SHEET records, so the
 # secondary structure of 1tii is copied onto every copy with `$sel set structure`), then for
-# VDW, Licorice and NewCartoon times, $env(BENCH_REPEAT) times each:
+# VDW, Licorice and NewCartoon (or the methods and colourings $env(BENCH_METHODS) lists, as
+# "Bonds Element CPK Element ...") times, $env(BENCH_REPEAT) times each:
 #   first    a new rep's first build (`mol addrep`, then `mol repinfo`, which brings the rep
 #            up to date as the scene does): selection, colours and geometry into new memory;
 #   rebuild  the same rep after a frame change (frame 1 is a copy of frame 0): the geometry
@@ -46,7 +47,9 @@ for {set k 0} {$k < $n / $nref} {incr k} { lappend all {*}$ss }
 animate dup frame 0 $m
 mol delrep 0 $m
 
-foreach {style color} {VDW Element Licorice Element NewCartoon Structure} {
+set methods {VDW Element Licorice Element NewCartoon Structure}
+if {[info exists env(BENCH_METHODS)]} { set methods $env(BENCH_METHODS) }
+foreach {style color} $methods {
     set first {}
     set again {}
     mol representation $style

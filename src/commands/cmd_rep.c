@@ -424,7 +424,7 @@ static Tcl_Obj *counts(ms_app *app, const ms_rep *r)
     const struct {
         const char *k;
         size_t v;
-    } c[] = {{"spheres", dl->spheres.n}, {"cylinders", dl->cylinders.n}, {"cones", dl->cones.n},
+    } c[] = {{"spheres", dl->spheres.n}, {"cylinders", ms_dl_piece_count(&dl->cylinders)}, {"cones", dl->cones.n},
              {"lines", dl->lines.n}, {"points", dl->points.n}, {"triangles", dl->mesh.ntris},
              {"vertices", dl->mesh.nverts}, {"atoms", natoms}, {"builds", ms_rep_builds(r)},
              {"lit", (size_t)dl->lit}};
@@ -437,7 +437,18 @@ static Tcl_Obj *counts(ms_app *app, const ms_rep *r)
     return l;
 }
 
-/* One primitive of a kind as a flat list of numbers. */
+/* One cylinder piece (a plain cylinder, or half a bond) as a flat list of numbers. */
+static Tcl_Obj *piece(const ms_dl_piece *p)
+{
+    Tcl_Obj *e = floats(p->a, 3);
+    Tcl_ListObjAppendList(NULL, e, floats(p->b, 3));
+    Tcl_ListObjAppendElement(NULL, e, Tcl_NewDoubleObj(p->radius));
+    add_rgb(e, p->color);
+    Tcl_ListObjAppendElement(NULL, e, Tcl_NewIntObj(p->res));
+    return e;
+}
+
+/* One primitive of a kind (not cylinders) as a flat list of numbers. */
 static Tcl_Obj *primitive(const ms_displaylist *dl, int kind, size_t i)
 {
     Tcl_Obj *e;
@@ -447,13 +458,6 @@ static Tcl_Obj *primitive(const ms_displaylist *dl, int kind, size_t i)
         Tcl_ListObjAppendElement(NULL, e, Tcl_NewDoubleObj(dl->spheres.radius[i]));
         add_rgb(e, dl->spheres.color[i]);
         Tcl_ListObjAppendElement(NULL, e, Tcl_NewIntObj(dl->spheres.res[i]));
-        return e;
-    case 1:
-        e = floats(dl->cylinders.base + 3 * i, 3);
-        Tcl_ListObjAppendList(NULL, e, floats(dl->cylinders.apex + 3 * i, 3));
-        Tcl_ListObjAppendElement(NULL, e, Tcl_NewDoubleObj(dl->cylinders.radius[i]));
-        add_rgb(e, dl->cylinders.color[i]);
-        Tcl_ListObjAppendElement(NULL, e, Tcl_NewIntObj(dl->cylinders.res[i]));
         return e;
     case 2:
         e = floats(dl->lines.a + 3 * i, 3);
@@ -502,7 +506,11 @@ static int m_repinfo(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     size_t n = kind == 0 ? dl->spheres.n : kind == 1 ? dl->cylinders.n : kind == 2 ? dl->lines.n
                : kind == 3 ? dl->points.n : kind == 4 ? dl->mesh.nverts : dl->mesh.ntris;
     Tcl_Obj *l = Tcl_NewListObj(0, NULL);
+    if (kind == 1) n = 0;               /* cylinders: as VMD's pieces, a bond as two halves */
     for (size_t i = 0; i < n; i++) Tcl_ListObjAppendElement(NULL, l, primitive(dl, kind, i));
+    ms_dl_pieces it = ms_dl_pieces_of(&dl->cylinders);
+    ms_dl_piece p;
+    while (kind == 1 && ms_dl_pieces_next(&it, &p)) Tcl_ListObjAppendElement(NULL, l, piece(&p));
     Tcl_SetObjResult(interp, l);
     return TCL_OK;
 }

@@ -48,6 +48,7 @@
     X(PFNGLUNIFORM1FPROC, Uniform1f) X(PFNGLUNIFORM2FPROC, Uniform2f)                      \
     X(PFNGLUNIFORM3FVPROC, Uniform3fv) X(PFNGLUNIFORM4FVPROC, Uniform4fv)                  \
     X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv) X(PFNGLVERTEXATTRIB1FPROC, VertexAttrib1f) \
+    X(PFNGLVERTEXATTRIB3FPROC, VertexAttrib3f)                                             \
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                                           \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                     \
     X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray) X(PFNGLGENBUFFERSPROC, GenBuffers)        \

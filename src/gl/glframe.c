@@ -15,7 +15,7 @@
 #include <string.h>
 
 enum { K_SPHERES, K_CYLINDERS, K_CONES, K_MESH, K_LINES, K_POINTS, K_TEXT, K_N };
-#define MAX_ARRAYS 6               /* per kind; attribute locations go to 6 */
+#define MAX_ARRAYS 7               /* per kind; attribute locations go to 7 */
 
 /* One scene item in GL: its buffers per kind and what it needs. */
 typedef struct glitem {
@@ -196,10 +196,9 @@ typedef struct arr {
     GLenum target;
 } arr;
 
-/* The arrays of one kind, in the order the draw binds them; *n is the primitive count.
- * color2: the apex halves' colours of merged cylinders, or NULL. */
-static int kind_arrays(const ms_displaylist *dl, int k, const ms_rgba8 *color2,
-                       arr a[MAX_ARRAYS], const ms_rgba8 **col, size_t *n)
+/* The arrays of one kind, in the order the draw binds them; *n is the primitive count. */
+static int kind_arrays(const ms_displaylist *dl, int k, arr a[MAX_ARRAYS], const ms_rgba8 **col,
+                       size_t *n)
 {
     const ms_dl_spheres *sp = &dl->spheres;
     const ms_dl_cylinders *cy = &dl->cylinders;
@@ -214,9 +213,7 @@ static int kind_arrays(const ms_displaylist *dl, int k, const ms_rgba8 *color2,
         A(0, sp->xyz, f3); A(1, sp->radius, f1); A(2, sp->color, c4); return 3;
     case K_CYLINDERS: *n = cy->n; *col = cy->color;
         A(0, cy->base, f3); A(1, cy->apex, f3); A(2, cy->radius, f1); A(3, cy->color, c4);
-        A(4, cy->caps, 1);
-        if (!color2) return 5;
-        A(5, color2, c4); return 6;
+        A(4, cy->flags, 1); A(5, cy->color2, c4); A(6, cy->joint, f3); return 7;
     case K_CONES: *n = co->n; *col = co->color;
         A(0, co->base, f3); A(1, co->apex, f3); A(2, co->rbase, f1); A(3, co->rapex, f1);
         A(4, co->color, c4); return 5;
@@ -265,14 +262,14 @@ static int upload_arrays(frame *fr, glitem *gi, int k, const arr *a, int na,
     return 0;
 }
 
-/* One kind of a list (the item's own, its merged cylinders or its text strokes). */
-static int upload_list(frame *fr, glitem *gi, int k, const ms_displaylist *dl,
-                       const ms_rgba8 *color2, ms_error *err)
+/* One kind of a list (the item's own, or its text strokes). */
+static int upload_kind(frame *fr, glitem *gi, int k, ms_error *err)
 {
+    const ms_displaylist *dl = k == K_TEXT ? gi->text : gi->it->dl;
     arr a[MAX_ARRAYS];
     const ms_rgba8 *col = NULL;
     size_t n = 0;
-    int na = kind_arrays(dl, k, color2, a, &col, &n);
+    int na = kind_arrays(dl, k, a, &col, &n);
     if (n == 0 || na == 0) return 0;
     if (n > INT_MAX / 3 || (k == K_MESH && a[3].count > INT_MAX / 3)) {
         ms_error_set(err, "%zu primitives in one display list: too many for one draw", n);
@@ -286,19 +283,6 @@ static int upload_list(frame *fr, glitem *gi, int k, const ms_displaylist *dl,
     gi->count[k] = culled ? sel.kept : k == K_MESH ? a[3].count : n;
     ms_glcull_sel_free(&sel);
     gi->translucent[k] = gi->it->mat.opacity < 1.0f || any_translucent(col, n);
-    return rc;
-}
-
-static int upload_kind(frame *fr, glitem *gi, int k, ms_error *err)
-{
-    const ms_displaylist *dl = k == K_TEXT ? gi->text : gi->it->dl;
-    ms_glmerge merged;
-    int m = 1;
-    if (k == K_CYLINDERS && !fr->g->hardware)
-        m = ms_glmerge_cylinders(&dl->cylinders, &merged, err);
-    if (m < 0) return -1;
-    int rc = upload_list(fr, gi, k, m == 0 ? &merged.dl : dl, m == 0 ? merged.color2 : NULL, err);
-    if (m == 0) ms_glmerge_free(&merged);
     return rc;
 }
 
@@ -439,9 +423,14 @@ static void draw_arrays(const ms_glfn *f, int k, const GLuint *b, size_t n)
         attrib(f, 2, b[2], 1, GL_FLOAT, 0, 1);
         attrib(f, 3, k == K_CONES ? b[3] : b[2], 1, GL_FLOAT, 0, 1);
         attrib(f, 4, k == K_CONES ? b[4] : b[3], 4, GL_UNSIGNED_BYTE, 1, 1);
-        attrib(f, 6, k == K_CONES ? b[4] : b[5] ? b[5] : b[3], 4, GL_UNSIGNED_BYTE, 1, 1);
-        if (k == K_CYLINDERS) attrib(f, 5, b[4], 1, GL_UNSIGNED_BYTE, 0, 1);
-        else f->VertexAttrib1f(5, (float)MS_CAP_BASE);
+        attrib(f, 6, k == K_CONES ? b[4] : b[5], 4, GL_UNSIGNED_BYTE, 1, 1);
+        if (k == K_CYLINDERS) {
+            attrib(f, 5, b[4], 1, GL_UNSIGNED_BYTE, 0, 1);
+            attrib(f, 7, b[6], 3, GL_FLOAT, 0, 1);
+        } else {
+            f->VertexAttrib1f(5, (float)MS_CAP_BASE);
+            f->VertexAttrib3f(7, 0.0f, 0.0f, 0.0f);
+        }
         break;
     case K_LINES: case K_TEXT: case K_POINTS:
         attrib(f, 0, b[0], 3, GL_FLOAT, 0, 1);

@@ -103,15 +103,6 @@ void ms_glcull_sel_free(ms_glcull_sel *sel);
  * memory). */
 void *ms_glcull_gather(const ms_glcull_sel *sel, const void *src, size_t elsize);
 
-/* Half-bond pairs of cylinders merged into two-coloured cylinders (merge.c). */
-typedef struct ms_glmerge {
-    ms_displaylist dl;             /* only its cylinders are set (arrays owned here) */
-    ms_rgba8 *color2;              /* colour of the apex half */
-} ms_glmerge;
-/* 0 with m filled, 1 when too few pairs are worth it (m empty), -1 on no memory. */
-int ms_glmerge_cylinders(const ms_dl_cylinders *in, ms_glmerge *m, ms_error *err);
-void ms_glmerge_free(ms_glmerge *m);
-
 /* The frame (glframe.c): draw a scene into the framebuffer. */
 int ms_glr_draw_scene(ms_gl *g, const ms_scene *s, ms_gl_times *t, ms_error *err);
 

@@ -5,7 +5,7 @@ src_libmscore_la_SOURCES += src/gl/gl.h src/gl/display.c
 if HAVE_GL
 src_libmscore_la_SOURCES += \
 	src/gl/glfn.h src/gl/glfn.c src/gl/glrender.h src/gl/glrender.c \
-	src/gl/shaders.c src/gl/glframe.c src/gl/cull.c src/gl/merge.c \
+	src/gl/shaders.c src/gl/glframe.c src/gl/cull.c \
 	src/gl/context.c
 else
 src_libmscore_la_SOURCES += src/gl/nogl.c

@@ -190,8 +190,9 @@ static const char fs_sphere[] =
     "}\n";
 
 /* Cylinders and cones: a truncated cone from a_base (radius a_rbase) to a_apex (a_rapex),
- * with the end discs named in a_caps (1 base, 2 apex) closed; the half nearer the apex takes
- * a_color2 (merged half-bond pairs; otherwise the same colour). */
+ * with the end discs named in a_caps (1 base, 2 apex; the display list's other flags
+ * masked off) closed; beyond a_joint (a bond's, where its colour changes) it takes a_color2
+ * (a cone's or a plain cylinder's is the same colour). */
 static const char vs_cone[] =
     "layout(location = 0) in vec3 a_base;\n"
     "layout(location = 1) in vec3 a_apex;\n"
@@ -200,17 +201,22 @@ static const char vs_cone[] =
     "layout(location = 4) in vec4 a_color;\n"
     "layout(location = 5) in float a_caps;\n"
     "layout(location = 6) in vec4 a_color2;\n"
+    "layout(location = 7) in vec3 a_joint;\n"
     "flat out vec3 v_base, v_apex;\n"
     "flat out vec2 v_radii;\n"
     "flat out vec4 v_color, v_color2;\n"
     "flat out int v_caps;\n"
+    "flat out float v_split;\n"
     "void main() {\n"
     "    v_base = (u_mv * vec4(a_base, 1.0)).xyz;\n"
     "    v_apex = (u_mv * vec4(a_apex, 1.0)).xyz;\n"
     "    v_radii = vec2(a_rbase, a_rapex) * u_rscale;\n"
     "    v_color = a_color;\n"
     "    v_color2 = a_color2;\n"
-    "    v_caps = int(a_caps + 0.5);\n"
+    "    v_caps = int(a_caps + 0.5) & 3;\n"
+    "    vec3 ax = v_apex - v_base;\n"
+    "    float len = length(ax);\n"
+    "    v_split = len > 0.0 ? dot((u_mv * vec4(a_joint, 1.0)).xyz - v_base, ax) / len : 0.0;\n"
     "    gl_Position = corner(v_base, v_radii.x, v_apex, v_radii.y);\n"
     "}\n";
 
@@ -219,6 +225,7 @@ static const char fs_cone[] =
     "flat in vec2 v_radii;\n"
     "flat in vec4 v_color, v_color2;\n"
     "flat in int v_caps;\n"
+    "flat in float v_split;\n"
     "float best_t; vec3 best_n;\n"
     "vec3 o1, d1;\n"
     "void consider(float t, vec3 n) {\n"
@@ -264,7 +271,7 @@ static const char fs_cone[] =
     "    if (best_t > 1e29) discard;\n"
     "    vec3 p = o1 + best_t * d;\n"
     "    gl_FragDepth = depth_of(p);\n"
-    "    vec4 col = ws + best_t * ds < 0.5 * len ? v_color : v_color2;\n"
+    "    vec4 col = ws + best_t * ds < v_split ? v_color : v_color2;\n"
     "    surface(col.rgb, col.a, p, best_n, -d);\n"
     "}\n";
 

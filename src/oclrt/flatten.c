@@ -1,10 +1,11 @@
-/* flatten.c: the scene as the OpenCL kernels read it. Each placed display list (and the
- * world-space list of its lines, points and text, rt/strokes.c) gives one geometry per
- * primitive kind with TachyonInternal's texture terms (rt/world.c); its primitives are
+/* flatten.c: the scene as the OpenCL kernels read it. Each source of the pass both tracers
+ * share (rt_sources_make: a placed display list, or the world-space list of its lines,
+ * points and text, with the discs closing its cylinder ends and cone bases) gives one
+ * geometry per primitive kind with TachyonInternal's texture terms; its primitives are
  * moved to world space here (positions by the transform, radii by its scale: VMD's
  * transforms are rotations, translations and uniform scales), while mesh normals stay the
- * list's quantized bytes and the kernel turns them with the list's normal matrix. Closed
- * cylinder ends and cone bases become discs, as rt/world.c makes them. */
+ * list's quantized bytes and the kernel turns them with the list's normal matrix. A bond is
+ * one cylinder with its second colour and the joint's distance along the axis. */
 #include "config.h"
 #include "oclrt/oclrt_impl.h"
 
@@ -19,38 +20,6 @@ static int any_alpha(const ms_rgba8 *c, size_t n)
     for (size_t i = 0; i < n; i++)
         if (c[i].a < 255) return 1;
     return 0;
-}
-
-static size_t caps_of(const ms_displaylist *dl)
-{
-    size_t n = 0;
-    for (size_t i = 0; i < dl->cylinders.n; i++)
-        n += !!(dl->cylinders.caps[i] & MS_CAP_BASE) + !!(dl->cylinders.caps[i] & MS_CAP_APEX);
-    for (size_t i = 0; i < dl->cones.n; i++) n += dl->cones.rbase[i] > 0;
-    return n;
-}
-
-static int caps_alpha(const ms_displaylist *dl)
-{
-    for (size_t i = 0; i < dl->cylinders.n; i++)
-        if ((dl->cylinders.caps[i] & (MS_CAP_BASE | MS_CAP_APEX)) && dl->cylinders.color[i].a < 255) return 1;
-    for (size_t i = 0; i < dl->cones.n; i++)
-        if (dl->cones.rbase[i] > 0 && dl->cones.color[i].a < 255) return 1;
-    return 0;
-}
-
-/* The scene's lists and the stroke lists made for them. */
-static source *sources_of(orc_world *w, const ms_scene *s, size_t *n, ms_error *err)
-{
-    source *src = ms_alloc_array(2 * s->nitems + 1, sizeof *src);
-    long got = src ? rt_sources(s, src, &w->lists, &w->nlists, &w->caplists) : -1;
-    if (got < 0) {
-        free(src);
-        ms_error_set(err, "out of memory");
-        return NULL;
-    }
-    *n = (size_t)got;
-    return src;
 }
 
 /* A triangle naming a vertex that does not exist is an error (as rt/mesh.c says it). */
@@ -70,7 +39,7 @@ static int alloc_arrays(orc_world *w, size_t nsrc, ms_error *err)
     size_t ng = 5 * nsrc + 1;
     w->qa = ms_alloc_array(nq, 4 * sizeof(float));
     w->qb = ms_alloc_array(nq, 4 * sizeof(float));
-    w->qm = ms_alloc_array(nq, 2 * sizeof(uint32_t));
+    w->qm = ms_alloc_array(nq, 4 * sizeof(uint32_t));
     w->qkind = ms_alloc_array(nq, sizeof(uint32_t));
     w->tri = ms_alloc_array(nt, 4 * sizeof(uint32_t));
     w->vxyz = ms_alloc_array(nv, 4 * sizeof(float));
@@ -108,15 +77,18 @@ static uint32_t add_geom(placer *pl, const rt_material *m, int alpha)
     return (uint32_t)g;
 }
 
+/* A quadric; c2 and split: a cylinder's colour beyond its joint, and the joint's distance. */
 static void put_quadric(placer *pl, uint32_t kind, uint32_t g, const float a[4], const float b[4],
-                        ms_rgba8 c)
+                        ms_rgba8 c, ms_rgba8 c2, float split)
 {
     orc_world *w = pl->w;
     size_t i = w->nq++;
     memcpy(w->qa + 4 * i, a, 4 * sizeof(float));
     memcpy(w->qb + 4 * i, b, 4 * sizeof(float));
-    w->qm[2 * i] = g;
-    memcpy(&w->qm[2 * i + 1], &c, 4);
+    w->qm[4 * i] = g;
+    memcpy(&w->qm[4 * i + 1], &c, 4);
+    memcpy(&w->qm[4 * i + 2], &c2, 4);
+    memcpy(&w->qm[4 * i + 3], &split, 4);
     w->qkind[i] = kind;
 }
 
@@ -136,7 +108,7 @@ static void place_spheres(placer *pl, const source *s)
     for (size_t i = 0; i < sp->n; i++) {
         float a[4];
         world_point(pl, sp->xyz + 3 * i, sp->radius[i], a);
-        put_quadric(pl, ORC_SPHERE, g, a, none, sp->color[i]);
+        put_quadric(pl, ORC_SPHERE, g, a, none, sp->color[i], sp->color[i], 0);
     }
 }
 
@@ -146,12 +118,16 @@ static void place_cylinders(placer *pl, const source *s)
     if (!cy->n) return;
     uint32_t g = add_geom(pl, &s->mat, any_alpha(cy->color, cy->n));
     for (size_t i = 0; i < cy->n; i++) {
-        float a[4], b[4];
+        float a[4], b[4], j[4];
         world_point(pl, cy->base + 3 * i, cy->radius[i], a);
         world_point(pl, cy->apex + 3 * i, 0, b);
-        for (int k = 0; k < 3; k++) b[k] -= a[k];
+        world_point(pl, cy->joint + 3 * i, 0, j);
+        for (int k = 0; k < 3; k++) {
+            b[k] -= a[k];
+            j[k] -= a[k];
+        }
         b[3] = rt_normalize(b);
-        put_quadric(pl, ORC_CYLINDER, g, a, b, cy->color[i]);
+        put_quadric(pl, ORC_CYLINDER, g, a, b, cy->color[i], cy->color2[i], sqrtf(rt_dot(j, j)));
     }
 }
 
@@ -164,33 +140,22 @@ static void place_cones(placer *pl, const source *s)
         float a[4], b[4];
         world_point(pl, co->base + 3 * i, co->rbase[i], a);
         world_point(pl, co->apex + 3 * i, co->rapex[i], b);
-        put_quadric(pl, ORC_CONE, g, a, b, co->color[i]);
+        put_quadric(pl, ORC_CONE, g, a, b, co->color[i], co->color[i], 0);
     }
 }
 
-/* rt/world.c's make_caps: base ends, apex ends, then cone bases. */
-static void place_caps(placer *pl, const source *s)
+/* The cap discs of the sources pass (rt/common.c), moved to world space. */
+static void place_discs(placer *pl, const source *s)
 {
-    const ms_displaylist *dl = s->dl;
-    if (!caps_of(dl)) return;
-    uint32_t g = add_geom(pl, &s->mat, caps_alpha(dl));
-    for (int pass = 0; pass < 3; pass++) {
-        int cones = pass == 2;
-        size_t m = cones ? dl->cones.n : dl->cylinders.n;
-        for (size_t i = 0; i < m; i++) {
-            const float *a = (cones ? dl->cones.base : dl->cylinders.base) + 3 * i;
-            const float *b = (cones ? dl->cones.apex : dl->cylinders.apex) + 3 * i;
-            int want = cones ? dl->cones.rbase[i] > 0
-                             : (dl->cylinders.caps[i] & (pass ? MS_CAP_APEX : MS_CAP_BASE));
-            if (!want) continue;
-            float wa[4], wb[4], c[4], n[4];
-            world_point(pl, a, 0, wa);
-            world_point(pl, b, 0, wb);
-            world_point(pl, pass == 1 ? b : a, cones ? dl->cones.rbase[i] : dl->cylinders.radius[i], c);
-            for (int k = 0; k < 3; k++) n[k] = wb[k] - wa[k];
-            n[3] = 0;
-            put_quadric(pl, ORC_RING, g, c, n, cones ? dl->cones.color[i] : dl->cylinders.color[i]);
-        }
+    const rt_discs *d = &s->discs;
+    if (!d->n) return;
+    uint32_t g = add_geom(pl, &s->mat, d->alpha);
+    for (size_t i = 0; i < d->n; i++) {
+        float c[4], n[4];
+        world_point(pl, d->centre + 3 * i, d->outer[i], c);
+        rt_xf_dir(pl->ri.xf, d->normal + 3 * i, n);
+        n[3] = d->inner[i];
+        put_quadric(pl, ORC_RING, g, c, n, d->color[i], d->color[i], 0);
     }
 }
 
@@ -234,29 +199,28 @@ static void place_source(orc_world *w, const source *s)
     place_spheres(&pl, s);
     place_cylinders(&pl, s);
     place_cones(&pl, s);
-    place_caps(&pl, s);
+    place_discs(&pl, s);
     place_mesh(&pl, s);
 }
 
 int orc_world_build(orc_world *w, const ms_scene *s, ms_error *err)
 {
     memset(w, 0, sizeof *w);
-    size_t nsrc = 0, nq = 0, ntri = 0, nv = 0;
-    source *src = sources_of(w, s, &nsrc, err);
-    if (!src) goto fail;
+    size_t nq = 0, ntri = 0, nv = 0;
+    if (rt_sources_make(&w->set, s, err)) return -1;
+    const source *src = w->set.src;
+    size_t nsrc = w->set.n;
     for (size_t i = 0; i < nsrc; i++) {
         const ms_displaylist *dl = src[i].dl;
         if (check_mesh(&dl->mesh, err)) {
-            free(src);
             orc_world_free(w);
             return MS_OCLRT_EINPUT;
         }
-        nq += dl->spheres.n + dl->cylinders.n + dl->cones.n + caps_of(dl);
+        nq += dl->spheres.n + dl->cylinders.n + dl->cones.n + src[i].discs.n;
         ntri += dl->mesh.ntris, nv += dl->mesh.nverts;
     }
     if (nq > ORC_INDEX_MASK || ntri > ORC_INDEX_MASK || nv > 0xffffffffu) {
         ms_error_set(err, "more than 2^29 primitives of one kind");
-        free(src);
         orc_world_free(w);
         return MS_OCLRT_EINPUT;
     }
@@ -265,10 +229,8 @@ int orc_world_build(orc_world *w, const ms_scene *s, ms_error *err)
     w->nq = w->ntri = w->nverts = 0;
     for (size_t i = 0; i < nsrc; i++) place_source(w, &src[i]);
     w->eps = rt_world_eps(s);
-    free(src);
     return 0;
 fail:
-    free(src);
     orc_world_free(w);
     return -1;
 }
@@ -278,10 +240,6 @@ void orc_world_free(orc_world *w)
     void *all[] = {w->qa, w->qb, w->qm, w->qkind, w->tri, w->vxyz, w->vnorm, w->vcol, w->gmat0,
                    w->gmat1, w->gflag, w->item, w->lo0, w->hi0, w->lo1, w->hi1, w->child, w->leaf};
     for (size_t i = 0; i < sizeof all / sizeof *all; i++) free(all[i]);
-    for (size_t i = 0; i < w->nlists; i++) {
-        ms_dl_free(w->lists[i]);
-        free(w->lists[i]);
-    }
-    free(w->lists);
+    rt_sources_free(&w->set);
     memset(w, 0, sizeof *w);
 }

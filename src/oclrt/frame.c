@@ -89,7 +89,7 @@ static int upload(ocl_frame *f, const orc_world *w, const float *P, ms_error *er
     } b[B_COUNT] = {
         {ro, P_COUNT * 4, P}, {ro, nn * 16, w->lo0}, {ro, nn * 16, w->hi0}, {ro, nn * 16, w->lo1},
         {ro, nn * 16, w->hi1}, {ro, nn * 16, w->child}, {ro, w->nleaf * 4, w->leaf},
-        {ro, nq * 16, w->qa}, {ro, nq * 16, w->qb}, {ro, nq * 8, w->qm}, {ro, nt * 16, w->tri},
+        {ro, nq * 16, w->qa}, {ro, nq * 16, w->qb}, {ro, nq * 16, w->qm}, {ro, nt * 16, w->tri},
         {ro, nv * 16, w->vxyz}, {ro, nv * 4, w->vnorm}, {ro, nv * 4, w->vcol},
         {ro, ng * 16, w->gmat0}, {ro, ng * 16, w->gmat1}, {ro, ng * 16, w->gflag},
         {ro, w->nitems * 48, w->item}, {rw, f->npix * 12, NULL}, {rw, f->npix * 4, NULL},

@@ -19,7 +19,7 @@ typedef struct scene {
     __global const int4 *child;
     __global const uint *leaf;
     __global const float4 *qa, *qb;
-    __global const uint2 *qm;
+    __global const uint4 *qm;
     __global const uint4 *tri;
     __global const float4 *vxyz;
     __global const char4 *vnorm;
@@ -445,12 +445,14 @@ static void surface_at(const scene *S, float3 o, float3 d, float t, uint ref, fl
         s->g = tr.w;
     } else {
         float4 a = S->qa[i], b = S->qb[i];
-        uint2 m = S->qm[i];
+        uint4 m = S->qm[i];
         if (kind == ORC_SPHERE) {
             n = s->p - a.xyz;
         } else if (kind == ORC_CYLINDER) {
             float3 q = s->p - a.xyz;
-            n = q - dot3(q, b.xyz) * b.xyz;
+            float sc = dot3(q, b.xyz);
+            n = q - sc * b.xyz;
+            if (sc > as_float(m.w)) m.y = m.z;   /* beyond a bond's joint: its second colour */
         } else if (kind == ORC_CONE) {
             float3 ax = b.xyz - a.xyz, q = s->p - a.xyz;
             float len = norm3(&ax), k = (b.w - a.w) / len, sc = dot3(q, ax);
@@ -626,7 +628,7 @@ __kernel void orc_pass(__global const float *P, __global const float4 *lo0,
                        __global const float4 *hi0, __global const float4 *lo1,
                        __global const float4 *hi1, __global const int4 *child,
                        __global const uint *leaf, __global const float4 *qa,
-                       __global const float4 *qb, __global const uint2 *qm,
+                       __global const float4 *qb, __global const uint4 *qm,
                        __global const uint4 *tri, __global const float4 *vxyz,
                        __global const char4 *vnorm, __global const uchar4 *vcol,
                        __global const float4 *gmat0, __global const float4 *gmat1,

@@ -13,10 +13,12 @@
 #include "rt/rt_common.h"
 
 typedef struct orc_world {
-    /* quadrics (spheres, cylinders, cones, rings): two float4 and (geometry, RGBA8) each
-     *   sphere: (centre, radius), unused; cylinder: (base, radius), (unit axis, length);
+    /* quadrics (spheres, cylinders, cones, rings): two float4 and (geometry, RGBA8, RGBA8,
+     * float bits) each
+     *   sphere: (centre, radius), unused; cylinder: (base, radius), (unit axis, length), and
+     *   the colour beyond the joint with the joint's distance along the axis (a bond's);
      *   cone: (base, base radius), (apex, apex radius); ring: (centre, outer radius),
-     *   (normal, inner radius) */
+     *   (normal, inner radius); the second colour and distance unused but for cylinders */
     size_t nq;
     float *qa, *qb;
     uint32_t *qm, *qkind;
@@ -44,8 +46,7 @@ typedef struct orc_world {
     int32_t *child;
     uint32_t *leaf;
     float eps;
-    ms_displaylist **lists;     /* the stroke lists made for the build */
-    size_t nlists, caplists;
+    rt_sources set;             /* the scene's lists, their strokes and cap discs */
 } orc_world;
 
 /* The tree the builders make (bvh.c: Embree's rtcBuildBVH; sah.c: our own binned SAH

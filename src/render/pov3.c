@@ -89,14 +89,15 @@ static void solids(pov *w, const ms_displaylist *dl, float scale)
         sphere(w, c, dl->spheres.radius[i] * scale);
         texture(w, dl->spheres.color[i], dl->lit);
     }
-    const ms_dl_cylinders *cy = &dl->cylinders;
-    for (size_t i = 0; i < cy->n; i++) {
+    ms_dl_pieces it = ms_dl_pieces_of(&dl->cylinders);
+    ms_dl_piece p;
+    while (ms_dl_pieces_next(&it, &p)) {
         float a[3], b[3];
-        ms_mat4_point(m, cy->base + 3 * i, a);
-        ms_mat4_point(m, cy->apex + 3 * i, b);
+        ms_mat4_point(m, p.a, a);
+        ms_mat4_point(m, p.b, b);
         if (degenerate(a, b)) continue;
-        cylinder(w, a, b, cy->radius[i] * scale, cy->caps[i] == 0);
-        texture(w, cy->color[i], dl->lit);
+        cylinder(w, a, b, p.radius * scale, p.caps == 0);
+        texture(w, p.color, dl->lit);
     }
     const ms_dl_cones *co = &dl->cones;
     for (size_t i = 0; i < co->n; i++) {

@@ -1,6 +1,6 @@
 /* tachyon.c: the `Tachyon` device: the scene in Tachyon's scene language as VMD writes it
  * (Debian's tachyon 0.99b6 renders it). Tachyon is left-handed, so z is negated; spheres and
- * cylinders are native, triangle meshes and tessellated cones go out as VertexArray/TriMesh,
+ * cylinders are native (a bond as VMD's two half cylinders), triangle meshes and tessellated cones go out as VertexArray/TriMesh,
  * lines and points as thin cylinders and spheres, text as stroked cylinders. Every object
  * carries its own texture block, as VMD's files do. A list cut by clip planes is written
  * between Start_ClipGroup and End_ClipGroup, VMD's per-object clip groups. */
@@ -122,21 +122,22 @@ static void spheres(writer *w, const ms_displaylist *dl, float scale)
 
 static void cylinders(writer *w, const ms_displaylist *dl, float scale)
 {
-    const ms_dl_cylinders *s = &dl->cylinders;
-    for (size_t i = 0; i < s->n; i++) {
-        float a[3], b[3], r = s->radius[i] * scale;
-        ms_mat4_point(w->it->xform, s->base + 3 * i, a);
-        ms_mat4_point(w->it->xform, s->apex + 3 * i, b);
+    ms_dl_pieces it = ms_dl_pieces_of(&dl->cylinders);
+    ms_dl_piece p;
+    while (ms_dl_pieces_next(&it, &p)) {
+        float a[3], b[3], r = p.radius * scale;
+        ms_mat4_point(w->it->xform, p.a, a);
+        ms_mat4_point(w->it->xform, p.b, b);
         fcylinder(w, a, b, r);
-        texture8(w, dl->lit, s->color[i]);
-        if (!s->caps[i]) continue;
+        texture8(w, dl->lit, p.color);
+        if (!p.caps) continue;
         float n[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
         float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         if (l <= 0) continue;
         for (int k = 0; k < 3; k++) n[k] /= l;
         float m[3] = {-n[0], 0.0f - n[1], 0.0f - n[2]};
-        if (s->caps[i] & MS_CAP_BASE) ring(w, a, n, r, dl->lit, s->color[i]);
-        if (s->caps[i] & MS_CAP_APEX) ring(w, b, m, r, dl->lit, s->color[i]);
+        if (p.caps & MS_CAP_BASE) ring(w, a, n, r, dl->lit, p.color);
+        if (p.caps & MS_CAP_APEX) ring(w, b, m, r, dl->lit, p.color);
     }
 }
 

@@ -146,13 +146,14 @@ static void solids(obj *o, const ms_displaylist *dl, float scale)
         use(o, dl->spheres.color[i], dl->lit);
         ms_tess_sphere(c, dl->spheres.radius[i] * scale, dl->spheres.res[i], tri, o);
     }
-    const ms_dl_cylinders *cy = &dl->cylinders;
-    for (size_t i = 0; i < cy->n; i++) {
-        float a[3], b[3], r = cy->radius[i] * scale;
-        ms_mat4_point(m, cy->base + 3 * i, a);
-        ms_mat4_point(m, cy->apex + 3 * i, b);
-        use(o, cy->color[i], dl->lit);
-        ms_tess_cone(a, b, r, r, cy->res[i], cy->caps[i], tri, o);
+    ms_dl_pieces it = ms_dl_pieces_of(&dl->cylinders);
+    ms_dl_piece p;
+    while (ms_dl_pieces_next(&it, &p)) {
+        float a[3], b[3], r = p.radius * scale;
+        ms_mat4_point(m, p.a, a);
+        ms_mat4_point(m, p.b, b);
+        use(o, p.color, dl->lit);
+        ms_tess_cone(a, b, r, r, p.res, p.caps, tri, o);
     }
     const ms_dl_cones *co = &dl->cones;
     for (size_t i = 0; i < co->n; i++) {

@@ -1,6 +1,7 @@
 /* atoms.c: helpers of the atom and bond methods: scratch memory, prefix sums, a sphere per
- * selected atom, the bonds drawn (the molecule's, or by a distance cutoff) and half-bond
- * cylinders. Every fill is claimed as one block and written in parallel. */
+ * selected atom, the bonds drawn (the molecule's, or by a distance cutoff) and a
+ * two-coloured cylinder per bond. Every fill is claimed as one block and written in
+ * parallel. */
 #include "config.h"
 #include "rep/rep_int.h"
 #include "base/threads.h"
@@ -121,72 +122,107 @@ int ms_rep_bonds_get(const ms_rep_build *b, float cutoff, ms_rep_bondlist *out, 
     return 0;
 }
 
-/* ---------------------------------------------------------------- half-bond cylinders */
+/* ---------------------------------------------------------------- bond cylinders */
 
-typedef struct half_job {
+/* Every bond between selected atoms is one cylinder, made at its lower atom. The pieces'
+ * order is VMD's: each selected atom in turn, a half from it to the middle of each of its
+ * bonds in the order of its bond list; rank[] is where each atom's halves start. */
+typedef struct bond_job {
     const ms_rep_build *b;
     const ms_rep_bondlist *bl;
     ms_dl_cylinders *cy;
-    size_t *first;              /* per selected position: its first cylinder */
+    uint32_t *order;
+    size_t *rank, *first;       /* per selected position: first half, first cylinder */
+    uint32_t *pos;              /* per selected atom: its position in the selection */
     size_t c0;
     float radius;
     uint16_t res;
-} half_job;
+} bond_job;
 
-static void count_half(void *ctxp, size_t begin, size_t end, int thread)
+static void count_bonds(void *ctxp, size_t begin, size_t end, int thread)
 {
-    const half_job *j = ctxp;
+    const bond_job *j = ctxp;
     for (size_t s = begin; s < end; s++) {
         uint32_t i = j->b->idx[s];
-        size_t c = 0;
-        for (uint32_t k = j->bl->start[i]; k < j->bl->start[i + 1]; k++)
-            c += (size_t)ms_rep_on(j->b, j->bl->to[k]);
+        size_t h = 0, c = 0;
+        for (uint32_t k = j->bl->start[i]; k < j->bl->start[i + 1]; k++) {
+            uint32_t o = j->bl->to[k];
+            if (!ms_rep_on(j->b, o)) continue;
+            h++;
+            c += o > i;
+        }
+        j->rank[s] = h;
         j->first[s] = c;
+        j->pos[i] = (uint32_t)s;
     }
 }
 
-static void fill_half(void *ctxp, size_t begin, size_t end, int thread)
+/* The cylinder of bond (o, i), o < i: made at o, after o's bonds to selected atoms above o
+ * that come before i in o's list. */
+static size_t cylinder_of(const bond_job *j, uint32_t o, uint32_t i)
 {
-    const half_job *j = ctxp;
-    const ms_rep_build *b = j->b;
+    size_t c = j->c0 + j->first[j->pos[o]];
+    for (uint32_t k = j->bl->start[o]; k < j->bl->start[o + 1] && j->bl->to[k] != i; k++)
+        c += j->bl->to[k] > o && ms_rep_on(j->b, j->bl->to[k]);
+    return c;
+}
+
+static void put_bond(const bond_job *j, size_t c, uint32_t i, uint32_t o)
+{
     ms_dl_cylinders *cy = j->cy;
+    const float *p = ms_rep_xyz(j->b, i), *q = ms_rep_xyz(j->b, o);
+    for (int d = 0; d < 3; d++) {
+        cy->base[3 * c + d] = p[d];
+        cy->apex[3 * c + d] = q[d];
+        cy->joint[3 * c + d] = 0.5f * (p[d] + q[d]);
+    }
+    cy->radius[c] = j->radius;
+    cy->color[c] = ms_rep_rgba(j->b, i);
+    cy->color2[c] = ms_rep_rgba(j->b, o);
+    cy->flags[c] = MS_CYL_BOND | MS_CYL_INWARD;
+    cy->res[c] = j->res;
+}
+
+static void fill_bonds(void *ctxp, size_t begin, size_t end, int thread)
+{
+    const bond_job *j = ctxp;
     for (size_t s = begin; s < end; s++) {
-        uint32_t i = b->idx[s];
-        size_t c = j->c0 + j->first[s];
-        const float *p = ms_rep_xyz(b, i);
-        ms_rgba8 col = ms_rep_rgba(b, i);
+        uint32_t i = j->b->idx[s];
+        size_t h = j->rank[s], c = j->c0 + j->first[s];
         for (uint32_t k = j->bl->start[i]; k < j->bl->start[i + 1]; k++) {
             uint32_t o = j->bl->to[k];
-            if (!ms_rep_on(b, o)) continue;
-            const float *q = ms_rep_xyz(b, o);
-            float *base = cy->base + 3 * c, *apex = cy->apex + 3 * c;
-            for (int d = 0; d < 3; d++) {
-                base[d] = p[d];
-                apex[d] = 0.5f * (p[d] + q[d]);
+            if (!ms_rep_on(j->b, o)) continue;
+            if (o > i) {
+                put_bond(j, c, i, o);
+                j->order[h++] = (uint32_t)(2 * c++);
+            } else {
+                j->order[h++] = (uint32_t)(2 * cylinder_of(j, o, i) + 1);
             }
-            cy->radius[c] = j->radius;
-            cy->color[c] = col;
-            cy->caps[c] = 0;
-            cy->res[c] = j->res;
-            c++;
         }
     }
 }
 
-int ms_rep_half_cylinders(const ms_rep_build *b, const ms_rep_bondlist *bl, float radius, int res,
+int ms_rep_bond_cylinders(const ms_rep_build *b, const ms_rep_bondlist *bl, float radius, int res,
                           ms_displaylist *dl, ms_error *err)
 {
     if (b->nsel == 0) return 0;
-    half_job j = {b, bl, &dl->cylinders, NULL, 0, radius, (uint16_t)res};
-    j.first = ms_rep_scratch_get(b->scratch, MS_SCR_COUNTS, (b->nsel + 1) * sizeof(size_t), err);
-    if (!j.first) return -1;
-    ms_parallel_for(b->nsel, 16384, count_half, &j);
-    size_t total = ms_rep_scan(j.first, b->nsel);
+    bond_job j = {b, bl, NULL, NULL, NULL, NULL, NULL, 0, radius, (uint16_t)res};
+    j.rank = ms_rep_scratch_get(b->scratch, MS_SCR_COUNTS, (b->nsel + 1) * sizeof(size_t), err);
+    j.first = ms_rep_scratch_get(b->scratch, MS_SCR_EXTRA, (b->nsel + 1) * sizeof(size_t), err);
+    j.pos = ms_rep_scratch_get(b->scratch, MS_SCR_EXTRA2, b->m->atoms.n * sizeof(uint32_t), err);
+    if (!j.rank || !j.first || !j.pos) return -1;
+    ms_parallel_for(b->nsel, 16384, count_bonds, &j);
+    size_t halves = ms_rep_scan(j.rank, b->nsel), total = ms_rep_scan(j.first, b->nsel);
+    if (2 * (dl->cylinders.n + total) > UINT32_MAX) {
+        ms_error_set(err, "%zu bonds: too many for one display list", total);
+        return -1;
+    }
     long c0 = ms_dl_extend(dl, MS_DL_CYLINDERS, total, err);
     if (c0 < 0) return -1;
     j.c0 = (size_t)c0;
     j.cy = &dl->cylinders;
-    ms_parallel_for(b->nsel, 16384, fill_half, &j);
+    if (!(j.order = ms_dl_cylinder_order(dl, halves, err))) return -1;
+    ms_parallel_for(b->nsel, 16384, fill_bonds, &j);
     return 0;
 }
 

@@ -13,7 +13,7 @@ static int build(const ms_rep_build *b, ms_displaylist *dl, ms_error *err)
     if (bres <= 2 || brad < 0.01f) return 0;
     ms_rep_bondlist bl;
     return ms_rep_bonds_get(b, b->p[4], &bl, err) ||
-           ms_rep_half_cylinders(b, &bl, brad, bres, dl, err) ? -1 : 0;
+           ms_rep_bond_cylinders(b, &bl, brad, bres, dl, err) ? -1 : 0;
 }
 
 const ms_rep_method ms_rep_cpk = {

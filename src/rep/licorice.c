@@ -13,7 +13,7 @@ static int build(const ms_rep_build *b, ms_displaylist *dl, ms_error *err)
     if (brad == 0.0f) return ms_rep_bond_lines(b, &bl, 1.0f, dl, err);
     if (ms_rep_atom_spheres(b, 0.0f, brad, ms_rep_res(b->p[1]), dl, err)) return -1;
     if (bres <= 2 || brad < 0.01f) return 0;
-    return ms_rep_half_cylinders(b, &bl, brad, bres, dl, err);
+    return ms_rep_bond_cylinders(b, &bl, brad, bres, dl, err);
 }
 
 const ms_rep_method ms_rep_licorice = {

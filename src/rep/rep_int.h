@@ -107,9 +107,10 @@ int ms_rep_bonds_get(const ms_rep_build *b, float cutoff, ms_rep_bondlist *out, 
 /* May atoms i and j be bonded by distance (VMD's H-H and altloc rules)? */
 int ms_rep_may_bond(const ms_molecule *m, uint32_t i, uint32_t j);
 
-/* For every selected atom, a cylinder from it to the middle of each bond to a selected
- * partner, in its own colour (CPK, Licorice: two half cylinders per bond). */
-int ms_rep_half_cylinders(const ms_rep_build *b, const ms_rep_bondlist *bl, float radius, int res,
+/* A cylinder per bond between selected atoms, from the lower atom to the higher, each half
+ * in its atom's colour (CPK, Licorice: VMD's two half cylinders, each from its atom to the
+ * middle, in VMD's order for the exporters). These must be the list's only cylinders. */
+int ms_rep_bond_cylinders(const ms_rep_build *b, const ms_rep_bondlist *bl, float radius, int res,
                           ms_displaylist *dl, ms_error *err);
 /* VMD's Lines: a whole line for a bond whose atoms share a colour, two half lines
  * otherwise, a point for a selected atom with no bond drawn; unlit. */

@@ -1,6 +1,6 @@
 /* trace.c: VMD's Trace method (radius, resolution): consecutive control atoms (CA, or P of
- * nucleic acids) of each chain joined by two half cylinders in their colours, stretched to
- * meet at the bends; unlit lines at a resolution of 2 or less or a radius under 0.01. */
+ * nucleic acids) of each chain joined by a cylinder whose halves take their colours,
+ * stretched to meet at the bends; unlit lines at a resolution of 2 or less or a radius under 0.01. */
 #include "config.h"
 #include "rep/rep_int.h"
 
@@ -13,13 +13,18 @@ typedef struct trace_out {
     int cyl;
 } trace_out;
 
-static int half(const trace_out *o, const float *prev, const float *a, const float *b,
-                const float *next, ms_rgba8 col)
+/* Two half lines, or one cylinder whose halves are VMD's: a to mid stretched to meet prev,
+ * mid to b stretched to meet next. */
+static int link(const trace_out *o, const float *prev, const float *a, const float *mid,
+                const float *b, const float *next, ms_rgba8 ca, ms_rgba8 cb)
 {
-    if (!o->cyl) return ms_dl_line(o->dl, a, b, 1, col, MS_LINE_SOLID);
-    float s[3], e[3];
-    ms_rep_stretch(prev, a, b, next, o->r, s, e);
-    return ms_dl_cylinder(o->dl, s, e, o->r, col, 0, o->res);
+    if (!o->cyl)
+        return ms_dl_line(o->dl, a, mid, 1, ca, MS_LINE_SOLID) ||
+               ms_dl_line(o->dl, mid, b, 1, cb, MS_LINE_SOLID) ? -1 : 0;
+    float s[3], j[3], unused[3], e[3];
+    ms_rep_stretch(prev, a, mid, NULL, o->r, s, j);
+    ms_rep_stretch(NULL, mid, b, next, o->r, unused, e);
+    return ms_dl_bond(o->dl, s, j, e, o->r, ca, cb, 0, o->res);
 }
 
 static int build(const ms_rep_build *b, ms_displaylist *dl, ms_error *err)
@@ -40,8 +45,7 @@ static int build(const ms_rep_build *b, ms_displaylist *dl, ms_error *err)
             const float *prev = q > 0 ? ms_rep_xyz(b, bb.atom[ch->first + q - 1]) : NULL;
             const float *next = q + 2 < ch->n ? ms_rep_xyz(b, bb.atom[ch->first + q + 2]) : NULL;
             float mid[3] = {0.5f * (pi[0] + pk[0]), 0.5f * (pi[1] + pk[1]), 0.5f * (pi[2] + pk[2])};
-            rc = half(&o, prev, pi, mid, NULL, ms_rep_rgba(b, i)) ||
-                 half(&o, NULL, mid, pk, next, ms_rep_rgba(b, k));
+            rc = link(&o, prev, pi, mid, pk, next, ms_rep_rgba(b, i), ms_rep_rgba(b, k));
         }
     }
     ms_rep_backbone_free(&bb);

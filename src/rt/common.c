@@ -1,6 +1,8 @@
 /* common.c: the parts of TachyonInternal the OpenCL tracer (src/oclrt) uses too, free of
  * Embree: small vector helpers, transforms, Tachyon's texture terms of a material, the
- * secondary-ray offset, the shader settings of a scene and the option checks. */
+ * secondary-ray offset, the shader settings of a scene, the option checks, and the pass
+ * both tracers start from: the scene's lists as sources, with their strokes (strokes.c)
+ * and cap discs derived once. */
 #include "config.h"
 #include "rt/rt_common.h"
 #include "scene/mat4.h"
@@ -26,6 +28,12 @@ void rt_xf_point(const float m[12], const float p[3], float out[3])
 {
     float x = p[0], y = p[1], z = p[2];
     for (int r = 0; r < 3; r++) out[r] = m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3];
+}
+
+void rt_xf_dir(const float m[12], const float v[3], float out[3])
+{
+    float x = v[0], y = v[1], z = v[2];
+    for (int r = 0; r < 3; r++) out[r] = m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z;
 }
 
 void rt_m3_vec(const float m[9], const float v[3], float out[3])
@@ -154,35 +162,104 @@ int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err)
     return 0;
 }
 
-/* A new empty list appended to *lists; NULL when memory runs out. */
-static ms_displaylist *stroke_list(ms_displaylist ***lists, size_t *nlists, size_t *cap)
+/* A new empty list appended to the set's; NULL when memory runs out. */
+static ms_displaylist *stroke_list(rt_sources *set)
 {
     ms_displaylist *dl = malloc(sizeof *dl);
-    if (!dl || ms_grow((void **)lists, cap, *nlists + 1, sizeof **lists)) {
+    if (!dl || ms_grow((void **)&set->lists, &set->caplists, set->nlists + 1, sizeof *set->lists)) {
         free(dl);
         return NULL;
     }
     ms_dl_init(dl);
-    (*lists)[(*nlists)++] = dl;
+    set->lists[set->nlists++] = dl;
     return dl;
 }
 
-long rt_sources(const ms_scene *s, rt_source *src, ms_displaylist ***lists, size_t *nlists,
-                size_t *cap)
+/* End e (0 base, 1 apex, 2 a cone's base) of primitive i: closed or not. */
+static int disc_wanted(const ms_displaylist *dl, int e, size_t i)
+{
+    if (e == 2) return dl->cones.rbase[i] > 0;
+    return (dl->cylinders.flags[i] & (e ? MS_CAP_APEX : MS_CAP_BASE)) != 0;
+}
+
+static void put_disc(rt_discs *d, size_t k, const float *at, const float *a, const float *b,
+                     float r, ms_rgba8 col)
+{
+    for (int c = 0; c < 3; c++) {
+        d->centre[3 * k + c] = at[c];
+        d->normal[3 * k + c] = b[c] - a[c];
+    }
+    d->outer[k] = r;
+    d->inner[k] = 0;
+    d->color[k] = col;
+    d->alpha |= col.a < 255;
+}
+
+/* The cap discs of a list (one block, freed through d->centre). */
+static int make_discs(const ms_displaylist *dl, rt_discs *d)
+{
+    const ms_dl_cylinders *cy = &dl->cylinders;
+    const ms_dl_cones *co = &dl->cones;
+    size_t n = 0;
+    memset(d, 0, sizeof *d);
+    for (int e = 0; e < 3; e++)
+        for (size_t i = 0; i < (e == 2 ? co->n : cy->n); i++) n += (size_t)disc_wanted(dl, e, i);
+    if (!n) return 0;
+    float *f = ms_alloc_array(n, 8 * sizeof(float) + sizeof(ms_rgba8));
+    if (!f) return -1;
+    d->n = n, d->centre = f, d->normal = f + 3 * n, d->outer = f + 6 * n, d->inner = f + 7 * n;
+    d->color = (ms_rgba8 *)(f + 8 * n);
+    size_t k = 0;
+    for (int e = 0; e < 3; e++)
+        for (size_t i = 0; i < (e == 2 ? co->n : cy->n); i++) {
+            if (!disc_wanted(dl, e, i)) continue;
+            const float *a = (e == 2 ? co->base : cy->base) + 3 * i;
+            const float *b = (e == 2 ? co->apex : cy->apex) + 3 * i;
+            put_disc(d, k++, e == 1 ? b : a, a, b, e == 2 ? co->rbase[i] : cy->radius[i],
+                     e == 2 ? co->color[i] : cy->color[i]);
+        }
+    return 0;
+}
+
+/* The next source: a list, its transform, its terms (lit or not) and its discs. */
+static int add_source(rt_sources *set, const ms_displaylist *dl, const float *xform,
+                      const ms_material *m, int lit, const ms_scene_item *item)
+{
+    rt_source *o = &set->src[set->n++];
+    o->dl = dl, o->xform = xform, o->group = 0, o->item = item;
+    rt_material_terms(m, lit, &o->mat);
+    return make_discs(dl, &o->discs);
+}
+
+int rt_sources_make(rt_sources *set, const ms_scene *s, ms_error *err)
 {
     static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    long n = 0;
+    memset(set, 0, sizeof *set);
+    set->src = ms_calloc_array(2 * s->nitems + 1, sizeof *set->src);
+    if (!set->src) goto oom;
     for (size_t i = 0; i < s->nitems; i++) {
         const ms_scene_item *it = &s->items[i];
-        rt_source *o = &src[n++];
-        o->dl = it->dl, o->xform = it->xform, o->group = 0, o->item = it;
-        rt_material_terms(&it->mat, it->dl->lit, &o->mat);
+        if (add_source(set, it->dl, it->xform, &it->mat, it->dl->lit, it)) goto oom;
         if (!it->dl->lines.n && !it->dl->points.n && !it->dl->texts.n) continue;
-        ms_displaylist *extra = stroke_list(lists, nlists, cap);
-        if (!extra || rt_strokes(it, extra)) return -1;
-        o = &src[n++];
-        o->dl = extra, o->xform = identity, o->group = 0, o->item = it;
-        rt_material_terms(&it->mat, 0, &o->mat);
+        ms_displaylist *extra = stroke_list(set);
+        if (!extra || rt_strokes(it, extra) || add_source(set, extra, identity, &it->mat, 0, it))
+            goto oom;
     }
-    return n;
+    return 0;
+oom:
+    rt_sources_free(set);
+    ms_error_set(err, "out of memory");
+    return -1;
+}
+
+void rt_sources_free(rt_sources *set)
+{
+    for (size_t i = 0; set->src && i < set->n; i++) free(set->src[i].discs.centre);
+    for (size_t i = 0; i < set->nlists; i++) {
+        ms_dl_free(set->lists[i]);
+        free(set->lists[i]);
+    }
+    free(set->lists);
+    free(set->src);
+    memset(set, 0, sizeof *set);
 }

@@ -1,10 +1,10 @@
 /* cylinder.c: open cylinders (Tachyon's FCylinder), an Embree user geometry: the tube between
  * the base and apex centres, both of its surfaces (a ray can see the inside of an open end).
- * Closed ends are discs (ring.c). Each cylinder's unit axis and length are worked out once,
- * at the build, for the tests. Two half cylinders that make one tube (a bond drawn in its
- * two atoms' colours: the same radius and alpha, apexes meeting, on one line) are traced as
- * one cylinder whose colour changes at the joint: the same surface with half the primitives
- * to build and test (on the benchmark's Licorice, 981k halves become 491k tubes). */
+ * Closed ends are discs (ring.c). Each cylinder's unit axis and length, and the distance of
+ * its joint along the axis, are worked out once, at the build, for the tests. A bond is one
+ * cylinder whose colour changes at its joint (the display list's color2 beyond it): VMD's two
+ * half cylinders with half the primitives to build and test. The spheres of the list centred
+ * on a cylinder's ends (Licorice's atoms) are tested with it, as one primitive. */
 #include "config.h"
 #include "rt/rt_internal.h"
 #include "base/threads.h"
@@ -60,19 +60,25 @@ static int cylinder_test(const rt_geom *g, unsigned prim, const rt_uray *r, floa
     return n;
 }
 
-/* Unit axes and lengths, 4 floats per cylinder, made once for the tests. */
+/* Unit axes and lengths, 4 floats per cylinder, and the joints' distances along the axes,
+ * made once for the tests. */
 typedef struct axes {
     const rt_geom *g;
-    float *aux;
+    float *aux, *join;
 } axes;
 
 static void axes_range(void *ctx, size_t b, size_t e, int thread)
 {
     axes *x = ctx;
+    const rt_geom *g = x->g;
     for (size_t i = b; i < e; i++) {
-        float *o = x->aux + 4 * i;
-        for (int k = 0; k < 3; k++) o[k] = x->g->b[3 * i + k] - x->g->a[3 * i + k];
+        float *o = x->aux + 4 * i, d[3];
+        for (int k = 0; k < 3; k++) {
+            o[k] = g->b[3 * i + k] - g->a[3 * i + k];
+            d[k] = g->joint[3 * i + k] - g->a[3 * i + k];
+        }
         o[3] = rt_normalize(o);
+        x->join[i] = sqrtf(rt_dot(d, d));
     }
 }
 
@@ -86,130 +92,9 @@ static void cylinder_occluded(const struct RTCOccludedFunctionNArguments *args)
     rt_user_occluded(args, cylinder_test);
 }
 
-/* ---------------------------------------------------------------- joining halves */
-
-#define NO_MATE UINT32_MAX
-
-/* Whether cylinders i and j are the halves of one tube: the same radius and alpha, the
- * apexes the same point, the bases on opposite sides of it on one line. */
-static int halves(const rt_geom *g, size_t i, size_t j)
-{
-    const float *ai = g->a + 3 * i, *bi = g->b + 3 * i, *aj = g->a + 3 * j, *bj = g->b + 3 * j;
-    if (g->ra[i] != g->ra[j] || g->color[i].a != g->color[j].a || memcmp(bi, bj, 3 * sizeof(float)))
-        return 0;
-    float u[3] = {bi[0] - ai[0], bi[1] - ai[1], bi[2] - ai[2]};
-    float v[3] = {aj[0] - bj[0], aj[1] - bj[1], aj[2] - bj[2]}, c[3];
-    float uu = rt_dot(u, u), vv = rt_dot(v, v), uv = rt_dot(u, v);
-    if (!(uu > 0.0f && vv > 0.0f && uv > 0.0f && isfinite(uu * vv))) return 0;
-    rt_cross(u, v, c);
-    return rt_dot(c, c) <= 1e-8f * uu * vv;    /* parallel to float rounding of the joint */
-}
-
-static size_t apex_slot(const rt_geom *g, size_t i, size_t mask)
-{
-    uint32_t u[4];
-    memcpy(u, g->b + 3 * i, 3 * sizeof(float));
-    memcpy(u + 3, g->ra + i, sizeof(float));
-    uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (int k = 0; k < 4; k++) {
-        h = (h ^ u[k]) * 0xff51afd7ed558ccdull;
-        h ^= h >> 32;
-    }
-    return (size_t)h & mask;
-}
-
-/* Pair the halves: mate[i] is i's other half or NO_MATE. Halves next to each other in the
- * list are paired directly, others through a hash table of unpaired apexes. Returns the
- * number of pairs, or -1 when out of memory. */
-static long pair_halves(const rt_geom *g, uint32_t *mate)
-{
-    size_t cap = 1;
-    while (cap < 2 * g->n) cap *= 2;
-    uint32_t *tab = malloc(cap * sizeof *tab);
-    if (!tab) return -1;
-    memset(tab, 0xff, cap * sizeof *tab);
-    long pairs = 0;
-    for (size_t i = 0; i < g->n; i++) mate[i] = NO_MATE;
-    for (size_t i = 0; i < g->n; i++) {
-        if (mate[i] != NO_MATE) continue;
-        if (i + 1 < g->n && halves(g, i, i + 1)) {
-            mate[i] = (uint32_t)(i + 1), mate[i + 1] = (uint32_t)i, pairs++;
-            continue;
-        }
-        size_t s = apex_slot(g, i, cap - 1);
-        for (; tab[s] != NO_MATE; s = (s + 1) & (cap - 1)) {
-            uint32_t j = tab[s];
-            if (mate[j] == NO_MATE && halves(g, j, i)) {
-                mate[i] = j, mate[j] = (uint32_t)i, pairs++;
-                break;
-            }
-        }
-        if (mate[i] == NO_MATE) tab[s] = (uint32_t)i;
-    }
-    free(tab);
-    return pairs;
-}
-
-typedef struct joined {
-    const rt_geom *g;
-    const uint32_t *first, *mate;   /* each tube's first half; its other half */
-    float *a, *b, *ra, *join;
-    ms_rgba8 *col, *col2;
-} joined;
-
-static void join_range(void *ctx, size_t b, size_t e, int thread)
-{
-    const joined *x = ctx;
-    const rt_geom *g = x->g;
-    for (size_t k = b; k < e; k++) {
-        size_t i = x->first[k], j = x->mate[i];
-        const float *end = j == NO_MATE ? g->b + 3 * i : g->a + 3 * j;
-        float d[3];
-        for (int c = 0; c < 3; c++) {
-            x->a[3 * k + c] = g->a[3 * i + c];
-            x->b[3 * k + c] = end[c];
-            d[c] = g->b[3 * i + c] - g->a[3 * i + c];
-        }
-        x->ra[k] = g->ra[i];
-        x->col[k] = g->color[i];
-        x->col2[k] = j == NO_MATE ? g->color[i] : g->color[j];
-        x->join[k] = j == NO_MATE ? INFINITY : sqrtf(rt_dot(d, d));
-    }
-}
-
-/* Replace g's cylinders by the tubes of its paired halves (g untouched when none pair). */
-static int join_halves(rt_world *w, rt_geom *g, ms_error *err)
-{
-    uint32_t *mate = malloc(g->n * sizeof *mate), *first = NULL;
-    long pairs = mate ? pair_halves(g, mate) : -1;
-    if (pairs > 0) first = malloc((g->n - (size_t)pairs) * sizeof *first);
-    if (pairs < 0 || (pairs > 0 && !first)) {
-        free(mate);
-        ms_error_set(err, "cylinders: out of memory");
-        return -1;
-    }
-    if (pairs == 0) {
-        free(mate);
-        return 0;
-    }
-    size_t m = 0;
-    for (size_t i = 0; i < g->n; i++)
-        if (mate[i] == NO_MATE || mate[i] > i) first[m++] = (uint32_t)i;
-    joined x = {g, first, mate, rt_world_alloc(w, 3 * m, sizeof(float), err),
-                rt_world_alloc(w, 3 * m, sizeof(float), err), rt_world_alloc(w, m, sizeof(float), err),
-                rt_world_alloc(w, m, sizeof(float), err), rt_world_alloc(w, m, sizeof(ms_rgba8), err),
-                rt_world_alloc(w, m, sizeof(ms_rgba8), err)};
-    int ok = x.a && x.b && x.ra && x.join && x.col && x.col2;
-    if (ok) ms_parallel_for(m, 65536, join_range, &x);
-    free(mate);
-    free(first);
-    if (!ok) return -1;
-    g->n = m, g->a = x.a, g->b = x.b, g->ra = x.ra, g->join = x.join;
-    g->color = x.col, g->color2 = x.col2;
-    return 0;
-}
-
 /* ---------------------------------------------------------------- spheres on the ends */
+
+#define NO_SPHERE UINT32_MAX
 
 static size_t point_slot(const float *p, size_t mask)
 {
@@ -237,13 +122,13 @@ static uint32_t free_sphere(const rt_geom *g, const uint32_t *tab, size_t mask, 
                             size_t i)
 {
     const ms_dl_spheres *sp = g->spheres;
-    for (size_t s = point_slot(p, mask); tab[s] != NO_MATE; s = (s + 1) & mask) {
+    for (size_t s = point_slot(p, mask); tab[s] != NO_SPHERE; s = (s + 1) & mask) {
         uint32_t j = tab[s];
         if (!g->taken[j] && !memcmp(sp->xyz + 3 * (size_t)j, p, 3 * sizeof(float)) &&
             sp->color[j].a == g->color[i].a)
             return j;
     }
-    return NO_MATE;
+    return NO_SPHERE;
 }
 
 /* Give each cylinder the spheres of the list centred on its ends (Licorice's atoms), each
@@ -268,18 +153,18 @@ static int take_spheres(rt_world *w, rt_geom *g, ms_error *err)
     for (size_t j = 0; j < sp->n; j++) {
         if (!(sp->radius[j] > 0.0f)) continue;
         size_t s = point_slot(sp->xyz + 3 * j, cap - 1);
-        while (tab[s] != NO_MATE) s = (s + 1) & (cap - 1);
+        while (tab[s] != NO_SPHERE) s = (s + 1) & (cap - 1);
         tab[s] = (uint32_t)j;
     }
     for (size_t i = 0; i < g->n; i++)
         for (int e = 0; e < 2; e++) {
             const float *p = (e ? g->b : g->a) + 3 * i;
             float *o = ends + 8 * i + 4 * e;
-            uint32_t j = tube_ok(g, i) ? free_sphere(g, tab, cap - 1, p, i) : NO_MATE;
+            uint32_t j = tube_ok(g, i) ? free_sphere(g, tab, cap - 1, p, i) : NO_SPHERE;
             memcpy(o, p, 3 * sizeof(float));
             o[3] = 0.0f;
             col[2 * i + e] = g->color[i];
-            if (j == NO_MATE) continue;
+            if (j == NO_SPHERE) continue;
             g->taken[j] = 1;
             o[3] = sp->radius[j];
             col[2 * i + e] = sp->color[j];
@@ -352,12 +237,12 @@ static void capsule_occluded(const struct RTCOccludedFunctionNArguments *args)
 
 static RTCGeometry cylinder_geometry(rt_world *w, rt_geom *g, ms_error *err)
 {
-    if (join_halves(w, g, err)) return NULL;
     if (g->spheres && g->spheres->n && take_spheres(w, g, err)) return NULL;
-    axes x = {g, rt_world_alloc(w, 4 * g->n, sizeof(float), err)};
-    if (!x.aux) return NULL;
+    axes x = {g, rt_world_alloc(w, 4 * g->n, sizeof(float), err), rt_world_alloc(w, g->n, sizeof(float), err)};
+    if (!x.aux || !x.join) return NULL;
     ms_parallel_for(g->n, 65536, axes_range, &x);
     g->aux = x.aux;
+    g->join = x.join;
     if (g->ends) return rt_user_geometry(w, g, capsule_bounds, capsule_intersect, capsule_occluded, err);
     return rt_user_geometry(w, g, cylinder_bounds, cylinder_intersect, cylinder_occluded, err);
 }
@@ -378,7 +263,7 @@ static void cylinder_surface(const rt_geom *g, const struct RTCHit *h, const flo
     rt_normalize(ax);
     float s = rt_dot(q, ax);
     for (int k = 0; k < 3; k++) n[k] = ng[k] = q[k] - s * ax[k];
-    *c = g->color2 && s > g->join[h->primID] ? g->color2[h->primID] : g->color[h->primID];
+    *c = s > g->join[h->primID] ? g->color2[h->primID] : g->color[h->primID];
 }
 
 const rt_prim rt_cylinder_prim = {"cylinders", cylinder_geometry, cylinder_surface};

@@ -38,21 +38,38 @@ float rt_world_eps(const ms_scene *s);
 /* The lines, points and text of a placed list as world-space cylinders and spheres appended
  * to out (strokes.c). 0, or -1 when memory runs out. */
 int rt_strokes(const ms_scene_item *it, ms_displaylist *out);
-/* One list to trace: a scene item's list with its transform and texture terms, or the
- * world-space list made of an item's lines, points and text (identity transform). group is
- * the caller's. */
+/* The discs that close a list's cylinder ends and cone bases (the exporter closes cone
+ * bases), in the list's coordinates: closed base ends, closed apex ends, then cone bases.
+ * normal is the axis (apex - base, not unit); inner radii are 0. alpha: some colour is
+ * translucent. */
+typedef struct rt_discs {
+    size_t n;
+    float *centre, *normal, *outer, *inner;
+    ms_rgba8 *color;
+    int alpha;
+} rt_discs;
+/* One list to trace: a scene item's list with its transform, texture terms and cap discs, or
+ * the world-space list made of an item's lines, points and text (identity transform). group
+ * is the caller's. */
 typedef struct rt_source {
     const ms_displaylist *dl;
     const float *xform;
     rt_material mat;
+    rt_discs discs;
     size_t group;
     const ms_scene_item *item;  /* the scene item it comes from (its clip planes) */
 } rt_source;
-/* The sources of a scene into src (room for 2 * s->nitems); the stroke lists made for them
- * are appended to *lists (grown by ms_grow: *nlists, *cap), which the caller frees with
- * ms_dl_free and free. The number of sources, or -1 when memory runs out. */
-long rt_sources(const ms_scene *s, rt_source *src, ms_displaylist ***lists, size_t *nlists,
-                size_t *cap);
+/* What both tracers trace, derived once from a scene: the sources, and the stroke lists and
+ * discs made for them (owned here). */
+typedef struct rt_sources {
+    rt_source *src;
+    size_t n;
+    ms_displaylist **lists;
+    size_t nlists, caplists;
+} rt_sources;
+/* The sources of a scene: 0, or -1 with err set when memory runs out (set then empty). */
+int rt_sources_make(rt_sources *set, const ms_scene *s, ms_error *err);
+void rt_sources_free(rt_sources *set);
 /* The limits of the samples and the image size: 0, or -1 with err saying which is wrong. */
 int rt_check_options(const ms_scene *s, const ms_rt_options *o, ms_error *err);
 
@@ -113,6 +130,8 @@ static inline void rt_cross(const float a[3], const float b[3], float out[3])
 float rt_normalize(float v[3]);
 /* out = m (3x4 row-major) applied to point p, or (3x3) to vector v. */
 void rt_xf_point(const float m[12], const float p[3], float out[3]);
+/* A direction by a 3x4 transform's linear part. */
+void rt_xf_dir(const float m[12], const float v[3], float out[3]);
 void rt_m3_vec(const float m[9], const float v[3], float out[3]);
 
 #endif

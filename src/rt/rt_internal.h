@@ -59,9 +59,9 @@ typedef struct rt_geom {
     const uint32_t *tri;
     size_t nverts, vcap;        /* mesh vertices, and room in xyz (Embree reads past the end) */
     const float *aux;           /* per-primitive data a primitive file made (cylinder axes) */
-    const ms_rgba8 *color2;     /* cylinders joined from two halves: the colour from the axial
-                                 * distance join[i] on (NULL: no cylinder was joined) */
-    const float *join;
+    const ms_rgba8 *color2;     /* cylinders: the colour beyond the joint (a bond's second) */
+    const float *joint;         /* cylinders: the joint, 3 floats each */
+    const float *join;          /* cylinders: the joint's distance along the axis (cylinder.c) */
     /* Cylinders: the list's spheres centred on their ends are tested with them, as one
      * primitive (cylinder.c): 8 floats a cylinder (centre and radius of the sphere at the
      * base, then at the far end; radius 0: none) and 2 colours; NULL when none. */
@@ -94,10 +94,9 @@ typedef struct rt_world {
     int split;                  /* shadow rays test opaque, then transparent instances */
     double samples;             /* camera rays to trace (0: unknown) */
     float eps;                  /* secondary ray offset, from the scene's size */
-    void **owned;               /* arrays made for the build (caps, converted lines) */
+    void **owned;               /* arrays made for the build */
     size_t nowned, capowned;
-    ms_displaylist **lists;     /* lists made for the build */
-    size_t nlists, caplists;
+    rt_sources set;             /* the scene's lists, their strokes and cap discs */
 } rt_world;
 
 /* Build the world of a scene (Embree scenes committed) for about samples camera rays (pixels

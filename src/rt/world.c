@@ -3,8 +3,9 @@
  * and its transparent geometries, instanced with the transform and masked so shadow rays can
  * take them in turn. Each list gives one geometry per primitive kind (spheres, cylinders,
  * cones, cap discs, the mesh) in its own coordinates, its cylinders made first since they
- * take the spheres on their ends (cylinder.c); its lines, points and text become
- * world-space cylinders and spheres (strokes.c); materials become Tachyon's texture terms as
+ * take the spheres on their ends (cylinder.c); its lines, points and text (as world-space
+ * cylinders and spheres) and its cap discs come from the pass both tracers share
+ * (rt_sources_make, common.c); materials become Tachyon's texture terms as
  * the Tachyon exporter writes them (common.c), so the two devices agree. */
 #include "config.h"
 #include "rt/rt_internal.h"
@@ -53,50 +54,17 @@ static int any_translucent(const ms_rgba8 *c, size_t n)
 
 /* ---------------------------------------------------------------- geometries of a list */
 
-/* Cap discs of closed cylinder ends and of cone bases (the exporter closes cone bases). */
-static int make_caps(rt_world *w, const ms_displaylist *dl, rt_geom *g, ms_error *err)
+/* The cap discs the sources pass made (rt/common.c). */
+static void disc_geom(const rt_discs *d, rt_geom *g)
 {
-    const ms_dl_cylinders *cy = &dl->cylinders;
-    const ms_dl_cones *co = &dl->cones;
-    size_t n = 0;
-    for (size_t i = 0; i < cy->n; i++) n += !!(cy->caps[i] & MS_CAP_BASE) + !!(cy->caps[i] & MS_CAP_APEX);
-    for (size_t i = 0; i < co->n; i++) n += co->rbase[i] > 0;
-    g->n = n;
-    if (!n) return 0;
-    float *c = rt_world_alloc(w, 3 * n, sizeof(float), err), *nr = rt_world_alloc(w, 3 * n, sizeof(float), err);
-    float *ro = rt_world_alloc(w, n, sizeof(float), err), *ri = rt_world_alloc(w, n, sizeof(float), err);
-    ms_rgba8 *col = rt_world_alloc(w, n, sizeof(ms_rgba8), err);
-    if (!c || !nr || !ro || !ri || !col) return -1;
-    size_t k = 0;
-    for (int pass = 0; pass < 3; pass++) {
-        int cones = pass == 2;
-        size_t m = cones ? co->n : cy->n;
-        for (size_t i = 0; i < m; i++) {
-            const float *a = (cones ? co->base : cy->base) + 3 * i, *b = (cones ? co->apex : cy->apex) + 3 * i;
-            int want = cones ? co->rbase[i] > 0 : (cy->caps[i] & (pass ? MS_CAP_APEX : MS_CAP_BASE));
-            if (!want) continue;
-            const float *at = pass == 1 ? b : a;
-            for (int d = 0; d < 3; d++) {
-                c[3 * k + d] = at[d];
-                nr[3 * k + d] = b[d] - a[d];
-            }
-            ro[k] = cones ? co->rbase[i] : cy->radius[i];
-            ri[k] = 0;
-            col[k] = cones ? co->color[i] : cy->color[i];
-            k++;
-        }
-    }
-    g->a = c;
-    g->b = nr;
-    g->ra = ro;
-    g->rb = ri;
-    g->color = col;
-    return 0;
+    g->n = d->n, g->a = d->centre, g->b = d->normal, g->ra = d->outer, g->rb = d->inner;
+    g->color = d->color;
 }
 
 /* The geometry of one kind of a list (g->n == 0: none). */
-static int fill_geom(rt_world *w, const ms_displaylist *dl, rt_kind kind, rt_geom *g, ms_error *err)
+static int fill_geom(const rt_source *src, rt_kind kind, rt_geom *g)
 {
+    const ms_displaylist *dl = src->dl;
     memset(g, 0, sizeof *g);
     g->kind = kind;
     switch (kind) {
@@ -107,13 +75,15 @@ static int fill_geom(rt_world *w, const ms_displaylist *dl, rt_kind kind, rt_geo
     case RT_CYLINDER:
         g->n = dl->cylinders.n, g->a = dl->cylinders.base, g->b = dl->cylinders.apex;
         g->ra = dl->cylinders.radius, g->color = dl->cylinders.color;
+        g->color2 = dl->cylinders.color2, g->joint = dl->cylinders.joint;
         break;
     case RT_CONE:
         g->n = dl->cones.n, g->a = dl->cones.base, g->b = dl->cones.apex;
         g->ra = dl->cones.rbase, g->rb = dl->cones.rapex, g->color = dl->cones.color;
         break;
     case RT_RING:
-        return make_caps(w, dl, g, err);
+        disc_geom(&src->discs, g);
+        break;
     default:
         if (!dl->mesh.nverts) return 0;
         g->n = dl->mesh.ntris, g->xyz = dl->mesh.xyz, g->normal = dl->mesh.normal;
@@ -135,20 +105,6 @@ static int no_scene(rt_world *w, ms_error *err)
 
 /* A display list to trace: its transform and texture terms. */
 typedef rt_source source;
-
-/* The scene's lists, and the world-space lists of their lines, points and text. */
-static source *sources_of(rt_world *w, const ms_scene *s, size_t *n, ms_error *err)
-{
-    source *src = rt_world_alloc(w, 2 * s->nitems, sizeof *src, err);
-    if (!src) return NULL;
-    long got = rt_sources(s, src, &w->lists, &w->nlists, &w->caplists);
-    if (got < 0) {
-        ms_error_set(err, "out of memory");
-        return NULL;
-    }
-    *n = (size_t)got;
-    return src;
-}
 
 /* Group the sources by transform; returns the number of groups. */
 static size_t group_sources(source *src, size_t n)
@@ -218,7 +174,7 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
 {
     if (kind_translucent(src->dl, &src->mat, kind) != trans) return 0;
     rt_geom *g = &w->geoms[w->ngeoms];
-    if (fill_geom(w, src->dl, kind, g, err)) return -1;
+    fill_geom(src, kind, g);
     g->user = user;
     g->item = src->item;
     if (kind == RT_CYLINDER && user && kind_translucent(src->dl, &src->mat, RT_SPHERE) == trans)
@@ -307,10 +263,9 @@ int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err
     w->dev = rt_device(err);
     if (!w->dev) return -1;
     w->eps = rt_world_eps(s);
-    size_t nsrc, ngroups;
-    source *src = sources_of(w, s, &nsrc, err);
-    if (!src) goto fail;
-    ngroups = group_sources(src, nsrc);
+    if (rt_sources_make(&w->set, s, err)) goto fail;
+    source *src = w->set.src;
+    size_t nsrc = w->set.n, ngroups = group_sources(src, nsrc);
     w->items = rt_world_alloc(w, 2 * ngroups, sizeof *w->items, err);
     w->geoms = rt_world_alloc(w, nsrc * RT_NKINDS, sizeof *w->geoms, err);
     w->top = rtcNewScene(w->dev);
@@ -334,11 +289,7 @@ void rt_world_free(rt_world *w)
 {
     if (w->top) rtcReleaseScene(w->top);
     for (size_t i = 0; i < w->nowned; i++) free(w->owned[i]);
-    for (size_t i = 0; i < w->nlists; i++) {
-        ms_dl_free(w->lists[i]);
-        free(w->lists[i]);
-    }
     free(w->owned);
-    free(w->lists);
+    rt_sources_free(&w->set);
     memset(w, 0, sizeof *w);
 }

@@ -1,5 +1,5 @@
 /* displaylist.c: growing the structure-of-arrays primitive columns, appending primitives,
- * counting and bounding them. */
+ * walking a list's cylinders as VMD's pieces (a bond's two halves), counting and bounding. */
 #include "config.h"
 #include "scene/displaylist.h"
 #include "scene/mat4.h"
@@ -52,9 +52,11 @@ static int kind_columns(ms_displaylist *dl, ms_dl_kind kind, column *c, size_t *
     case MS_DL_CYLINDERS: {
         ms_dl_cylinders *s = &dl->cylinders;
         COL(s->base, 3 * sizeof(float)); COL(s->apex, 3 * sizeof(float));
-        COL(s->radius, sizeof(float)); COL(s->color, sizeof(ms_rgba8));
-        COL(s->caps, 1); COL(s->res, sizeof(uint16_t));
+        COL(s->joint, 3 * sizeof(float)); COL(s->radius, sizeof(float));
+        COL(s->color, sizeof(ms_rgba8)); COL(s->color2, sizeof(ms_rgba8));
+        COL(s->flags, 1); COL(s->res, sizeof(uint16_t));
         *n = &s->n; *cap = &s->cap;
+        s->norder = 0;          /* claiming cylinders drops the pieces' order */
         break;
     }
     case MS_DL_CONES: {
@@ -114,6 +116,9 @@ void ms_dl_free(ms_displaylist *dl)
         *n = *cap = 0;
     }
     free(dl->texts.chars);
+    free(dl->cylinders.order);
+    dl->cylinders.order = NULL;
+    dl->cylinders.norder = dl->cylinders.ordercap = 0;
     free(dl->mesh.xyz);
     free(dl->mesh.normal);
     free(dl->mesh.color);
@@ -130,6 +135,7 @@ void ms_dl_free(ms_displaylist *dl)
 void ms_dl_clear(ms_displaylist *dl)
 {
     dl->spheres.n = dl->cylinders.n = dl->cones.n = 0;
+    dl->cylinders.norder = 0;
     dl->lines.n = dl->points.n = dl->texts.n = 0;
     dl->texts.nchars = 0;
     dl->mesh.nverts = dl->mesh.ntris = 0;
@@ -252,13 +258,96 @@ int ms_dl_cylinder(ms_displaylist *dl, const float a[3], const float b[3], float
     long i = one_more(dl, MS_DL_CYLINDERS);
     if (i < 0) return -1;
     ms_dl_cylinders *s = &dl->cylinders;
+    float mid[3] = {0.5f * (a[0] + b[0]), 0.5f * (a[1] + b[1]), 0.5f * (a[2] + b[2])};
     copy3(s->base + 3 * i, a);
     copy3(s->apex + 3 * i, b);
+    copy3(s->joint + 3 * i, mid);
     s->radius[i] = r;
-    s->color[i] = col;
-    s->caps[i] = (uint8_t)caps;
+    s->color[i] = s->color2[i] = col;
+    s->flags[i] = (uint8_t)(caps & MS_CAP_MASK);
     s->res[i] = clamp_res(res);
     return 0;
+}
+
+int ms_dl_bond(ms_displaylist *dl, const float a[3], const float j[3], const float b[3], float r,
+               ms_rgba8 c1, ms_rgba8 c2, int flags, int res)
+{
+    long i = one_more(dl, MS_DL_CYLINDERS);
+    if (i < 0) return -1;
+    ms_dl_cylinders *s = &dl->cylinders;
+    copy3(s->base + 3 * i, a);
+    copy3(s->apex + 3 * i, b);
+    copy3(s->joint + 3 * i, j);
+    s->radius[i] = r;
+    s->color[i] = c1;
+    s->color2[i] = c2;
+    s->flags[i] = (uint8_t)((flags & (MS_CAP_MASK | MS_CYL_INWARD)) | MS_CYL_BOND);
+    s->res[i] = clamp_res(res);
+    return 0;
+}
+
+uint32_t *ms_dl_cylinder_order(ms_displaylist *dl, size_t n, ms_error *err)
+{
+    ms_dl_cylinders *s = &dl->cylinders;
+    column c = {(void **)&s->order, sizeof(uint32_t)};
+    if (grow_columns(&s->ordercap, n ? n : 1, &c, 1)) {
+        oom(err);
+        return NULL;
+    }
+    s->norder = n;
+    return s->order;
+}
+
+/* ---------------------------------------------------------------- pieces */
+
+/* Half h (0 the base's, 1 the apex's) of cylinder i. */
+static void piece(const ms_dl_cylinders *c, size_t i, int h, ms_dl_piece *p)
+{
+    int f = c->flags[i];
+    p->radius = c->radius[i];
+    p->res = c->res[i];
+    p->cylinder = i;
+    if (!(f & MS_CYL_BOND)) {
+        p->a = c->base + 3 * i, p->b = c->apex + 3 * i;
+        p->color = c->color[i];
+        p->caps = f & MS_CAP_MASK;
+        return;
+    }
+    const float *end = (h ? c->apex : c->base) + 3 * i, *joint = c->joint + 3 * i;
+    int closed = f & (h ? MS_CAP_APEX : MS_CAP_BASE);
+    p->color = h ? c->color2[i] : c->color[i];
+    if (h && !(f & MS_CYL_INWARD)) {
+        p->a = joint, p->b = end;
+        p->caps = closed ? MS_CAP_APEX : 0;
+    } else {
+        p->a = end, p->b = joint;
+        p->caps = closed ? MS_CAP_BASE : 0;
+    }
+}
+
+int ms_dl_pieces_next(ms_dl_pieces *it, ms_dl_piece *p)
+{
+    const ms_dl_cylinders *c = it->cy;
+    if (c->norder) {
+        if (it->next >= c->norder) return 0;
+        uint32_t e = c->order[it->next++];
+        piece(c, e / 2, (int)(e & 1), p);
+        return 1;
+    }
+    size_t i = it->next / 2;
+    if (i >= c->n) return 0;
+    int h = (int)(it->next & 1);
+    piece(c, i, h, p);
+    it->next = h || !(c->flags[i] & MS_CYL_BOND) ? 2 * i + 2 : 2 * i + 1;
+    return 1;
+}
+
+size_t ms_dl_piece_count(const ms_dl_cylinders *cy)
+{
+    if (cy->norder) return cy->norder;
+    size_t n = cy->n;
+    for (size_t i = 0; i < cy->n; i++) n += (cy->flags[i] & MS_CYL_BOND) != 0;
+    return n;
 }
 
 int ms_dl_cone(ms_displaylist *dl, const float base[3], const float apex[3], float rbase,
@@ -358,7 +447,8 @@ size_t ms_dl_count(const ms_displaylist *dl)
 size_t ms_dl_bytes(const ms_displaylist *dl)
 {
     return dl->spheres.cap * (4 * sizeof(float) + sizeof(ms_rgba8) + 2) +
-           dl->cylinders.cap * (7 * sizeof(float) + sizeof(ms_rgba8) + 3) +
+           dl->cylinders.cap * (10 * sizeof(float) + 2 * sizeof(ms_rgba8) + 3) +
+           dl->cylinders.ordercap * sizeof(uint32_t) +
            dl->cones.cap * (8 * sizeof(float) + sizeof(ms_rgba8) + 2) +
            dl->lines.cap * (7 * sizeof(float) + sizeof(ms_rgba8) + 1) +
            dl->points.cap * (4 * sizeof(float) + sizeof(ms_rgba8)) +

@@ -1,8 +1,9 @@
 /* displaylist.h: what a representation builder produces and a device draws. A display list
  * holds typed primitive arrays in structure-of-arrays form (float32 geometry, RGBA8 colours
- * resolved at build time): spheres, cylinders, cones, one indexed triangle mesh (signed-byte
- * normals quantized as the OpenGL 1.2.1 spec, table 2.6, says), lines, points and text; plus
- * one material and one 4x4 model matrix for the whole list.
+ * resolved at build time): spheres, cylinders (a bond is one two-coloured cylinder), cones,
+ * one indexed triangle mesh (signed-byte normals quantized as the OpenGL 1.2.1 spec, table
+ * 2.6, says), lines, points and text; plus one material and one 4x4 model matrix for the
+ * whole list.
  *
  * Appending is amortized O(1) and never allocates per primitive: reserve up front with
  * ms_dl_reserve, or claim a block with ms_dl_extend and fill it (from several threads if you
@@ -19,7 +20,13 @@ typedef struct ms_rgba8 {
     uint8_t r, g, b, a;
 } ms_rgba8;
 
-enum { MS_CAP_BASE = 1, MS_CAP_APEX = 2 };          /* cylinder ends that are closed */
+/* A cylinder's flags: the ends that are closed, and its role. A bond (MS_CYL_BOND) is one
+ * tube from base to apex in two colours, color up to the joint and color2 beyond it; VMD
+ * draws it as two half cylinders meeting at the joint, which is what the exporters write
+ * (ms_dl_pieces): base to joint and joint to apex, or with MS_CYL_INWARD both halves from
+ * their end to the joint (VMD's atom-centred halves, Licorice and CPK). */
+enum { MS_CAP_BASE = 1, MS_CAP_APEX = 2, MS_CAP_MASK = 3 };
+enum { MS_CYL_BOND = 4, MS_CYL_INWARD = 8 };
 enum { MS_LINE_SOLID = 0, MS_LINE_DASHED = 1 };
 
 typedef enum ms_dl_kind {
@@ -38,10 +45,18 @@ typedef struct ms_dl_spheres {
 typedef struct ms_dl_cylinders {
     size_t n, cap;
     float *base, *apex;  /* 3n each: the end centres */
+    float *joint;        /* 3n: where a bond's colour changes (on the axis); else the middle */
     float *radius;
     ms_rgba8 *color;
-    uint8_t *caps;       /* MS_CAP_* */
+    ms_rgba8 *color2;    /* a bond's colour beyond the joint; else color */
+    uint8_t *flags;      /* MS_CAP_* | MS_CYL_* */
     uint16_t *res;
+    /* The order VMD writes the pieces in (ms_dl_pieces), when it is not the list's: norder
+     * entries 2 * cylinder + half (0 the base's, 1 the apex's; a plain cylinder is its
+     * half 0). Set by ms_dl_cylinder_order after the cylinders are in; appending a cylinder
+     * drops it. */
+    uint32_t *order;
+    size_t norder, ordercap;
 } ms_dl_cylinders;
 
 typedef struct ms_dl_cones {
@@ -129,6 +144,13 @@ void ms_dl_mesh_adopt(ms_displaylist *dl, float *xyz, int8_t *normal, ms_rgba8 *
 int ms_dl_sphere(ms_displaylist *dl, const float c[3], float r, ms_rgba8 col, int res);
 int ms_dl_cylinder(ms_displaylist *dl, const float a[3], const float b[3], float r, ms_rgba8 col,
                    int caps, int res);
+/* A bond: one tube from a to b of radius r, coloured c1 up to the joint j and c2 beyond; flags
+ * MS_CYL_INWARD and MS_CAP_* (MS_CYL_BOND is implied). */
+int ms_dl_bond(ms_displaylist *dl, const float a[3], const float j[3], const float b[3], float r,
+               ms_rgba8 c1, ms_rgba8 c2, int flags, int res);
+/* Room for the pieces' order (n entries, see ms_dl_cylinders.order) for the caller to fill;
+ * NULL with err set when memory runs out. */
+uint32_t *ms_dl_cylinder_order(ms_displaylist *dl, size_t n, ms_error *err);
 int ms_dl_cone(ms_displaylist *dl, const float base[3], const float apex[3], float rbase,
                float rapex, ms_rgba8 col, int res);
 int ms_dl_line(ms_displaylist *dl, const float a[3], const float b[3], float width, ms_rgba8 col,
@@ -141,6 +163,33 @@ long ms_dl_vertex(ms_displaylist *dl, const float p[3], const float n[3], ms_rgb
 int ms_dl_tri(ms_displaylist *dl, uint32_t i, uint32_t j, uint32_t k);
 /* Three new vertices and the triangle between them. */
 int ms_dl_triangle(ms_displaylist *dl, const float p[9], const float n[9], const ms_rgba8 c[3]);
+
+/* The pieces of a list's cylinders as VMD has them and the exporters write them: a plain
+ * cylinder is one piece, a bond its two halves (its flags' caps on its own ends, the joint
+ * open), in the list's order or the one ms_dl_cylinder_order set. Walk them with
+ *     ms_dl_pieces it = ms_dl_pieces_of(cy); ms_dl_piece p;
+ *     while (ms_dl_pieces_next(&it, &p)) ...  */
+typedef struct ms_dl_piece {
+    const float *a, *b;  /* the ends */
+    float radius;
+    ms_rgba8 color;
+    int caps;            /* MS_CAP_* of this piece's ends */
+    int res;
+    size_t cylinder;     /* the cylinder it is part of */
+} ms_dl_piece;
+typedef struct ms_dl_pieces {
+    const ms_dl_cylinders *cy;
+    size_t next;         /* the next order entry, or 2 * cylinder + half */
+} ms_dl_pieces;
+static inline ms_dl_pieces ms_dl_pieces_of(const ms_dl_cylinders *cy)
+{
+    ms_dl_pieces it = {cy, 0};
+    return it;
+}
+/* The next piece into *p; 0 when there are no more. */
+int ms_dl_pieces_next(ms_dl_pieces *it, ms_dl_piece *p);
+/* How many pieces the cylinders make. */
+size_t ms_dl_piece_count(const ms_dl_cylinders *cy);
 
 /* Number of primitives of every kind (mesh triangles included), and memory held. */
 size_t ms_dl_count(const ms_displaylist *dl);

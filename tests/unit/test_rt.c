@@ -511,23 +511,23 @@ static void test_cylinder_caps(void)
     }
 }
 
-/* Half-bond cylinders (as Licorice draws them), flat colours, orthographic (11.7 pixels a
- * unit): a red half from x = -1 and a blue half from x = 1 meeting at the origin, listed apart
- * (the tracer joins them into one tube through its table), and between them a green and a
- * white half meeting at (0, 0.8) at an angle (never joined). Each half keeps its colour. Wider
- * spheres on the bond's ends (the tracer tests them with the tube) keep theirs, yellow and
- * cyan, as does a magenta sphere on no cylinder at (0, -0.85). */
+/* Bonds (as Licorice draws them), flat colours, orthographic (11.7 pixels a unit): one
+ * cylinder from x = -1 to x = 1, red up to its joint at the origin and blue beyond, and
+ * between them a green and a white half cylinder meeting at (0, 0.8) at an angle (plain
+ * cylinders). Each half keeps its colour. Wider spheres on the bond's ends (the tracer tests
+ * them with the tube) keep theirs, yellow and cyan, as does a magenta sphere on no cylinder
+ * at (0, -0.85). */
 static void test_half_bonds(void)
 {
-    t_suite = "half-bond cylinders";
+    t_suite = "bond cylinders";
     ms_displaylist dl;
     ms_dl_init(&dl);
     float o[3] = {0, 0, 0}, l[3] = {-1, 0, 0}, r[3] = {1, 0, 0};
     float k[3] = {0, 0.8f, 0}, kl[3] = {-1, 0.8f, 0}, kr[3] = {1, 1.1f, 0};
-    ms_dl_cylinder(&dl, l, o, 0.15f, (ms_rgba8){255, 0, 0, 255}, 0, 12);
+    ms_dl_bond(&dl, l, o, r, 0.15f, (ms_rgba8){255, 0, 0, 255}, (ms_rgba8){0, 0, 255, 255},
+               MS_CYL_INWARD, 12);
     ms_dl_cylinder(&dl, kl, k, 0.15f, (ms_rgba8){0, 255, 0, 255}, 0, 12);
     ms_dl_cylinder(&dl, kr, k, 0.15f, (ms_rgba8){255, 255, 255, 255}, 0, 12);
-    ms_dl_cylinder(&dl, r, o, 0.15f, (ms_rgba8){0, 0, 255, 255}, 0, 12);
     float m[3] = {0, -0.85f, 0};
     ms_dl_sphere(&dl, m, 0.2f, (ms_rgba8){255, 0, 255, 255}, 12);
     ms_dl_sphere(&dl, r, 0.3f, (ms_rgba8){0, 255, 255, 255}, 12);

@@ -65,6 +65,47 @@ static void test_displaylist(void)
     ms_dl_free(&dl);
 }
 
+/* A bond is one cylinder; its pieces are VMD's two halves, in the list's order or the one
+ * set, and a plain cylinder is one piece. */
+static void test_bond_pieces(void)
+{
+    t_suite = "bond pieces";
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    ms_error err = {{0}};
+    ms_rgba8 red = {255, 0, 0, 255}, blue = {0, 0, 255, 255};
+    float a[3] = {0, 0, 0}, j[3] = {1, 0, 0}, b[3] = {2, 0, 0}, c[3] = {0, 3, 0};
+    ms_dl_bond(&dl, a, j, b, 0.2f, red, blue, MS_CAP_APEX, 12);
+    ms_dl_cylinder(&dl, a, c, 0.1f, red, 0, 12);
+    ms_dl_bond(&dl, c, j, b, 0.2f, blue, red, MS_CYL_INWARD, 12);
+    t_ok(dl.cylinders.n == 3 && ms_dl_piece_count(&dl.cylinders) == 5, "3 cylinders, 5 pieces (%zu)",
+         ms_dl_piece_count(&dl.cylinders));
+    ms_dl_pieces it = ms_dl_pieces_of(&dl.cylinders);
+    ms_dl_piece p[6];
+    int n = 0;
+    while (n < 6 && ms_dl_pieces_next(&it, &p[n])) n++;
+    t_ok(n == 5, "the walk gives every piece (%d)", n);
+    t_ok(p[0].a[0] == 0 && p[0].b[0] == 1 && p[0].color.r == 255 && p[0].caps == 0 &&
+         p[1].a[0] == 1 && p[1].b[0] == 2 && p[1].color.b == 255 && p[1].caps == MS_CAP_APEX,
+         "a bond: base to joint in colour 1, joint to apex in colour 2, its apex cap on the second");
+    t_ok(p[2].cylinder == 1 && p[2].b[1] == 3, "a plain cylinder is one piece");
+    t_ok(p[3].a[1] == 3 && p[3].b[0] == 1 && p[4].a[0] == 2 && p[4].b[0] == 1 && p[4].color.r == 255,
+         "inward halves: each from its end to the joint");
+    uint32_t *o = ms_dl_cylinder_order(&dl, 5, &err);
+    uint32_t want[5] = {2 * 2 + 1, 2 * 0, 2 * 1, 2 * 2, 2 * 0 + 1};
+    memcpy(o, want, sizeof want);
+    it = ms_dl_pieces_of(&dl.cylinders);
+    n = 0;
+    while (n < 6 && ms_dl_pieces_next(&it, &p[n])) n++;
+    t_ok(n == 5 && p[0].cylinder == 2 && p[0].a[0] == 2 && p[1].cylinder == 0 && p[4].b[0] == 2,
+         "a set order is followed");
+    ms_dl_cylinder(&dl, a, c, 0.1f, red, 0, 12);
+    t_ok(dl.cylinders.norder == 0 && ms_dl_piece_count(&dl.cylinders) == 6,
+         "appending a cylinder drops the order");
+    ms_dl_free(&dl);
+    t_ok(dl.cylinders.order == NULL && dl.cylinders.n == 0, "free releases the order");
+}
+
 static void test_normals(void)
 {
     t_suite = "normals";
@@ -293,6 +334,7 @@ static void test_ugraphics(void)
 int main(void)
 {
     test_displaylist();
+    test_bond_pieces();
     test_normals();
     test_colors();
     test_materials();
