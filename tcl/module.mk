@@ -19,3 +19,12 @@ tcl_parallel_parallel_la_SOURCES = tcl/parallel/parallel.c \
 tcl_parallel_parallel_la_CFLAGS = $(AM_CFLAGS) $(TCL_STUB_CFLAGS)
 tcl_parallel_parallel_la_LDFLAGS = -module -avoid-version -shared
 tcl_parallel_parallel_la_LIBADD = $(TCL_STUB_LIBS) $(MPI_LIBS) $(PTHREAD_LIBS)
+
+# VMD's plugin packages, molscope's own code under VMD's names and versions: found through
+# auto_path (the Tcl library is on it), loaded by `package require <name>`.
+utilitiespkgdir = $(tcllibdir)/utilities
+dist_utilitiespkg_DATA = tcl/utilities/pkgIndex.tcl tcl/utilities/utilities.tcl
+vmdmoviepkgdir = $(tcllibdir)/vmdmovie
+dist_vmdmoviepkg_DATA = tcl/vmdmovie/pkgIndex.tcl tcl/vmdmovie/vmdmovie.tcl
+vcrpkgdir = $(tcllibdir)/viewchangerender
+dist_vcrpkg_DATA = tcl/viewchangerender/pkgIndex.tcl tcl/viewchangerender/viewchangerender.tcl
