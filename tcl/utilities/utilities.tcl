@@ -183,11 +183,12 @@ proc ::util::factorial {n} {
     return $f
 }
 
-# The selection of -sel, or every atom of -molid (top).
+# The selection of -sel, or every atom of -molid (top), made in the caller's frame (a
+# selection lives as long as the procedure that made it).
 proc ::util::bond_sel {arglist} {
     set sel [getargs $arglist -sel {}]
     if {$sel ne ""} { return $sel }
-    atomselect [getargs $arglist -molid top] all
+    uplevel 1 [list atomselect [getargs $arglist -molid top] all]
 }
 
 # Bonded pairs {i j} (i < j) of the atoms of -sel or of -molid, sorted.
