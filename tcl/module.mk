@@ -31,3 +31,12 @@ pbctoolsdir = $(tcllibdir)/pbctools
 dist_pbctools_DATA = tcl/pbctools/pkgIndex.tcl tcl/pbctools/pbctools.tcl
 exectooldir = $(tcllibdir)/exectool
 dist_exectool_DATA = tcl/exectool/pkgIndex.tcl tcl/exectool/exectool.tcl
+
+# VMD's plugin packages, molscope's own code under VMD's names and versions: found through
+# auto_path (the Tcl library is on it), loaded by `package require <name>`.
+utilitiespkgdir = $(tcllibdir)/utilities
+dist_utilitiespkg_DATA = tcl/utilities/pkgIndex.tcl tcl/utilities/utilities.tcl
+vmdmoviepkgdir = $(tcllibdir)/vmdmovie
+dist_vmdmoviepkg_DATA = tcl/vmdmovie/pkgIndex.tcl tcl/vmdmovie/vmdmovie.tcl
+vcrpkgdir = $(tcllibdir)/viewchangerender
+dist_vcrpkg_DATA = tcl/viewchangerender/pkgIndex.tcl tcl/viewchangerender/viewchangerender.tcl

@@ -28,7 +28,8 @@ namespace eval ::molscope::movie {
 proc ::molscope::movie::usage {} {
     return "movie make ?-basename path? ?-video file.mp4? ?-type trajectory|rotation|rock|user\
             (or a list of them)? ?-frames N? ?-first F? ?-last L? ?-axis x|y|z? ?-angle deg?\
-            ?-proc command? ?-renderer method? ?-size W H? ?-fps F? ?-crf Q? ?-preset P? ?-keepframes 0|1?\
+            ?-proc command? ?-renderer method? ?-size W H? ?-fps F? ?-codec C? ?-crf Q? ?-preset P?\
+            ?-bitrate B? ?-keepframes 0|1?\
             ?-progress auto|on|off?"
 }
 
@@ -55,7 +56,7 @@ proc ::molscope::movie::int_option {name value min} {
 proc ::molscope::movie::parse {arglist} {
     set o [dict create -basename "" -video "" -type "" -frames "" -first 0 -last end \
                -axis y -angle "" -proc "" -renderer snapshot -size "" -fps 30 -crf 18 \
-               -preset veryfast -keepframes 1 -progress auto]
+               -preset veryfast -keepframes 1 -progress auto -codec h264 -bitrate 8000000]
     for {set i 0} {$i < [llength $arglist]} {incr i} {
         set k [lindex $arglist $i]
         if {![dict exists $o $k]} {
@@ -108,6 +109,27 @@ proc ::molscope::movie::tachyon_program {} {
         return [lindex [auto_execok $::env(TACHYON_BIN)] 0]
     }
     return [lindex [auto_execok tachyon] 0]
+}
+
+# The video's codec and bitrate from the options (fps checked already): MPEG-1 and MPEG-2
+# know only the MPEG frame rates.
+proc ::molscope::movie::check_codec {o fps} {
+    set codec [string tolower [dict get $o -codec]]
+    set codecs {h264 mpeg1 mpeg2 mpeg4 gif}
+    if {$codec ni $codecs} {
+        error "movie make: -codec: unknown codec '$codec': must be [join $codecs {, }]"
+    }
+    set rates {23.976 24 25 29.97 30 50 59.94 60}
+    if {$codec in {mpeg1 mpeg2} && [lsearch -real $rates $fps] < 0} {
+        error "movie make: -fps $fps: $codec video knows only the MPEG frame rates\
+               ([join $rates {, }])"
+    }
+    set bitrate [dict get $o -bitrate]
+    if {![string is wide -strict $bitrate] || $bitrate < 1000 || $bitrate > 1000000000} {
+        error "movie make: -bitrate: expected bits per second from 1000 to 1000000000,\
+               got '$bitrate'"
+    }
+    list $codec $bitrate
 }
 
 # Frame types, frames and the trajectory range from the options.
@@ -235,6 +257,7 @@ proc ::molscope::movie::make {args} {
         error "movie make: -preset: expected one of x264's presets ([join $presets {, }]),\
                got '$preset'"
     }
+    lassign [check_codec $o $fps] codec bitrate
     set progress [dict get [dict create auto -1 on 1 off 0] \
                       [string tolower [dict get $o -progress]]]
 
@@ -248,6 +271,7 @@ proc ::molscope::movie::make {args} {
     display resize $w $h
     set rc [catch {run ::molscope::movie::frame -basename $base -frames $n -width $w \
                        -height $h -video $video -fps $fps -crf $crf -preset $preset -keepframes $keep \
+                       -codec $codec -bitrate $bitrate \
                        -progress $progress -started [started] \
                        -scriptdone $::molscope::movie::library_loaded} result opts]
     display resize {*}$saved_size

@@ -2,13 +2,15 @@
  * ::molscope::movie namespace. The user's command is `movie`, defined in Tcl.
  *
  *   ::molscope::movie::run <framecmd> -basename B -frames N -width W -height H
- *       ?-video V -fps F -crf Q -preset P -keepframes 0|1 -progress -1|0|1 -started T
- *       -scriptdone T?
+ *       ?-video V -codec h264|mpeg1|mpeg2|mpeg4|gif -fps F -crf Q -preset P -bitrate B
+ *       -keepframes 0|1 -progress -1|0|1 -started T -scriptdone T?
  *       Collective (every rank): makes the movie with ms_movie_run, calling
  *       `{*}framecmd <frame> <file>` to render each missing frame into <file>. Returns a
  *       dict: frames rendered reused ranks video note script script_max state state_max
  *       render encode_tail busy_max busy_sum total (seconds).
  *   ::molscope::movie::frameok <file> <W> <H>   1 when file is a complete W x H PNG
+ *   ::molscope::movie::convert <from> <to>      an image file written again in the format
+ *       of to's extension (.png .tga .ppm .bmp), through base/safewrite
  *   ::molscope::movie::pose ?<pose>?            every molecule's transform and the axes'
  *       rotation as a list, or set them from one (molecules not in it keep theirs): a
  *       movie sets each frame's view absolutely from the same starting pose
@@ -54,7 +56,11 @@ static int call_frame(void *ctx, long frame, const char *tmp, ms_error *err)
 typedef struct run_args {
     ms_movie_opts o;
     int progress;
+    int codec;
 } run_args;
+
+/* The codecs, in the order of ms_movie_codec. */
+static const char *const codecs[] = {"h264", "mpeg1", "mpeg2", "mpeg4", "gif", NULL};
 
 #define ROFF(f) offsetof(run_args, f)
 #define COUNT(max) 0, max, MS_OPT_MIN | MS_OPT_MAX, NULL
@@ -67,6 +73,8 @@ static const ms_opt run_options[] = {
     {"-fps", MS_OPT_DOUBLE, ROFF(o.fps), 0, 1000, MS_OPT_ABOVE | MS_OPT_MAX, NULL},
     {"-crf", MS_OPT_INT, ROFF(o.crf), COUNT(51)},
     {"-preset", MS_OPT_STRING, ROFF(o.preset), 0, 0, 0, NULL},
+    {"-codec", MS_OPT_ENUM, ROFF(codec), 0, 0, 0, codecs},
+    {"-bitrate", MS_OPT_LONG, ROFF(o.bitrate), 1000, 1000000000L, MS_OPT_MIN | MS_OPT_MAX, NULL},
     {"-keepframes", MS_OPT_INT, ROFF(o.keep_frames), COUNT(1)},
     {"-progress", MS_OPT_INT, ROFF(progress), 0, 0, 0, NULL},
     {"-started", MS_OPT_DOUBLE, ROFF(o.started), 0, 0, 0, NULL},
@@ -76,7 +84,7 @@ static const ms_opt run_options[] = {
 /* Parse the options of run into o; video and basename point into objv. */
 static int run_opts(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], ms_movie_opts *o)
 {
-    run_args a = {*o, -1};
+    run_args a = {*o, -1, MS_CODEC_H264};
     a.o.nframes = -1;
     a.o.crf = 18;
     a.o.keep_frames = 1;
@@ -86,6 +94,7 @@ static int run_opts(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], ms_movi
         return ms_cmd_error(interp, "movie: -basename, -frames, -width and -height are required");
     if (o->preset && !ms_movie_preset_ok(o->preset))
         return ms_cmd_error(interp, "movie: -preset: unknown x264 preset '%s'", o->preset);
+    o->codec = (ms_movie_codec)a.codec;
     o->progress = a.progress < 0 ? -1 : a.progress > 0;
     return TCL_OK;
 }
@@ -137,6 +146,17 @@ static int movie_frameok(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *con
         ms_arg_int(interp, objv[3], "height", INT_MIN, INT_MAX, &h))
         return TCL_ERROR;
     Tcl_SetObjResult(interp, Tcl_NewBooleanObj(ms_movie_frame_ok(Tcl_GetString(objv[1]), w, h)));
+    return TCL_OK;
+}
+
+static int movie_convert(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    ms_image img = {0};
+    ms_error err = {{0}};
+    int rc = ms_image_read(Tcl_GetString(objv[1]), &img, &err);
+    if (rc == 0) rc = ms_image_write(&img, Tcl_GetString(objv[2]), &err);
+    ms_image_free(&img);
+    if (rc) return ms_cmd_error(interp, "movie convert: %s", err.msg);
     return TCL_OK;
 }
 
@@ -238,6 +258,7 @@ void ms_cmd_movie_register(ms_app *app)
         {"::molscope::movie::run", movie_run, 1, MS_ARGS_ANY,
          "<framecmd> -basename <B> -frames <N> -width <W> -height <H> ?-option <value> ...?"},
         {"::molscope::movie::frameok", movie_frameok, 3, 3, "<file> <width> <height>"},
+        {"::molscope::movie::convert", movie_convert, 2, 2, "<from> <to>"},
         {"::molscope::movie::pose", movie_pose, 0, 1, "?<pose>?"},
         {"::molscope::movie::started", movie_started, 0, 0, ""},
         {"::molscope::movie::ffmpeg", movie_ffmpeg, 0, 0, ""}};

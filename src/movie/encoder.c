@@ -1,5 +1,6 @@
 /* encoder.c: the video encoder, an ffmpeg subprocess fed raw RGB frames through a pipe.
  * ffmpeg is GPL software: molscope only runs it as a program (posix_spawn), never links it.
+ * The codec is H.264 (libx264), MPEG-1, -2 or -4, or an animated GIF (ms_movie_codec).
  * It writes the video's output opened by base/safewrite: the temporary file beside the
  * video, renamed over it when ffmpeg succeeded (or a device or FIFO, written in place); its
  * messages go to a deleted temporary file and the last of them become the error when it
@@ -138,19 +139,55 @@ int ms_movie_preset_ok(const char *name)
     return 0;
 }
 
-ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, int width,
-                                         int height, double fps, int crf, const char *preset,
+/* The text of ffmpeg's options that hold numbers (kept alive while argv is used). */
+typedef struct codec_text {
+    char size[32], rate[32], q[16], pad[64], bitrate[32];
+} codec_text;
+
+/* Append to argv (from *n) the options of o's codec: the encoder, its quality and the
+ * pixel format (with the padding of odd sizes), or the GIF's palette filter. */
+static void codec_args(const ms_movie_opts *o, const char *preset, codec_text *t,
+                       const char **argv, int *n)
+{
+    static const char *const enc[] = {"libx264", "mpeg1video", "mpeg2video", "mpeg4", "gif"};
+    snprintf(t->q, sizeof t->q, "%d", o->crf);
+    snprintf(t->bitrate, sizeof t->bitrate, "%ld", o->bitrate > 0 ? o->bitrate : 8000000L);
+    snprintf(t->pad, sizeof t->pad, "pad=%d:%d", o->width + (o->width & 1),
+             o->height + (o->height & 1));
+    argv[(*n)++] = "-c:v";
+    argv[(*n)++] = enc[o->codec];
+    if (o->codec == MS_CODEC_GIF) {
+        argv[(*n)++] = "-vf";
+        argv[(*n)++] = "split[a][b];[a]palettegen[p];[b][p]paletteuse";
+        return;
+    }
+    if (o->codec == MS_CODEC_H264) {
+        const char *x264[] = {"-preset", preset, "-crf", t->q};
+        for (size_t k = 0; k < MS_COUNTOF(x264); k++) argv[(*n)++] = x264[k];
+    } else {
+        argv[(*n)++] = "-b:v";
+        argv[(*n)++] = t->bitrate;
+    }
+    argv[(*n)++] = "-pix_fmt";
+    argv[(*n)++] = "yuv420p";
+    if ((o->width | o->height) & 1) {
+        argv[(*n)++] = "-vf";
+        argv[(*n)++] = t->pad;
+    }
+}
+
+ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const ms_movie_opts *o,
                                          ms_error *err)
 {
-    if (!preset) preset = "veryfast";
+    const char *preset = o->preset ? o->preset : "veryfast";
     if (!ms_movie_preset_ok(preset)) {
         ms_error_set(err, "unknown x264 preset '%s'", preset);
         return NULL;
     }
-    const char *ext = video_ext(video);
+    const char *ext = video_ext(o->video);
     if (!ext) {
         ms_error_set(err, "%s: the video's name needs an extension that names its format "
-                          "(.mp4, .mkv, .mov ...)", video);
+                          "(.mp4, .mkv, .mov ...)", o->video);
         return NULL;
     }
     ms_movie_encoder *e = calloc(1, sizeof *e);
@@ -159,27 +196,21 @@ ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, 
         return NULL;
     }
     e->in = e->log = -1;
-    e->frame_bytes = (size_t)width * (size_t)height * 3;
-    if (!(e->out = ms_ofile_open(video, err))) goto fail;
+    e->frame_bytes = (size_t)o->width * (size_t)o->height * 3;
+    if (!(e->out = ms_ofile_open(o->video, err))) goto fail;
     /* ffmpeg opens its output by name: the temporary file, or the device or FIFO itself. */
-    const char *dest = ms_ofile_temp_name(e->out) ? ms_ofile_temp_name(e->out) : video;
-    char size[32], rate[32], q[16], pad[64];
-    snprintf(size, sizeof size, "%dx%d", width, height);
-    snprintf(rate, sizeof rate, "%.6g", fps);
-    snprintf(q, sizeof q, "%d", crf);
-    snprintf(pad, sizeof pad, "pad=%d:%d", width + (width & 1), height + (height & 1));
+    const char *dest = ms_ofile_temp_name(e->out) ? ms_ofile_temp_name(e->out) : o->video;
+    codec_text t;
+    snprintf(t.size, sizeof t.size, "%dx%d", o->width, o->height);
+    snprintf(t.rate, sizeof t.rate, "%.6g", o->fps);
     int mp4 = !strcasecmp(ext, ".mp4") || !strcasecmp(ext, ".mov") || !strcasecmp(ext, ".m4v");
     const char *argv[40];
     int n = 0;
     const char *head[] = {"ffmpeg", "-hide_banner", "-nostats", "-loglevel", "error", "-y",
-                          "-f", "rawvideo", "-pix_fmt", "rgb24", "-video_size", size,
-                          "-framerate", rate, "-i", "pipe:0", "-an", "-c:v", "libx264",
-                          "-preset", preset, "-crf", q, "-pix_fmt", "yuv420p"};
+                          "-f", "rawvideo", "-pix_fmt", "rgb24", "-video_size", t.size,
+                          "-framerate", t.rate, "-i", "pipe:0", "-an"};
     for (size_t k = 0; k < MS_COUNTOF(head); k++) argv[n++] = head[k];
-    if ((width | height) & 1) {
-        argv[n++] = "-vf";
-        argv[n++] = pad;
-    }
+    codec_args(o, preset, &t, argv, &n);
     if (mp4) {
         argv[n++] = "-movflags";
         argv[n++] = "+faststart";

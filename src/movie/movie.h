@@ -67,14 +67,6 @@ typedef struct ms_movie_encoder ms_movie_encoder;
 char *ms_movie_find_ffmpeg(void);
 /* Whether name is one of x264's presets (ultrafast ... veryslow, placebo). */
 int ms_movie_preset_ok(const char *name);
-/* Start ffmpeg encoding width x height RGB frames at fps into video's output opened by
- * base/safewrite (a temporary file beside it, or a device or FIFO in place; the container
- * follows video's extension, which it must have), H.264 with libx264
- * at constant quality crf (0-51, lower is better) and the given x264 preset, yuv420p; an
- * odd width or height is padded by one black pixel. NULL with err on failure. */
-ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const char *video, int width,
-                                         int height, double fps, int crf, const char *preset,
-                                         ms_error *err);
 /* Append one frame (3 * width * height bytes, top row first). 0, or -1 with err when
  * ffmpeg has gone (its last message is in err). */
 int ms_movie_encoder_put(ms_movie_encoder *e, const uint8_t *rgb, ms_error *err);
@@ -86,6 +78,15 @@ int ms_movie_encoder_finish(ms_movie_encoder *e, int ok, ms_error *err);
 
 /* ---- the whole job (monitor.c, run.c) ---- */
 
+/* The video codecs ffmpeg encodes to (the container follows the video's extension). */
+typedef enum ms_movie_codec {
+    MS_CODEC_H264,     /* libx264 at constant quality crf, x264 preset: the default */
+    MS_CODEC_MPEG1,    /* MPEG-1 video at bitrate (the fps must be an MPEG rate) */
+    MS_CODEC_MPEG2,    /* MPEG-2 video at bitrate (likewise) */
+    MS_CODEC_MPEG4,    /* MPEG-4 part 2 at bitrate */
+    MS_CODEC_GIF       /* animated GIF, one palette made from all the frames */
+} ms_movie_codec;
+
 typedef struct ms_movie_opts {
     const char *basename;      /* frames are <basename>.%05d.png */
     long nframes;              /* frames 0 .. nframes-1 */
@@ -94,12 +95,23 @@ typedef struct ms_movie_opts {
     double fps;
     int crf;
     const char *preset;        /* x264's speed preset (NULL: veryfast) */
+    ms_movie_codec codec;      /* the video's codec (0: H.264) */
+    long bitrate;              /* bits per second of the MPEG codecs (<= 0: 8000000) */
     int keep_frames;           /* 0: remove the frames once the video is complete */
     int progress;              /* -1: in place on a terminal, else a line every 5 %; 0: off;
                                 * 1: a line whenever frames complete */
     double started, script_done;  /* this rank's process start and end of script loading
                                    * (seconds since the epoch; < 0: unknown) */
 } ms_movie_opts;
+
+/* Start ffmpeg encoding o's width x height RGB frames at o's fps into o->video's output
+ * opened by base/safewrite (a temporary file beside it, or a device or FIFO in place; the
+ * container follows the video's extension, which it must have) with o's codec: H.264 with
+ * libx264 at constant quality crf (0-51, lower is better) and the x264 preset, MPEG-1, -2
+ * or -4 at o's bitrate, yuv420p (an odd width or height is padded by one black pixel), or
+ * an animated GIF with one palette made from all the frames. NULL with err on failure. */
+ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const struct ms_movie_opts *o,
+                                         ms_error *err);
 
 /* Render frame `frame` to the file tmp (a PNG of the movie's size); 0, or -1 with err. */
 typedef int (*ms_movie_frame_fn)(void *ctx, long frame, const char *tmp, ms_error *err);

@@ -58,8 +58,7 @@ static int plan_rank0(const ms_movie_opts *o, plan *p, ms_error *err)
         fprintf(stderr, "movie: %s\n", p->note);
         return 0;
     }
-    p->enc = ms_movie_encoder_start(ffmpeg, o->video, o->width, o->height, o->fps, o->crf,
-                                    o->preset, err);
+    p->enc = ms_movie_encoder_start(ffmpeg, o, err);
     free(ffmpeg);
     return p->enc ? 0 : -1;
 }
