@@ -59,13 +59,13 @@ TCL
 mkdir -p mpi one
 out2=$(LOG=$scratch/mpi.log mpi 2 $M -e mm.tcl -args mpi </dev/null 2>mpi.err); rc2=$?
 expect_eq "MovieMaker script on 2 ranks: 12 frames made" \
-    "$rc2:$(printf '%s\n' "$out2" | grep -o 'rendered [0-9]* reused [0-9]* ranks [0-9]*'):$(printf '%s\n' "$out2" | grep -o 'numframes [0-9]*')" \
+    "$rc2:$(printf '%s\n' "$out2" | grep '^RESULT' | grep -o 'rendered [0-9]* reused [0-9]* ranks [0-9]*'):$(printf '%s\n' "$out2" | grep '^RESULT' | grep -o 'numframes [0-9]*')" \
     "0:rendered 12 reused 0 ranks 2:numframes 12"
 expect_eq "2 ranks: the user frame proc ran once per frame" "$(awk '{print $1}' mpi.log | sort -n | tr '\n' ' ')" \
     "$(seq 0 11 | tr '\n' ' ')"
 expect_eq "2 ranks: both ranks rendered frames" "$(awk '{print $2}' mpi.log | sort -u | tr '\n' ' ')" "0 1 "
 out1=$(LOG=$scratch/one.log $M -e mk.tcl -args one </dev/null 2>one.err); rc1=$?
-expect_eq "movie make in one process: 12 frames" "$rc1:$(printf '%s\n' "$out1" | grep -o 'rendered [0-9]* reused [0-9]* ranks [0-9]*')" \
+expect_eq "movie make in one process: 12 frames" "$rc1:$(printf '%s\n' "$out1" | grep '^RESULT' | grep -o 'rendered [0-9]* reused [0-9]* ranks [0-9]*')" \
     "0:rendered 12 reused 0 ranks 1"
 same=0; for i in $(seq -f %05g 0 11); do cmp -s one/mm.$i.png mpi/mm.$i.png && same=$((same + 1)); done
 expect_eq "MovieMaker on 2 ranks and movie make in one process: the same 12 frames" "$same" 12
@@ -80,7 +80,7 @@ fi
 rm -f mpi/mm.00003.png mpi/mm.00010.png mpi.log
 out3=$(LOG=$scratch/mpi.log mpi 2 $M -e mm.tcl -args mpi </dev/null 2>>mpi.err)
 expect_eq "rerun on 2 ranks: only the 2 missing frames are rendered" \
-    "$(printf '%s\n' "$out3" | grep -o 'rendered [0-9]* reused [0-9]*'):$(awk '{print $1}' mpi.log | sort -n | tr '\n' ' ')" \
+    "$(printf '%s\n' "$out3" | grep '^RESULT' | grep -o 'rendered [0-9]* reused [0-9]*'):$(awk '{print $1}' mpi.log | sort -n | tr '\n' ' ')" \
     "rendered 2 reused 10:3 10 "
 same=0; for i in 00003 00010; do cmp -s one/mm.$i.png mpi/mm.$i.png && same=$((same + 1)); done
 expect_eq "rerun: the re-rendered frames are the same" "$same" 2
