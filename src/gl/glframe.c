@@ -7,7 +7,7 @@
 #include "config.h"
 #include "gl/glrender.h"
 #include "render/export.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <limits.h>
 #include <math.h>

@@ -123,7 +123,7 @@ static void put_quadric(placer *pl, uint32_t kind, uint32_t g, const float a[4],
 /* p moved to world space, with w = r times the scale. */
 static void world_point(const placer *pl, const float p[3], float r, float out[4])
 {
-    rt_xf_point(pl->ri.xf, p, out);
+    ms_mat4_point(pl->ri.xf, p, out);
     out[3] = r * pl->scale;
 }
 
@@ -150,7 +150,7 @@ static void place_cylinders(placer *pl, const source *s)
         world_point(pl, cy->base + 3 * i, cy->radius[i], a);
         world_point(pl, cy->apex + 3 * i, 0, b);
         for (int k = 0; k < 3; k++) b[k] -= a[k];
-        b[3] = rt_normalize(b);
+        b[3] = ms_v3f_normalize(b);
         put_quadric(pl, ORC_CYLINDER, g, a, b, cy->color[i]);
     }
 }

@@ -2,7 +2,7 @@
  * counting and bounding them. */
 #include "config.h"
 #include "scene/displaylist.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <stdlib.h>
 #include <string.h>
