@@ -150,7 +150,7 @@ static void place_cylinders(placer *pl, const source *s)
         world_point(pl, cy->base + 3 * i, cy->radius[i], a);
         world_point(pl, cy->apex + 3 * i, 0, b);
         for (int k = 0; k < 3; k++) b[k] -= a[k];
-        b[3] = ms_v3f_normalize(b);
+        b[3] = ms_v3f_normalize_rcp(b);
         put_quadric(pl, ORC_CYLINDER, g, a, b, cy->color[i]);
     }
 }

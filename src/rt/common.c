@@ -93,7 +93,7 @@ void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, 
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
         const ms_light *l = &s->settings.lights[i];
         float d[3] = {l->pos[0], l->pos[1], l->pos[2]};
-        if (!l->on || ms_v3f_normalize(d) == 0.0f) continue;
+        if (!l->on || ms_v3f_normalize_rcp(d) == 0.0f) continue;
         memcpy(sh->ldir[sh->nlights], d, sizeof d);
         memcpy(sh->lcol[sh->nlights], l->color, sizeof d);
         sh->nlights++;

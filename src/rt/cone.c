@@ -34,7 +34,7 @@ static int cone_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[
 {
     const float *A = g->a + 3 * (size_t)prim, *B = g->b + 3 * (size_t)prim;
     float ra = g->ra[prim], ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
-    float len = ms_v3f_normalize(ax), k = (g->rb[prim] - ra) / len;
+    float len = ms_v3f_normalize_rcp(ax), k = (g->rb[prim] - ra) / len;
     float mid[3] = {0.5f * (A[0] + B[0]) - r->o[0], 0.5f * (A[1] + B[1]) - r->o[1],
                     0.5f * (A[2] + B[2]) - r->o[2]};
     float t0 = ms_v3f_dot(mid, r->d) / ms_v3f_dot(r->d, r->d), oc[3];
@@ -80,9 +80,9 @@ static void cone_surface(const rt_geom *g, const struct RTCHit *h, const float p
     size_t i = h->primID;
     const float *A = g->a + 3 * i, *B = g->b + 3 * i;
     float ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, q[3] = {p[0] - A[0], p[1] - A[1], p[2] - A[2]};
-    float len = ms_v3f_normalize(ax), k = (g->rb[i] - g->ra[i]) / len, s = ms_v3f_dot(q, ax), perp[3];
+    float len = ms_v3f_normalize_rcp(ax), k = (g->rb[i] - g->ra[i]) / len, s = ms_v3f_dot(q, ax), perp[3];
     for (int j = 0; j < 3; j++) perp[j] = q[j] - s * ax[j];
-    ms_v3f_normalize(perp);
+    ms_v3f_normalize_rcp(perp);
     for (int j = 0; j < 3; j++) n[j] = ng[j] = perp[j] - k * ax[j];
     *c = g->color[i];
 }

@@ -72,7 +72,7 @@ static void axes_range(void *ctx, size_t b, size_t e, int thread)
     for (size_t i = b; i < e; i++) {
         float *o = x->aux + 4 * i;
         for (int k = 0; k < 3; k++) o[k] = x->g->b[3 * i + k] - x->g->a[3 * i + k];
-        o[3] = ms_v3f_normalize(o);
+        o[3] = ms_v3f_normalize_rcp(o);
     }
 }
 
@@ -375,7 +375,7 @@ static void cylinder_surface(const rt_geom *g, const struct RTCHit *h, const flo
     }
     const float *A = g->a + 3 * (size_t)h->primID, *B = g->b + 3 * (size_t)h->primID;
     float ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, q[3] = {p[0] - A[0], p[1] - A[1], p[2] - A[2]};
-    ms_v3f_normalize(ax);
+    ms_v3f_normalize_rcp(ax);
     float s = ms_v3f_dot(q, ax);
     for (int k = 0; k < 3; k++) n[k] = ng[k] = q[k] - s * ax[k];
     *c = g->color2 && s > g->join[h->primID] ? g->color2[h->primID] : g->color[h->primID];

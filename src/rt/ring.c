@@ -29,7 +29,7 @@ static int ring_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[
 {
     const float *c = g->a + 3 * (size_t)prim;
     float n[3] = {g->b[3 * (size_t)prim], g->b[3 * (size_t)prim + 1], g->b[3 * (size_t)prim + 2]};
-    ms_v3f_normalize(n);
+    ms_v3f_normalize_rcp(n);
     float den = ms_v3f_dot(r->d, n);
     if (den == 0.0f) return 0;
     float co[3] = {c[0] - r->o[0], c[1] - r->o[1], c[2] - r->o[2]};

@@ -74,7 +74,7 @@ static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s
     /* Tachyon's rule: the geometric normal decides the side seen (for a mesh, its winding),
      * and the shading normal turns with it */
     float side = ms_v3f_dot(ng, d) > 0.0f ? -1.0f : 1.0f;
-    if (!(ms_v3f_normalize(s->n) > 0.0f) || !isfinite(s->n[0] + s->n[1] + s->n[2])) {
+    if (!(ms_v3f_normalize_rcp(s->n) > 0.0f) || !isfinite(s->n[0] + s->n[1] + s->n[2])) {
         memcpy(s->n, d, sizeof d);
         side = -1.0f;
     }

@@ -34,8 +34,19 @@ static inline void MS_VEC(cross)(const MS_T a[3], const MS_T b[3], MS_T out[3])
 
 static inline MS_T MS_VEC(length)(const MS_T a[3]) { return MS_T_SQRT(MS_VEC(dot)(a, a)); }
 
-/* Normalise in place; a zero vector stays as it is. Returns the old length. */
+/* Normalise in place, dividing by the length; a zero vector stays as it is. Returns the
+ * old length. */
 static inline MS_T MS_VEC(normalize)(MS_T v[3])
+{
+    MS_T l = MS_VEC(length)(v);
+    if (l > 0)
+        for (int k = 0; k < 3; k++) v[k] /= l;
+    return l;
+}
+
+/* The same multiplying by the reciprocal: cheaper, and what the tracers' pictures are made
+ * with (the last bit can differ from normalize). */
+static inline MS_T MS_VEC(normalize_rcp)(MS_T v[3])
 {
     MS_T l = MS_VEC(length)(v);
     if (l > 0) {
