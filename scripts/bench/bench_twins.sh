@@ -42,6 +42,6 @@ echo "$results" | awk -F'\t' '
       printf "%-10s %22s %22s %s\n", "step", "before: wall (CPU) s", "after: wall (CPU) s", "results"
       for (i = 1; i <= n; i++) { k = name[i]
         b = ((k, "base") in w) ? sprintf("%.3f (%.2f)", w[k, "base"], c[k, "base"]) : "-"
-        same = !((k, "base") in d) ? "" : (d[k, "base"] == d[k, "new"] && !bad[k]) ? "same" : "DIFFER"
+        same = !((k, "base") in d) || d[k, "new"] == "-" ? "" : (d[k, "base"] == d[k, "new"] && !bad[k]) ? "same" : "DIFFER"
         printf "%-10s %22s %22s %s\n", k, b, sprintf("%.3f (%.2f)", w[k, "new"], c[k, "new"]), same }
     }'

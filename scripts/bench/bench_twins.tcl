@@ -5,15 +5,15 @@
 #   bonds       `mol bondsrecalc`: the distance bond search
 #   dynbonds    a DynamicBonds rep's first build (cutoff 1.6)
 #   hbonds      an HBonds rep's first build (cutoff 3.0, angle 20)
-#   within      `within 5 of` and `same residue as within 3 of` a protein slab
-#   contacts    `measure contacts 3.0` between two halves of the system
+#   within      `within 4 of` half the system, `same residue as within 3 of` some CA atoms
+#   contacts    `measure contacts 3.0` within half the system (bonded pairs left out)
 #   dssp        `mol ssrecalc`: DSSP, its hydrogen bonds through the CA grid
 #   quicksurf   a QuickSurf rep's first build (resolution 1.0, grid spacing 1.0)
 #   oclrender   `render TachyonLOpenCLInternal` of 1tii in VDW at 512x512 (the engine
 #               started by an untimed first render)
 # Each line: "name<TAB>wall s<TAB>CPU s<TAB>digest", the digest a CRC of what the step
-# computed (bonds, pair lists, selections, structure, picture), so that two builds can be
-# checked to give the same results.
+# computed (bonds, pair lists, selections, structure, picture; "-" for QuickSurf), so that
+# two builds can be checked to give the same results.
 source [file join [file dirname [info script]] bench_util.tcl]
 # Best wall time of running script R times, with that run's CPU time; sets ::result.
 proc best {name script digest} {
@@ -34,7 +34,7 @@ proc repbuild {m style} {
     mol representation {*}$style
     mol selection all
     mol addrep $m
-    mol repinfo $m 1
+    mol repinfo $m 0
 }
 proc repdigest {m} {
     set f $::env(BENCH_OUT)/twins.dat
@@ -42,7 +42,7 @@ proc repdigest {m} {
     set fd [open $f]
     set s [read $fd]
     close $fd
-    mol delrep 1 $m
+    mol delrep 0 $m
     crc $s
 }
 
@@ -54,19 +54,18 @@ set n [$all num]
 puts [format "load\t%d atoms" $n]
 set half [expr {$n / 2}]
 best bonds {mol bondsrecalc $m} {crc [$all getbonds]}
-best dynbonds {repbuild $m {DynamicBonds 1.6 0.3 6}; mol delrep 1 $m} \
+best dynbonds {repbuild $m {DynamicBonds 1.6 0.3 6}; mol delrep 0 $m} \
     {repbuild $m {DynamicBonds 1.6 0.3 6}; repdigest $m}
-best hbonds {repbuild $m {HBonds 3.0 20 1}; mol delrep 1 $m} \
+best hbonds {repbuild $m {HBonds 3.0 20 1}; mol delrep 0 $m} \
     {repbuild $m {HBonds 3.0 20 1}; repdigest $m}
-best within {
-    set ::w1 [[atomselect $m "within 5 of (protein and x < 20)"] num]
-    set ::w2 [[atomselect $m "same residue as within 3 of (resname HOH and z < 30)"] num]
-} {crc [list $::w1 $::w2 [[atomselect $m "within 5 of (protein and x < 20)"] list]]}
 set s1 [atomselect $m "index < $half"]
-set s2 [atomselect $m "index >= $half"]
-best contacts {set ::c [measure contacts 3.0 $s1 $s2]} {crc $::c}
+best within {
+    set ::w1 [[atomselect $m "within 4 of (index < $half)"] list]
+    set ::w2 [[atomselect $m "same residue as within 3 of (name CA and x < 40)"] list]
+} {crc [list $::w1 $::w2]}
+best contacts {set ::c [measure contacts 3.0 $s1]} {crc $::c}
 best dssp {mol ssrecalc $m} {crc [$all get structure]}
-best quicksurf {repbuild $m {QuickSurf 1.0 0.5 1.0 1.0}; mol delrep 1 $m} {expr 0}
+best quicksurf {repbuild $m {QuickSurf 1.0 0.5 1.0 1.0}; mol delrep 0 $m} {expr {"-"}}
 
 mol delete $m
 set m [mol new $env(BENCH_SRC) waitfor all]

@@ -1,7 +1,7 @@
 /* rt_common.h: what TachyonInternal shares with the OpenCL tracer (src/oclrt), free of
  * Embree so that both build without the other: Tachyon's texture terms, transforms, the
- * camera, the shader settings, strokes as cylinders and spheres, the option checks and the
- * small vector helpers (common.c, camera.c, strokes.c). */
+ * camera, the shader settings, strokes as cylinders and spheres, the option checks
+ * (common.c, camera.c, strokes.c); vectors and matrices are vecmath/vecf.h's. */
 #ifndef MS_RT_COMMON_H
 #define MS_RT_COMMON_H
 
