@@ -39,7 +39,7 @@ static size_t bounds(const ms_grid_points *p, double lo[3], double hi[3])
 
 static void shape(ms_grid *g, const double lo[3], const double hi[3], const ms_grid_spec *s)
 {
-    double cell = s->cutoff > 0 ? MS_MAX(s->cutoff * 1.000001, 1e-3) : 1.0;
+    double cell = s->cutoff > 0 ? s->cutoff : 1.0;
     double limit = s->per_point * (double)g->n + s->extra;
     for (;;) {
         double cells = 1.0;
@@ -48,9 +48,12 @@ static void shape(ms_grid *g, const double lo[3], const double hi[3], const ms_g
         cell *= s->grow;
     }
     g->cell = cell;
+    g->cell_f = (float)cell;
+    g->single = s->single;
     g->ncells = 1;
     for (int k = 0; k < 3; k++) {
         g->origin[k] = lo[k];
+        g->origin_f[k] = (float)lo[k];
         g->dim[k] = (long)floor((hi[k] - lo[k]) / cell) + 1;
         g->ncells *= (size_t)g->dim[k];
     }
@@ -59,36 +62,37 @@ static void shape(ms_grid *g, const double lo[3], const double hi[3], const ms_g
 void ms_grid_coords(const ms_grid *g, const float p[3], long c[3])
 {
     for (int k = 0; k < 3; k++) {
-        double v = floor(((double)p[k] - g->origin[k]) / g->cell);
+        double v = g->single ? (double)(int)((p[k] - g->origin_f[k]) / g->cell_f)
+                             : floor(((double)p[k] - g->origin[k]) / g->cell);
         c[k] = v < 0 ? 0 : v >= (double)g->dim[k] ? g->dim[k] - 1 : (long)v;
     }
 }
 
-/* Counting sort, stable: ascending inputs stay ascending inside a cell. */
+/* The cell of finite point q. */
+static size_t cell_of(const ms_grid *g, const float *q)
+{
+    long c[3];
+    ms_grid_coords(g, q, c);
+    return ms_grid_index(g, c[0], c[1], c[2]);
+}
+
+/* Counting sort, stable: ascending inputs stay ascending inside a cell. The cells are
+ * computed twice rather than kept: no memory beyond the grid's own. */
 static int fill(ms_grid *g, const ms_grid_points *p)
 {
-    uint32_t *which = ms_alloc_array(p->n ? p->n : 1, sizeof *which);
     g->start = ms_calloc_array(g->ncells + 2, sizeof *g->start);
     g->items = ms_alloc_array(g->n ? g->n : 1, sizeof *g->items);
-    if (!which || !g->start || !g->items) {
-        free(which);
-        return -1;
-    }
+    if (!g->start || !g->items) return -1;
     for (size_t i = 0; i < p->n; i++) {
         const float *q = point(p, i);
-        long c[3];
-        which[i] = UINT32_MAX;
-        if (!finite3(q)) continue;
-        ms_grid_coords(g, q, c);
-        which[i] = (uint32_t)ms_grid_index(g, c[0], c[1], c[2]);
-        g->start[which[i] + 2]++;
+        if (finite3(q)) g->start[cell_of(g, q) + 2]++;
     }
     for (size_t c = 2; c < g->ncells + 2; c++) g->start[c] += g->start[c - 1];
     /* start[c + 1] is cell c's fill cursor; filled, it is cell c's end */
-    for (size_t i = 0; i < p->n; i++)
-        if (which[i] != UINT32_MAX)
-            g->items[g->start[which[i] + 1]++] = p->ids ? p->ids[i] : (uint32_t)i;
-    free(which);
+    for (size_t i = 0; i < p->n; i++) {
+        const float *q = point(p, i);
+        if (finite3(q)) g->items[g->start[cell_of(g, q) + 1]++] = p->ids ? p->ids[i] : (uint32_t)i;
+    }
     return 0;
 }
 
@@ -133,6 +137,7 @@ int ms_grid_near(const ms_grid *g, const float p[3], ms_grid_run runs[9])
         if (v < -1.0 || v > (double)g->dim[k]) return 0;   /* more than a cell outside */
         c[k] = (long)v;
     }
+    if (g->single) ms_grid_coords(g, p, c);
     long x0 = MS_MAX(c[0] - 1, 0), x1 = MS_MIN(c[0] + 1, g->dim[0] - 1);
     int n = 0;
     if (x0 > x1) return 0;

@@ -23,15 +23,21 @@ typedef struct ms_grid_points {
     size_t n;
 } ms_grid_points;
 
-/* The shape: cells at least cutoff wide (a hair more, so rounding never puts two points
- * cutoff apart two cells apart), grown by the factor grow until there are at most
- * per_point * n + extra cells. */
+/* The shape: cells cutoff wide (1 when cutoff is not positive), grown by the factor grow
+ * until there are at most per_point * n + extra cells. A search whose distance test must
+ * never miss a pair at exactly the cutoff passes a hair more (cutoff * 1.000001). With
+ * single set, a point's cell is computed in single precision (lowest corner and cell edge
+ * rounded to float), as the pair search of the representations always has: it decides the
+ * order the pairs come out in, which exported scenes show. */
 typedef struct ms_grid_spec {
     double cutoff, per_point, extra, grow;
+    int single;
 } ms_grid_spec;
 
 typedef struct ms_grid {
     double origin[3], cell;  /* the lowest corner of the points, the cell's edge */
+    int single;              /* cells computed in float, from these: */
+    float origin_f[3], cell_f;
     long dim[3];
     size_t ncells;
     size_t n;                /* the finite points placed */
@@ -57,7 +63,8 @@ static inline size_t ms_grid_index(const ms_grid *g, long x, long y, long z)
 void ms_grid_coords(const ms_grid *g, const float p[3], long c[3]);
 
 /* The items in the 27 cells around p as up to 9 runs, in the order z, y, x; 0 when p is not
- * finite or lies more than a cell outside the grid. Returns the number of runs. */
+ * finite or lies more than a cell outside the grid (a single-precision grid takes p's
+ * clamped cell: it is meant for its own points). Returns the number of runs. */
 int ms_grid_near(const ms_grid *g, const float p[3], ms_grid_run runs[9]);
 
 /* The forward half of the cells around cell (x, y, z), the cell itself left out: with every

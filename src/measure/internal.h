@@ -13,7 +13,7 @@ static inline int ms_measure_grid(ms_grid *g, const float *pos, const uint32_t *
                                   double cutoff, ms_error *err)
 {
     ms_grid_points p = {pos, 3, atoms, n};
-    ms_grid_spec spec = {cutoff, 4.0, 64.0, 1.26};
+    ms_grid_spec spec = {cutoff, 4.0, 64.0, 1.26, 0};
     return ms_grid_build(g, &p, &spec, err);
 }
 

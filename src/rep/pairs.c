@@ -11,11 +11,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Cells at least cutoff wide, at most about two per selected atom (base/grid.h). */
+/* Cells at least cutoff wide, at most about two per selected atom, computed in single
+ * precision (base/grid.h): that fixes the order of the pairs. */
 static int grid_build(ms_grid *g, const ms_rep_build *b, float cutoff, ms_error *err)
 {
     ms_grid_points p = {b->pos, 3, b->idx, b->nsel};
-    ms_grid_spec spec = {cutoff, 2.0, 8.0, 1.26};
+    ms_grid_spec spec = {cutoff, 2.0, 8.0, 1.26, 1};
     return ms_grid_build(g, &p, &spec, err);
 }
 

@@ -86,7 +86,8 @@ static int gather(const ms_selctx *c, const ms_bitset *cand, const ms_bitset *sr
 static int grid_build(grid *g, const points *p, double d, ms_error *err)
 {
     ms_grid_points gp = {p->xyz, 3, NULL, p->n};
-    ms_grid_spec spec = {d, 8.0, 4096.0, 1.26};
+    /* a hair wider than d, so rounding never puts two points d apart two cells apart */
+    ms_grid_spec spec = {MS_MAX(d * 1.000001, 1e-3), 8.0, 4096.0, 1.26, 0};
     if (ms_grid_build(&g->cells, &gp, &spec, err)) return -1;
     g->pts = ms_alloc_array(3 * p->n, sizeof *g->pts);
     if (!g->pts) return -1;

@@ -61,7 +61,7 @@ static float energy(const ms_ss_chain *c, size_t d, size_t a)
 static int grid_build(ms_grid *g, const ms_ss_chain *c, ms_error *err)
 {
     ms_grid_points p = {c->bb + 3, 12, NULL, c->n};
-    ms_grid_spec spec = {MS_SS_CA_CUTOFF, 4.0, 64.0, 1.26};
+    ms_grid_spec spec = {MS_SS_CA_CUTOFF, 4.0, 64.0, 1.26, 0};
     return ms_grid_build(g, &p, &spec, err);
 }
 
