@@ -53,13 +53,14 @@ static void shape(ms_grid *g, const double lo[3], const double hi[3], const ms_g
     g->ncells = 1;
     for (int k = 0; k < 3; k++) {
         g->origin[k] = lo[k];
+        g->top[k] = hi[k];
         g->origin_f[k] = (float)lo[k];
         g->dim[k] = (long)floor((hi[k] - lo[k]) / cell) + 1;
         g->ncells *= (size_t)g->dim[k];
     }
 }
 
-void ms_grid_coords(const ms_grid *g, const float p[3], long c[3])
+static inline void coords(const ms_grid *g, const float p[3], long c[3])
 {
     for (int k = 0; k < 3; k++) {
         double v = g->single ? (double)(int)((p[k] - g->origin_f[k]) / g->cell_f)
@@ -68,31 +69,37 @@ void ms_grid_coords(const ms_grid *g, const float p[3], long c[3])
     }
 }
 
+void ms_grid_coords(const ms_grid *g, const float p[3], long c[3]) { coords(g, p, c); }
+
 /* The cell of finite point q. */
-static size_t cell_of(const ms_grid *g, const float *q)
+static inline size_t cell_of(const ms_grid *g, const float *q)
 {
     long c[3];
-    ms_grid_coords(g, q, c);
+    coords(g, q, c);
     return ms_grid_index(g, c[0], c[1], c[2]);
 }
 
-/* Counting sort, stable: ascending inputs stay ascending inside a cell. The cells are
- * computed twice rather than kept: no memory beyond the grid's own. */
+/* Counting sort, stable: ascending inputs stay ascending inside a cell. */
 static int fill(ms_grid *g, const ms_grid_points *p)
 {
+    uint32_t *which = ms_alloc_array(p->n ? p->n : 1, sizeof *which);   /* cell, or none */
     g->start = ms_calloc_array(g->ncells + 2, sizeof *g->start);
     g->items = ms_alloc_array(g->n ? g->n : 1, sizeof *g->items);
-    if (!g->start || !g->items) return -1;
+    if (!which || !g->start || !g->items) {
+        free(which);
+        return -1;
+    }
     for (size_t i = 0; i < p->n; i++) {
         const float *q = point(p, i);
-        if (finite3(q)) g->start[cell_of(g, q) + 2]++;
+        which[i] = finite3(q) ? (uint32_t)cell_of(g, q) : UINT32_MAX;
+        if (which[i] != UINT32_MAX) g->start[which[i] + 2]++;
     }
     for (size_t c = 2; c < g->ncells + 2; c++) g->start[c] += g->start[c - 1];
     /* start[c + 1] is cell c's fill cursor; filled, it is cell c's end */
-    for (size_t i = 0; i < p->n; i++) {
-        const float *q = point(p, i);
-        if (finite3(q)) g->items[g->start[cell_of(g, q) + 1]++] = p->ids ? p->ids[i] : (uint32_t)i;
-    }
+    for (size_t i = 0; i < p->n; i++)
+        if (which[i] != UINT32_MAX)
+            g->items[g->start[which[i] + 1]++] = p->ids ? p->ids[i] : (uint32_t)i;
+    free(which);
     return 0;
 }
 
@@ -121,14 +128,7 @@ void ms_grid_free(ms_grid *g)
     memset(g, 0, sizeof *g);
 }
 
-/* The run of cells x0..x1 in row (y, z), the coordinates already inside the grid. */
-static ms_grid_run row(const ms_grid *g, long x0, long x1, long y, long z)
-{
-    ms_grid_run r = {g->start[ms_grid_index(g, x0, y, z)], g->start[ms_grid_index(g, x1, y, z) + 1]};
-    return r;
-}
-
-int ms_grid_near(const ms_grid *g, const float p[3], ms_grid_run runs[9])
+int ms_grid_block(const ms_grid *g, const float p[3], long lo[3], long hi[3])
 {
     long c[3];
     for (int k = 0; k < 3; k++) {
@@ -137,13 +137,22 @@ int ms_grid_near(const ms_grid *g, const float p[3], ms_grid_run runs[9])
         if (v < -1.0 || v > (double)g->dim[k]) return 0;   /* more than a cell outside */
         c[k] = (long)v;
     }
-    if (g->single) ms_grid_coords(g, p, c);
-    long x0 = MS_MAX(c[0] - 1, 0), x1 = MS_MIN(c[0] + 1, g->dim[0] - 1);
+    if (g->single) coords(g, p, c);
+    for (int k = 0; k < 3; k++) {
+        lo[k] = MS_MAX(c[k] - 1, 0);
+        hi[k] = MS_MIN(c[k] + 1, g->dim[k] - 1);
+        if (lo[k] > hi[k]) return 0;
+    }
+    return 1;
+}
+
+int ms_grid_near(const ms_grid *g, const float p[3], ms_grid_run runs[9])
+{
+    long lo[3], hi[3];
     int n = 0;
-    if (x0 > x1) return 0;
-    for (long z = MS_MAX(c[2] - 1, 0); z <= MS_MIN(c[2] + 1, g->dim[2] - 1); z++)
-        for (long y = MS_MAX(c[1] - 1, 0); y <= MS_MIN(c[1] + 1, g->dim[1] - 1); y++)
-            runs[n++] = row(g, x0, x1, y, z);
+    if (!ms_grid_block(g, p, lo, hi)) return 0;
+    for (long z = lo[2]; z <= hi[2]; z++)
+        for (long y = lo[1]; y <= hi[1]; y++) runs[n++] = ms_grid_row(g, lo[0], hi[0], y, z);
     return n;
 }
 
@@ -151,10 +160,10 @@ int ms_grid_forward(const ms_grid *g, long x, long y, long z, ms_grid_run runs[5
 {
     long x0 = MS_MAX(x - 1, 0), x1 = MS_MIN(x + 1, g->dim[0] - 1);
     int n = 0;
-    if (x + 1 < g->dim[0]) runs[n++] = row(g, x + 1, x + 1, y, z);
-    if (y + 1 < g->dim[1]) runs[n++] = row(g, x0, x1, y + 1, z);
+    if (x + 1 < g->dim[0]) runs[n++] = ms_grid_row(g, x + 1, x + 1, y, z);
+    if (y + 1 < g->dim[1]) runs[n++] = ms_grid_row(g, x0, x1, y + 1, z);
     if (z + 1 < g->dim[2])
         for (long oy = MS_MAX(y - 1, 0); oy <= MS_MIN(y + 1, g->dim[1] - 1); oy++)
-            runs[n++] = row(g, x0, x1, oy, z + 1);
+            runs[n++] = ms_grid_row(g, x0, x1, oy, z + 1);
     return n;
 }

@@ -36,6 +36,7 @@ typedef struct ms_grid_spec {
 
 typedef struct ms_grid {
     double origin[3], cell;  /* the lowest corner of the points, the cell's edge */
+    double top[3];           /* the highest corner of the points */
     int single;              /* cells computed in float, from these: */
     float origin_f[3], cell_f;
     long dim[3];
@@ -62,9 +63,20 @@ static inline size_t ms_grid_index(const ms_grid *g, long x, long y, long z)
 /* The cell coordinates of p, clamped into the grid (p finite). */
 void ms_grid_coords(const ms_grid *g, const float p[3], long c[3]);
 
-/* The items in the 27 cells around p as up to 9 runs, in the order z, y, x; 0 when p is not
- * finite or lies more than a cell outside the grid (a single-precision grid takes p's
- * clamped cell: it is meant for its own points). Returns the number of runs. */
+/* The items of the cells x0..x1 of row (y, z), coordinates inside the grid. */
+static inline ms_grid_run ms_grid_row(const ms_grid *g, long x0, long x1, long y, long z)
+{
+    ms_grid_run r = {g->start[ms_grid_index(g, x0, y, z)], g->start[ms_grid_index(g, x1, y, z) + 1]};
+    return r;
+}
+
+/* The block of the 27 cells around p that lie in the grid, lo[k]..hi[k] along each axis;
+ * 0 when p is not finite or lies more than a cell outside the grid (a single-precision
+ * grid takes p's clamped cell: it is meant for its own points), else 1. */
+int ms_grid_block(const ms_grid *g, const float p[3], long lo[3], long hi[3]);
+
+/* The items in ms_grid_block's cells as up to 9 runs (its rows), in the order z, y, x.
+ * Returns the number of runs. */
 int ms_grid_near(const ms_grid *g, const float p[3], ms_grid_run runs[9]);
 
 /* The forward half of the cells around cell (x, y, z), the cell itself left out: with every

@@ -93,12 +93,7 @@ static int grid_build(grid *g, const points *p, double d, ms_error *err)
     if (!g->pts) return -1;
     for (size_t k = 0; k < p->n; k++)
         memcpy(g->pts + 3 * k, p->xyz + 3 * (size_t)g->cells.items[k], 3 * sizeof(float));
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; i < p->n; i++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = MS_MIN(lo[k], p->xyz[3 * i + k]);
-            hi[k] = MS_MAX(hi[k], p->xyz[3 * i + k]);
-        }
+    const double *lo = g->cells.origin, *hi = g->cells.top;
     for (int k = 0; k < 3; k++) {
         /* generous by 1e-3 relative: the exact test is the distance, this only skips */
         double pad = d + 1e-3 * (fabs(lo[k]) + fabs(hi[k]) + d) + 1e-3;
@@ -129,13 +124,17 @@ static uint64_t in_reach(const grid *g, const float *pos, size_t i0, size_t n)
 /* Is p within d (d2 = d*d) of a point in the 27 cells around it? */
 static int near_point(const grid *g, const float *p, float d2)
 {
-    ms_grid_run runs[9];
-    int nr = ms_grid_near(&g->cells, p, runs);
-    for (int r = 0; r < nr; r++)
-        for (const float *q = g->pts + 3 * (size_t)runs[r].begin, *end = g->pts + 3 * (size_t)runs[r].end;
-             q < end; q += 3) {
-            float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
-            if (dx * dx + dy * dy + dz * dz <= d2) return 1;
+    long lo[3], hi[3];
+    if (!ms_grid_block(&g->cells, p, lo, hi)) return 0;
+    for (long z = lo[2]; z <= hi[2]; z++)
+        for (long y = lo[1]; y <= hi[1]; y++) {
+            /* cells lo..hi of one row are contiguous: one run of points */
+            ms_grid_run r = ms_grid_row(&g->cells, lo[0], hi[0], y, z);
+            for (const float *q = g->pts + 3 * (size_t)r.begin, *end = g->pts + 3 * (size_t)r.end;
+                 q < end; q += 3) {
+                float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+                if (dx * dx + dy * dy + dz * dz <= d2) return 1;
+            }
         }
     return 0;
 }
