@@ -3,8 +3,9 @@
 # now share base/grid.h (distance bonds, DynamicBonds, HBonds, within, measure contacts,
 # DSSP), QuickSurf and the OpenCL tracer on the shared engine, on 1tii replicated to N atoms
 # (bench_twins.tcl says what each step is). With BENCH_BASE naming another built tree (the
-# code before the change), each binary runs in turn in the same run, and the digests of
-# what each step computed are compared: same bonds, pairs, selections, structure, pictures.
+# code before the change), the two binaries take turns, twice each, in the same run (each
+# figure is the best of all its runs), and the digests of what each step computed are
+# compared: same bonds, pairs, selections, structure, pictures.
 #   scripts/bench/bench_twins.sh [natoms] [repeats]     (defaults 300000, 3)
 #   BENCH_BASE=/path/to/other/tree scripts/bench/bench_twins.sh
 set -euo pipefail
@@ -28,11 +29,15 @@ run() {
         awk -v l="$2" -F'\t' 'NF >= 2 { print l "\t" $0 }'
 }
 
-results=$(run "$PWD" new)
-[ -n "${BENCH_BASE:-}" ] && results+=$'\n'$(run "$BENCH_BASE" base)
-# and the new one once more, after the base: a change of machine load shows
-[ -n "${BENCH_BASE:-}" ] && results+=$'\n'$(run "$PWD" new)
+# With a base: base, this tree, base, this tree, so each meets the same machine load
+results=""
+for round in 1 2; do
+    [ -n "${BENCH_BASE:-}" ] && results+=$(run "$BENCH_BASE" base)$'\n'
+    results+=$(run "$PWD" new)$'\n'
+    [ -n "${BENCH_BASE:-}" ] || break
+done
 echo "$results" | awk -F'\t' '
+    NF < 3 { next }
     $2 == "load" { if (!seen++) print "system: " $3; next }
     { k = $2; if (!(k in order)) { order[k] = ++n; name[n] = k }
       if (!((k, $1) in w) || $3 < w[k, $1]) { w[k, $1] = $3; c[k, $1] = $4 }
