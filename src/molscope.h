@@ -23,8 +23,10 @@
  *
  *  foundation
  *   base/       utilities: errors, interned strings, worker threads, bit sets, safe file
- *               writing (safewrite.h: a file replaced whole or not at all)
- *   vecmath/    double-precision vectors, 4x4 matrices, symmetric eigen-solver
+ *               writing (safewrite.h: a file replaced whole or not at all), the cell grid
+ *               of every neighbour search (grid.h)
+ *   vecmath/    vectors and 4x4 matrices written once for float (vecf.h) and double
+ *               (vecmath.h), 3x3 inverses, VMD's rotations, symmetric eigen-solver
  *  data
  *   molecule/   the Molecule (atoms, bonds, frames, volumes), structure analysis, the
  *               molecule set and its events, serialisation (a molecule as bytes for other
@@ -32,7 +34,8 @@
  *   fileio/     the plugin registry, loading files into molecules, writing them out
  *   image/      RGB images and their files (PNG, TGA, PPM, BMP)
  *   cl/         what the OpenCL users (surf/, oclrt/) share: errors, device choice, the
- *               per-user cache folders, programs built or read from the binary cache
+ *               one engine (device, context, queue), the per-user cache folders,
+ *               programs built or read from the binary cache
  *  core (no Tcl)
  *   ss/         secondary structure computed from the backbone (DSSP), on demand
  *   select/     the atom selection language (compiled to a tree, evaluated to bit sets)
@@ -78,7 +81,9 @@
 #include "base/strtab.h"
 #include "base/threads.h"
 #include "base/safewrite.h"
+#include "base/grid.h"
 #include "vecmath/vecmath.h"
+#include "vecmath/vecf.h"
 /* data */
 #include "molecule/molecule.h"
 #include "molecule/volume.h"
@@ -101,7 +106,6 @@
 #include "surf/qsurf.h"
 #include "parallel/parallel.h"
 #include "movie/movie.h"
-#include "scene/mat4.h"
 #include "scene/displaylist.h"
 #include "scene/color.h"
 #include "scene/material.h"

@@ -16,13 +16,7 @@ proc median {l} {
     set n [llength $l]
     expr {$n % 2 ? [lindex $l [expr {$n / 2}]] : ([lindex $l [expr {$n / 2 - 1}]] + [lindex $l [expr {$n / 2}]]) / 2.0}
 }
-proc cputicks {} {
-    set f [open /proc/self/stat]
-    set s [read $f]
-    close $f
-    set fields [split [string range $s [expr {[string last ")" $s] + 2}] end]]
-    expr {[lindex $fields 11] + [lindex $fields 12]}
-}
+source [file join [file dirname [info script]] bench_util.tcl]
 # Wall seconds of a script; the CPU ticks it took are added to ::cpu.
 proc seconds {script} {
     set c0 [cputicks]

@@ -20,7 +20,7 @@
 #include "oclrt/oclrt.h"
 #include "rt/rt.h"
 #include "scene/displaylist.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 #include "scene/material.h"
 #include "bench_system.h"
 

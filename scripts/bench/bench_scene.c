@@ -9,7 +9,7 @@
 #include "base/threads.h"
 #include "render/render.h"
 #include "scene/displaylist.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <stdio.h>
 #include <stdlib.h>

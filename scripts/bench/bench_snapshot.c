@@ -9,7 +9,7 @@
 #include "bench_system.h"
 #include "assemble/view.h"
 #include "gl/gl.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -4,7 +4,7 @@
 #include "assemble/labels.h"
 #include "assemble/view.h"
 #include "molecule/elements.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 #include "select/select.h"
 #include "vecmath/vecmath.h"
 

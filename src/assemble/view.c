@@ -4,7 +4,7 @@
 #include "assemble/view.h"
 #include "rep/rep.h"
 #include "scene/graphics.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -129,14 +129,14 @@ static void apply_rotation(ms_world *w, const float r[16], int by)
 void ms_view_rotate_by(ms_world *w, char axis, float deg)
 {
     float r[16];
-    ms_mat4_rotation(r, axis, deg);
+    ms_mat4_axis_rotation(r, axis, ms_deg_rad(deg));
     apply_rotation(w, r, 1);
 }
 
 void ms_view_rotate_to(ms_world *w, char axis, float deg)
 {
     float r[16];
-    ms_mat4_rotation(r, axis, deg);
+    ms_mat4_axis_rotation(r, axis, ms_deg_rad(deg));
     apply_rotation(w, r, 0);
 }
 
@@ -350,9 +350,9 @@ int ms_view_stage_list(const ms_view *v, const ms_colors *c, ms_displaylist *dl,
     switch (v->stage) {
     case MS_STAGE_BOTTOM: t[7] = -1; break;
     case MS_STAGE_TOP: t[7] = 1; break;
-    case MS_STAGE_LEFT: t[3] = -1; ms_mat4_rotation(r, 'z', -90); break;
-    case MS_STAGE_RIGHT: t[3] = 1; ms_mat4_rotation(r, 'z', 90); break;
-    case MS_STAGE_BEHIND: t[11] = -1; ms_mat4_rotation(r, 'x', 90); break;
+    case MS_STAGE_LEFT: t[3] = -1; ms_mat4_axis_rotation(r, 'z', ms_deg_rad(-90)); break;
+    case MS_STAGE_RIGHT: t[3] = 1; ms_mat4_axis_rotation(r, 'z', ms_deg_rad(90)); break;
+    case MS_STAGE_BEHIND: t[11] = -1; ms_mat4_axis_rotation(r, 'x', ms_deg_rad(90)); break;
     default: break;
     }
     ms_mat4_mul(t, r, xform);

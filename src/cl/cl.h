@@ -1,7 +1,8 @@
 /* cl.h: what molscope's two OpenCL users (QuickSurf's engine, src/surf/opencl.c, and the
  * OpenCL tracer, src/oclrt/device.c) share: OpenCL errors as messages, the choice of the
- * device (MOLSCOPE_OPENCL_DEVICE), the per-user cache folder (and PoCL's beside it), and
- * the build of a program kept as a binary in that folder. Only built with OpenCL; the
+ * device (MOLSCOPE_OPENCL_DEVICE), the one engine (that device with one context and one
+ * queue, engine.c), the per-user cache folder (and PoCL's beside it), and the build of a
+ * program kept as a binary in that folder. Only built with OpenCL; the
  * messages are each caller's own, so these return codes where a caller words the failure. */
 #ifndef MS_CL_H
 #define MS_CL_H
@@ -32,6 +33,22 @@ enum { MS_CL_NOPLATFORM = -1, MS_CL_NODEVICE = -2, MS_CL_EBUILD = -3 };
  * first GPU, else the first accelerator, else the first device. 0; MS_CL_NOPLATFORM with *rc
  * clGetPlatformIDs' code; or MS_CL_NODEVICE (*want: the variable's value, NULL when unset). */
 int ms_cl_pick_device(ms_cl_device *d, cl_int *rc, const char **want);
+
+/* ---- the engine: one per process, shared by both users (each builds its own program on
+ * its context and keeps its own lock for its kernels and buffers). */
+typedef struct ms_cl_engine {
+    ms_cl_device dev;
+    cl_context ctx;          /* NULL until ms_cl_engine_start */
+    cl_command_queue queue;  /* in order */
+} ms_cl_engine;
+
+/* The engine's device, chosen the first time (PoCL given its cache beside the cache folder
+ * first, own as in ms_cl_cache_dir), the outcome kept: 0 with *e, else what
+ * ms_cl_pick_device returned, with *rc and *want as it sets them. */
+int ms_cl_engine_device(ms_cl_engine **e, int own_cache, cl_int *rc, const char **want);
+/* The engine's context and queue, made the first time: 0, or -1 with err set
+ * ("OpenCL: clCreateContext (...)"), the failure kept and repeated. */
+int ms_cl_engine_start(ms_cl_engine *e, ms_error *err);
 
 /* The per-user cache folder, made when missing: MOLSCOPE_OPENCL_CACHE when own is set and
  * the variable is, else $XDG_CACHE_HOME/molscope, else ~/.cache/molscope. 0, or -1. */

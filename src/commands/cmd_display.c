@@ -15,7 +15,7 @@
 #include "config.h"
 #include "commands/scenecmds.h"
 #include "assemble/view.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <limits.h>
 #include <stddef.h>
@@ -435,7 +435,7 @@ static int light_rot(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     if (ms_arg_choice(interp, objv[3], axes, "axis", &ax) ||
         ms_arg_float(interp, objv[4], "angle", &deg))
         return TCL_ERROR;
-    ms_mat4_rotation(r, "xyz"[ax], deg);
+    ms_mat4_axis_rotation(r, "xyz"[ax], ms_deg_rad(deg));
     ms_mat4_point(r, l->pos, l->pos);
     return TCL_OK;
 }

@@ -17,6 +17,7 @@
 #include "config.h"
 #include "commands/scenecmds.h"
 #include "scene/material.h"
+#include "vecmath/vecf.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -71,12 +72,6 @@ static const ms_opt text_options[] = {RADIUS("size", size), RADIUS("thickness", 
                                       END_OPTIONS};
 static const ms_opt no_options[] = {END_OPTIONS};
 
-static void normalize(float *n)
-{
-    float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (l > 0) for (int k = 0; k < 3; k++) n[k] /= l;
-}
-
 /* A shape: its kind, how many points come first, and its options after them. */
 static const struct shape {
     const char *name;
@@ -121,7 +116,7 @@ static int add_shape(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     } else if (ms_args_options(interp, objc, objv, 3 + np, sh->options, &it, NULL)) {
         return TCL_ERROR;
     }
-    if (np == 6) for (int k = 3; k < 6; k++) normalize(it.data + 3 * k);
+    if (np == 6) for (int k = 3; k < 6; k++) ms_v3f_normalize(it.data + 3 * k);
     return add_item(app, interp, objv, &it);
 }
 

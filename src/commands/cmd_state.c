@@ -7,7 +7,7 @@
 #include "assemble/view.h"
 #include "base/safewrite.h"
 #include "commands/scenecmds.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <stdio.h>
 #include <string.h>

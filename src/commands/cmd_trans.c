@@ -8,7 +8,7 @@
 #include "config.h"
 #include "commands/scenecmds.h"
 #include "assemble/view.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 /* x, y or z ("axis") into 'x', 'y' or 'z'. */
 static int get_axis(Tcl_Interp *interp, Tcl_Obj *o, char *axis)

@@ -7,7 +7,7 @@
 #include "config.h"
 #include "gl/glrender.h"
 #include "render/export.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <limits.h>
 #include <math.h>
@@ -45,21 +45,14 @@ typedef struct frame {
 
 /* ---------------------------------------------------------------- camera */
 
-static void normalize3(float v[3])
-{
-    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0)
-        for (int k = 0; k < 3; k++) v[k] /= l;
-}
-
 /* World to eye: right = dir x up, up, -dir; the eye at the origin (as ms_scene_project). */
 static void view_matrix(const ms_camera *c, float m[16])
 {
     float d[3] = {c->dir[0], c->dir[1], c->dir[2]};
-    normalize3(d);
+    ms_v3f_normalize(d);
     float r[3] = {d[1] * c->up[2] - d[2] * c->up[1], d[2] * c->up[0] - d[0] * c->up[2],
                   d[0] * c->up[1] - d[1] * c->up[0]};
-    normalize3(r);
+    ms_v3f_normalize(r);
     float u[3] = {r[1] * d[2] - r[2] * d[1], r[2] * d[0] - r[0] * d[2], r[0] * d[1] - r[1] * d[0]};
     const float *rows[3] = {r, u, d};
     for (int i = 0; i < 3; i++) {
@@ -111,7 +104,7 @@ static void lights_and_fog(frame *fr)
         const float *l = s->settings.lights[i].pos;
         for (int k = 0; k < 3; k++)
             d[k] = fr->view[4 * k] * l[0] + fr->view[4 * k + 1] * l[1] + fr->view[4 * k + 2] * l[2];
-        normalize3(d);
+        ms_v3f_normalize(d);
         memcpy(fr->lcol + 3 * fr->nlights, s->settings.lights[i].color, 3 * sizeof(float));
         fr->nlights++;
     }

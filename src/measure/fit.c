@@ -79,7 +79,7 @@ int ms_measure_fit_points(size_t n, const double *x, const double *y, const doub
     }
     quaternion_rotation(evecs, m);   /* eigenvector of the largest eigenvalue */
     double rc[3];
-    ms_mat4d_apply_point(m, cx, rc);  /* translation: cy - R cx */
+    ms_mat4d_point(m, cx, rc);  /* translation: cy - R cx */
     for (int k = 0; k < 3; k++) m[4 * k + 3] = cy[k] - rc[k];
     return 0;
 }

@@ -216,7 +216,7 @@ typedef struct count_ctx {
     size_t hmax;              /* bins counted */
     double rc2;               /* (hmax delta)^2 */
     const pgrid *pg;          /* periodic, or */
-    const ms_cellgrid *grid;  /* plain */
+    const ms_grid *grid;  /* plain */
     uint64_t *hist;           /* one histogram per thread */
 } count_ctx;
 
@@ -270,12 +270,12 @@ static void count_periodic(const count_ctx *c, uint32_t i, uint64_t *hist)
 
 static void count_plain(const count_ctx *c, uint32_t i, uint64_t *hist)
 {
-    size_t cells[27];
+    ms_grid_run runs[9];
     const float *p = c->pos + 3 * (size_t)i;
-    int nc = ms_cellgrid_around(c->grid, p, cells);
-    for (int k = 0; k < nc; k++)
-        for (uint32_t q = c->grid->start[cells[k]]; q < c->grid->start[cells[k] + 1]; q++) {
-            uint32_t j = c->grid->atoms[q];
+    int nr = ms_grid_near(c->grid, p, runs);
+    for (int k = 0; k < nr; k++)
+        for (uint32_t q = runs[k].begin; q < runs[k].end; q++) {
+            uint32_t j = c->grid->items[q];
             if (j != i) count(c, ms_dist2f(p, c->pos + 3 * (size_t)j), hist);
         }
 }
@@ -296,12 +296,12 @@ static int histogram(const ms_gofr *g, count_ctx *c, const cell_geom *cg, size_t
 {
     int nt = ms_threads_count(), rc = -1;
     pgrid pg = {.cg = cg};
-    ms_cellgrid grid = {0};
+    ms_grid grid = {0};
     c->hist = ms_calloc_array((size_t)nt * c->hmax, sizeof *c->hist);
     if (!c->hist) ms_error_set(err, "out of memory for g(r) histograms");
     else if (g->usepbc && pgrid_build(&pg, c->pos, c->b, nb, sqrt(c->rc2)))
         ms_error_set(err, "out of memory for the periodic grid of %zu atoms", nb);
-    else if (!g->usepbc && ms_cellgrid_build(&grid, c->pos, c->b, nb, sqrt(c->rc2), err)) {
+    else if (!g->usepbc && ms_measure_grid(&grid, c->pos, c->b, nb, sqrt(c->rc2), err)) {
         /* err set */
     } else {
         c->pg = g->usepbc ? &pg : NULL;
@@ -313,7 +313,7 @@ static int histogram(const ms_gofr *g, count_ctx *c, const cell_geom *cg, size_t
     }
     free(c->hist);
     pgrid_free(&pg);
-    ms_cellgrid_free(&grid);
+    ms_grid_free(&grid);
     return rc;
 }
 

@@ -1,28 +1,21 @@
-/* internal.h: helpers shared by the files of src/measure, not part of its public API: a
- * uniform cell grid for neighbour searches, a deterministic parallel reduction, and small
+/* internal.h: helpers shared by the files of src/measure, not part of its public API: the
+ * neighbour grid of its pair searches, a deterministic parallel reduction, and small
  * conversions. */
 #ifndef MS_MEASURE_INTERNAL_H
 #define MS_MEASURE_INTERNAL_H
 
 #include "measure/measure.h"
+#include "base/grid.h"
 
-/* ---- cell grid: cells at least `cutoff` wide over a set of atoms, so every neighbour of a
- * point within cutoff lies in the 27 cells around the point's own. Atoms with non-finite
- * coordinates are left out. */
-typedef struct ms_cellgrid {
-    double origin[3], cell;
-    int dim[3];
-    size_t ncells;
-    uint32_t *start;       /* ncells + 1 offsets into atoms */
-    uint32_t *atoms;       /* atom indices by cell, ascending inside a cell */
-} ms_cellgrid;
-
-int ms_cellgrid_build(ms_cellgrid *g, const float *pos, const uint32_t *atoms, size_t n,
-                      double cutoff, ms_error *err);
-void ms_cellgrid_free(ms_cellgrid *g);
-/* The existing cells among the 27 around point p (none for a non-finite p); returns how
- * many were written to cells. */
-int ms_cellgrid_around(const ms_cellgrid *g, const float p[3], size_t cells[27]);
+/* ---- neighbour grid (base/grid.h) over a set of atoms, cells at least `cutoff` wide and at
+ * most about four per atom; atoms with non-finite coordinates are left out. */
+static inline int ms_measure_grid(ms_grid *g, const float *pos, const uint32_t *atoms, size_t n,
+                                  double cutoff, ms_error *err)
+{
+    ms_grid_points p = {pos, 3, atoms, n};
+    ms_grid_spec spec = {cutoff, 4.0, 64.0, 1.26, 0};
+    return ms_grid_build(g, &p, &spec, err);
+}
 
 /* ---- deterministic reduction: [0, n) is cut into fixed chunks, run in parallel; fn fills
  * acc (k doubles, zeroed beforehand) for its chunk. Returns the nchunks

@@ -70,7 +70,7 @@ enum { SAME_SET, SAME_FRAME, APART };
 typedef struct contact_ctx {
     const ms_atomset *a, *b;
     const float *pa, *pb;
-    ms_cellgrid grid;            /* over b */
+    ms_grid grid;            /* over b */
     double cut2;
     int mode, same_mol;
     uint8_t *in_a, *in_b;        /* membership by atom index (SAME_FRAME) */
@@ -88,14 +88,14 @@ static int contact_wanted(const contact_ctx *c, uint32_t i, uint32_t j)
 static void contact_range(void *vctx, size_t begin, size_t end, int thread)
 {
     contact_ctx *c = vctx;
-    size_t cells[27];
+    ms_grid_run runs[9];
     for (size_t k = begin; k < end; k++) {
         uint32_t i = c->a->atoms[k];
         const float *p = c->pa + 3 * (size_t)i;
-        int nc = ms_cellgrid_around(&c->grid, p, cells);
-        for (int ci = 0; ci < nc; ci++)
-            for (uint32_t q = c->grid.start[cells[ci]]; q < c->grid.start[cells[ci] + 1]; q++) {
-                uint32_t j = c->grid.atoms[q];
+        int nr = ms_grid_near(&c->grid, p, runs);
+        for (int ci = 0; ci < nr; ci++)
+            for (uint32_t q = runs[ci].begin; q < runs[ci].end; q++) {
+                uint32_t j = c->grid.items[q];
                 if (!contact_wanted(c, i, j)) continue;
                 double d2 = ms_dist2f(p, c->pb + 3 * (size_t)j);
                 if (d2 > c->cut2 || (c->mode == SAME_SET && d2 < 0.001)) continue;
@@ -133,7 +133,7 @@ static int contacts_setup(contact_ctx *c, double cutoff, ms_error *err)
         ms_error_set(err, "out of memory");
         return -1;
     }
-    return ms_cellgrid_build(&c->grid, c->pb, b->atoms, b->n, cutoff, err);
+    return ms_measure_grid(&c->grid, c->pb, b->atoms, b->n, cutoff, err);
 }
 
 static int pairs_from(triple *t, size_t n, ms_pairs *out, ms_error *err)
@@ -170,7 +170,7 @@ int ms_measure_contacts(const ms_atomset *a, const ms_atomset *b, double cutoff,
     free(c.bufs);
     free(c.in_a);
     free(c.in_b);
-    ms_cellgrid_free(&c.grid);
+    ms_grid_free(&c.grid);
     return rc;
 }
 
@@ -180,7 +180,7 @@ typedef struct hbond_ctx {
     const ms_atomset *don;
     const ms_molecule *m;
     const float *pos;
-    ms_cellgrid grid;            /* over the acceptors */
+    ms_grid grid;            /* over the acceptors */
     double cut2, maxangle;
     tbuf *bufs;
 } hbond_ctx;
@@ -214,15 +214,15 @@ static int has_hydrogen(const ms_molecule *m, uint32_t d)
 static void hbond_range(void *vctx, size_t begin, size_t end, int thread)
 {
     hbond_ctx *c = vctx;
-    size_t cells[27];
+    ms_grid_run runs[9];
     for (size_t k = begin; k < end; k++) {
         uint32_t d = c->don->atoms[k];
         if (is_h(c->m, d) || !has_hydrogen(c->m, d)) continue;
         const float *p = c->pos + 3 * (size_t)d;
-        int nc = ms_cellgrid_around(&c->grid, p, cells);
-        for (int ci = 0; ci < nc; ci++)
-            for (uint32_t q = c->grid.start[cells[ci]]; q < c->grid.start[cells[ci] + 1]; q++) {
-                uint32_t a = c->grid.atoms[q];
+        int nr = ms_grid_near(&c->grid, p, runs);
+        for (int ci = 0; ci < nr; ci++)
+            for (uint32_t q = runs[ci].begin; q < runs[ci].end; q++) {
+                uint32_t a = c->grid.items[q];
                 if (a == d || is_h(c->m, a) || ms_dist2f(p, c->pos + 3 * (size_t)a) > c->cut2)
                     continue;
                 if (!ms_measure_bonded(c->m, d, a)) try_hydrogens(c, d, a, &c->bufs[thread]);
@@ -262,7 +262,7 @@ int ms_measure_hbonds(const ms_atomset *donors, const ms_atomset *acceptors, dou
                    .bufs = calloc((size_t)ms_threads_count(), sizeof(tbuf))};
     int rc = -1;
     if (!c.bufs) ms_error_set(err, "out of memory");
-    else if (ms_cellgrid_build(&c.grid, c.pos, acc->atoms, acc->n, cutoff, err) == 0) {
+    else if (ms_measure_grid(&c.grid, c.pos, acc->atoms, acc->n, cutoff, err) == 0) {
         ms_parallel_for(donors->n, 256, hbond_range, &c);
         size_t n;
         triple *t = merge(c.bufs, ms_threads_count(), &n, err);
@@ -271,6 +271,6 @@ int ms_measure_hbonds(const ms_atomset *donors, const ms_atomset *acceptors, dou
         free(t);
     }
     free(c.bufs);
-    ms_cellgrid_free(&c.grid);
+    ms_grid_free(&c.grid);
     return rc;
 }

@@ -28,7 +28,7 @@ typedef struct sasa_ctx {
     double srad;
     size_t npts;
     double *sphere;          /* npts unit vectors */
-    ms_cellgrid grid;        /* over the set */
+    ms_grid grid;        /* over the set */
     uint8_t *contributes;    /* per set position */
     uint32_t *exposed;       /* per set position */
     size_t *first_point;     /* per set position, for writing points (pass 2) */
@@ -53,13 +53,13 @@ static double sphere_radius(const sasa_ctx *c, uint32_t atom)
 /* The spheres that can bury part of atom i's sphere (radius ri). */
 static int gather(sasa_ctx *c, uint32_t i, double ri, nbr_list *l)
 {
-    size_t cells[27];
+    ms_grid_run runs[9];
     const float *p = c->pos + 3 * (size_t)i;
-    int nc = ms_cellgrid_around(&c->grid, p, cells);
+    int nr = ms_grid_near(&c->grid, p, runs);
     l->n = 0;
-    for (int ci = 0; ci < nc; ci++)
-        for (uint32_t q = c->grid.start[cells[ci]]; q < c->grid.start[cells[ci] + 1]; q++) {
-            uint32_t j = c->grid.atoms[q];
+    for (int ci = 0; ci < nr; ci++)
+        for (uint32_t q = runs[ci].begin; q < runs[ci].end; q++) {
+            uint32_t j = c->grid.items[q];
             const float *pj = c->pos + 3 * (size_t)j;
             double d2 = ms_dist2f(p, pj), rj = sphere_radius(c, j);
             /* As VMD: an atom at (nearly) the same place is not a neighbour. */
@@ -153,7 +153,7 @@ static int sasa_setup(sasa_ctx *c, const ms_sasa_opts *o, ms_error *err)
     }
     for (size_t k = 0; k < c->npts; k++) ms_sphere_point(k, c->npts, c->sphere + 3 * k);
     for (size_t k = 0; k < s->n; k++) maxr = fmax(maxr, sphere_radius(c, s->atoms[k]));
-    return ms_cellgrid_build(&c->grid, c->pos, s->atoms, s->n, 2.0 * maxr, err);
+    return ms_measure_grid(&c->grid, c->pos, s->atoms, s->n, 2.0 * maxr, err);
 }
 
 /* Lay the exposed points out in atom order and write them. */
@@ -181,7 +181,7 @@ static void sasa_free(sasa_ctx *c)
     free(c->exposed);
     free(c->first_point);
     free(c->points);
-    ms_cellgrid_free(&c->grid);
+    ms_grid_free(&c->grid);
 }
 
 int ms_measure_sasa(const ms_atomset *s, const ms_sasa_opts *o, double *area, float **points,

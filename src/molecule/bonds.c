@@ -1,157 +1,13 @@
-/* bonds.c: bonds by distance through a uniform cell grid (linear in the number of atoms,
- * run on all cores), and the CSR bond table built from a list of pairs. */
+/* bonds.c: bonds by distance through the cell grid of base/grid.h (linear in the number of
+ * atoms, the search run on all cores), and the CSR bond table built from a list of pairs. */
 #include "config.h"
 #include "molecule/analysis.h"
+#include "base/grid.h"
 #include "base/threads.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* ---------------------------------------------------------------- the cell grid */
-
-/* Atoms sorted by (z, y, x) cell of a grid whose cells are the bond cutoff wide. Only the
- * sorted index array (4 bytes an atom) and one start per z-slab are kept for the whole box;
- * a thread searching slab k builds the 2D cell starts of slabs k and k+1 in scratch arrays,
- * so memory does not grow with the volume of a sparse box. */
-typedef struct slab_grid {
-    float origin[3], cell;
-    int dim[3];
-    uint32_t *atoms;       /* sorted by cell */
-    uint32_t *slab_start;  /* dim[2] + 1 */
-    size_t max_slab;       /* most atoms in one slab */
-} slab_grid;
-
-static void grid_free(slab_grid *g)
-{
-    free(g->atoms);
-    free(g->slab_start);
-    memset(g, 0, sizeof *g);
-}
-
-static int finite3(const float *p)
-{
-    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-}
-
-static int cell_coord(const slab_grid *g, const float *p, int k)
-{
-    double v = ((double)p[k] - (double)g->origin[k]) / (double)g->cell;
-    return v < 0.0 ? 0 : v >= (double)g->dim[k] ? g->dim[k] - 1 : (int)v;
-}
-
-static size_t cell2d(const slab_grid *g, const float *p)
-{
-    return (size_t)cell_coord(g, p, 1) * (size_t)g->dim[0] + (size_t)cell_coord(g, p, 0);
-}
-
-static size_t ncells2d(const slab_grid *g) { return (size_t)g->dim[0] * (size_t)g->dim[1]; }
-
-/* Choose cell size and dimensions: the cutoff, grown while the grid would have far more
- * cells than atoms (every cell is visited once per search). */
-static size_t grid_size(slab_grid *g, const float *pos, size_t n, float cutoff)
-{
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    size_t nvalid = 0;
-    for (size_t i = 0; i < n; i++) {
-        const float *p = pos + 3 * i;
-        if (!finite3(p)) continue;
-        for (int k = 0; k < 3; k++) {
-            if (p[k] < lo[k]) lo[k] = p[k];
-            if (p[k] > hi[k]) hi[k] = p[k];
-        }
-        nvalid++;
-    }
-    if (nvalid == 0) return 0;
-    /* Spans and cell counts in double: a huge coordinate range must not overflow. */
-    double span[3];
-    for (int k = 0; k < 3; k++) span[k] = (double)hi[k] - (double)lo[k];
-    double cell = cutoff, limit = 8.0 * (double)nvalid + 1e6;
-    for (;;) {
-        double cells = 1.0;
-        for (int k = 0; k < 3; k++) cells *= floor(span[k] / cell) + 1.0;
-        if (cells <= limit) break;
-        cell *= 1.1;
-    }
-    g->cell = (float)cell;
-    for (int k = 0; k < 3; k++) {
-        g->origin[k] = lo[k];
-        g->dim[k] = (int)floor(span[k] / cell) + 1;
-    }
-    return nvalid;
-}
-
-typedef struct sort_ctx {
-    slab_grid *g;
-    const float *pos;
-    uint32_t **count;   /* per thread: ncells2d + 1 */
-    uint32_t **tmp;     /* per thread: max_slab */
-} sort_ctx;
-
-/* Counting-sort the atoms of each slab by their 2D cell (stable). */
-static void sort_slabs(void *vctx, size_t begin, size_t end, int tid)
-{
-    sort_ctx *c = vctx;
-    slab_grid *g = c->g;
-    uint32_t *count = c->count[tid], *tmp = c->tmp[tid];
-    size_t nc = ncells2d(g);
-    for (size_t z = begin; z < end; z++) {
-        uint32_t s0 = g->slab_start[z], s1 = g->slab_start[z + 1];
-        if (s1 - s0 < 2) continue;
-        memset(count, 0, (nc + 1) * sizeof *count);
-        for (uint32_t k = s0; k < s1; k++) count[cell2d(g, c->pos + 3 * (size_t)g->atoms[k]) + 1]++;
-        for (size_t q = 0; q < nc; q++) count[q + 1] += count[q];
-        for (uint32_t k = s0; k < s1; k++) {
-            uint32_t a = g->atoms[k];
-            tmp[count[cell2d(g, c->pos + 3 * (size_t)a)]++] = a;
-        }
-        memcpy(g->atoms + s0, tmp, (s1 - s0) * sizeof *tmp);
-    }
-}
-
-static int grid_build(slab_grid *g, const float *pos, size_t n, float cutoff, ms_error *err)
-{
-    memset(g, 0, sizeof *g);
-    size_t nvalid = grid_size(g, pos, n, cutoff);
-    if (nvalid == 0) return 0;
-    size_t nz = (size_t)g->dim[2];
-    g->slab_start = calloc(nz + 1, sizeof *g->slab_start);
-    g->atoms = ms_alloc_array(nvalid, sizeof *g->atoms);
-    if (!g->slab_start || !g->atoms) goto oom;
-    /* Bucket by slab: counts become inclusive ends, a descending fill makes them starts. */
-    for (size_t i = 0; i < n; i++)
-        if (finite3(pos + 3 * i)) g->slab_start[cell_coord(g, pos + 3 * i, 2)]++;
-    for (size_t z = 0; z < nz; z++) {
-        g->max_slab = MS_MAX(g->max_slab, (size_t)g->slab_start[z]);
-        if (z) g->slab_start[z] += g->slab_start[z - 1];
-    }
-    for (size_t i = n; i-- > 0;)
-        if (finite3(pos + 3 * i)) g->atoms[--g->slab_start[cell_coord(g, pos + 3 * i, 2)]] = (uint32_t)i;
-    g->slab_start[nz] = (uint32_t)nvalid;
-
-    int nt = ms_threads_count();
-    sort_ctx c = {.g = g, .pos = pos};
-    c.count = calloc((size_t)nt, sizeof *c.count);
-    c.tmp = calloc((size_t)nt, sizeof *c.tmp);
-    int ok = c.count && c.tmp;
-    for (int t = 0; ok && t < nt; t++) {
-        c.count[t] = ms_alloc_array(ncells2d(g) + 1, sizeof **c.count);
-        c.tmp[t] = ms_alloc_array(g->max_slab, sizeof **c.tmp);
-        ok = c.count[t] && c.tmp[t];
-    }
-    if (ok) ms_parallel_for(nz, 1, sort_slabs, &c);
-    for (int t = 0; t < nt; t++) {
-        if (c.count) free(c.count[t]);
-        if (c.tmp) free(c.tmp[t]);
-    }
-    free(c.count);
-    free(c.tmp);
-    if (ok) return 0;
-oom:
-    grid_free(g);
-    ms_error_set(err, "out of memory for the bond search grid of %zu atoms", n);
-    return -1;
-}
 
 /* ---------------------------------------------------------------- the search */
 
@@ -168,13 +24,12 @@ typedef struct pair_buf {
     pair_block *head, *tail;
     size_t n;
     int failed;
-    uint32_t *start_a, *start_b;  /* 2D cell starts of this slab and the next */
 } pair_buf;
 
 typedef struct search_ctx {
     const ms_molecule *m;
     const float *pos;
-    const slab_grid *g;
+    const ms_grid *g;
     pair_buf *bufs;  /* one per thread */
 } search_ctx;
 
@@ -219,71 +74,41 @@ static void pair_buf_free(pair_buf *b)
         free(b->head);
         b->head = next;
     }
-    free(b->start_a);
-    free(b->start_b);
 }
 
-/* 2D cell starts of slab z (its atoms are sorted by 2D cell). */
-static void slab_starts(const slab_grid *g, const float *pos, size_t z, uint32_t *start)
+/* The pairs between items [a0, a1) and the run r; with same set, r starts at a0 and only
+ * the pairs inside [a0, a1) after each item are taken. */
+static void search_run(search_ctx *c, pair_buf *buf, uint32_t a0, uint32_t a1, ms_grid_run r,
+                       int same)
 {
-    size_t nc = ncells2d(g);
-    memset(start, 0, (nc + 1) * sizeof *start);
-    if (z >= (size_t)g->dim[2]) return;
-    uint32_t s0 = g->slab_start[z], s1 = g->slab_start[z + 1];
-    for (uint32_t k = s0; k < s1; k++) start[cell2d(g, pos + 3 * (size_t)g->atoms[k]) + 1]++;
-    start[0] = s0;
-    for (size_t q = 0; q < nc; q++) start[q + 1] += start[q];
-}
-
-/* Neighbour cells of (x, y): in the same slab the forward half (itself and 4 others), in
- * the next slab all 9: every pair of cells is visited once. */
-static const int same_slab[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
-
-static void search_pairs(search_ctx *c, pair_buf *buf, const uint32_t *sa, uint32_t a0,
-                         uint32_t a1, const uint32_t *sb, size_t other, int same)
-{
-    const slab_grid *g = c->g;
-    uint32_t b0 = sb[other], b1 = sb[other + 1];
+    const uint32_t *items = c->g->items;
     for (uint32_t ia = a0; ia < a1; ia++) {
-        uint32_t i = g->atoms[ia];
-        for (uint32_t jb = same ? ia + 1 : b0; jb < b1; jb++) {
-            uint32_t j = g->atoms[jb];
+        uint32_t i = items[ia];
+        for (uint32_t jb = same ? ia + 1 : r.begin; jb < r.end; jb++) {
+            uint32_t j = items[jb];
             if (may_bond(c->m, i, j, c->pos)) push_pair(buf, i, j);
         }
     }
-    (void)sa;
 }
 
+/* The slabs [begin, end) of cells: each cell's own pairs, then those with the forward half
+ * of its neighbours, so every pair of cells is visited once. */
 static void search_slabs(void *vctx, size_t begin, size_t end, int tid)
 {
     search_ctx *c = vctx;
-    const slab_grid *g = c->g;
+    const ms_grid *g = c->g;
     pair_buf *buf = &c->bufs[tid];
-    int nx = g->dim[0], ny = g->dim[1];
-    for (size_t z = begin; z < end; z++) {
-        if (g->slab_start[z] == g->slab_start[z + 1]) continue;
-        slab_starts(g, c->pos, z, buf->start_a);
-        slab_starts(g, c->pos, z + 1, buf->start_b);
-        for (int y = 0; y < ny; y++)
-            for (int x = 0; x < nx; x++) {
-                size_t cell = (size_t)y * (size_t)nx + (size_t)x;
-                uint32_t a0 = buf->start_a[cell], a1 = buf->start_a[cell + 1];
+    for (long z = (long)begin; z < (long)end; z++)
+        for (long y = 0; y < g->dim[1]; y++)
+            for (long x = 0; x < g->dim[0]; x++) {
+                size_t cell = ms_grid_index(g, x, y, z);
+                uint32_t a0 = g->start[cell], a1 = g->start[cell + 1];
                 if (a0 == a1) continue;
-                for (int s = 0; s < 5; s++) {
-                    int ox = x + same_slab[s][0], oy = y + same_slab[s][1];
-                    if (ox < 0 || oy < 0 || ox >= nx || oy >= ny) continue;
-                    search_pairs(c, buf, buf->start_a, a0, a1, buf->start_a,
-                                 (size_t)oy * (size_t)nx + (size_t)ox, s == 0);
-                }
-                if (z + 1 >= (size_t)g->dim[2]) continue;
-                for (int oy = y - 1; oy <= y + 1; oy++)
-                    for (int ox = x - 1; ox <= x + 1; ox++) {
-                        if (ox < 0 || oy < 0 || ox >= nx || oy >= ny) continue;
-                        search_pairs(c, buf, buf->start_a, a0, a1, buf->start_b,
-                                     (size_t)oy * (size_t)nx + (size_t)ox, 0);
-                    }
+                ms_grid_run runs[5], own = {a0, a1};
+                search_run(c, buf, a0, a1, own, 1);
+                int nr = ms_grid_forward(g, x, y, z, runs);
+                for (int r = 0; r < nr; r++) search_run(c, buf, a0, a1, runs[r], 0);
             }
-    }
 }
 
 int ms_bond_search(const ms_molecule *m, const float *pos, uint32_t **pairs, size_t *npairs,
@@ -295,20 +120,18 @@ int ms_bond_search(const ms_molecule *m, const float *pos, uint32_t **pairs, siz
     for (size_t i = 0; i < n; i++)
         if (m->atoms.radius[i] > rmax) rmax = m->atoms.radius[i];
     if (rmax <= 0.0f) return 0;
-    slab_grid g;
-    if (grid_build(&g, pos, n, 1.2f * rmax, err)) return -1;
-    if (!g.atoms) return 0;
+    ms_grid g;
+    ms_grid_points pts = {pos, 3, NULL, n};
+    /* at most two cells an atom: the grid's 8 bytes an atom keep a 1M-atom load's peak
+     * memory where the slab-sorted grid before it had it */
+    ms_grid_spec spec = {1.2f * rmax, 2.0, 4096.0, 1.1, 0};
+    if (ms_grid_build(&g, &pts, &spec, err)) return -1;
 
     int nt = ms_threads_count();
     search_ctx ctx = {.m = m, .pos = pos, .g = &g, .bufs = calloc((size_t)nt, sizeof(pair_buf))};
     int failed = ctx.bufs == NULL;
-    for (int t = 0; !failed && t < nt; t++) {
-        ctx.bufs[t].start_a = ms_alloc_array(ncells2d(&g) + 1, sizeof(uint32_t));
-        ctx.bufs[t].start_b = ms_alloc_array(ncells2d(&g) + 1, sizeof(uint32_t));
-        failed = !ctx.bufs[t].start_a || !ctx.bufs[t].start_b;
-    }
     if (!failed) ms_parallel_for((size_t)g.dim[2], 1, search_slabs, &ctx);
-    grid_free(&g);
+    ms_grid_free(&g);
 
     size_t total = *npairs;
     for (int t = 0; ctx.bufs && t < nt; t++) {

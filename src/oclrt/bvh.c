@@ -69,7 +69,7 @@ static int box_ok(const float lo[3], const float hi[3])
  * rt/cone.c's. 0 when degenerate. */
 static int tube_box(const float a[3], const float b[3], float ra, float rb, float lo[3], float hi[3])
 {
-    float w[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, len2 = rt_dot(w, w);
+    float w[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, len2 = ms_v3f_dot(w, w);
     if (!(ra >= 0) || !(rb >= 0) || !(ra + rb > 0) || !(len2 > 0) || !isfinite(len2) || !isfinite(ra + rb))
         return 0;
     for (int k = 0; k < 3; k++) {
@@ -96,7 +96,7 @@ static int quadric_box(const orc_world *w, size_t i, float lo[3], float hi[3])
     case ORC_CONE:
         return tube_box(a, b, a[3], b[3], lo, hi) && box_ok(lo, hi);
     default: {
-        float n2 = rt_dot(b, b);
+        float n2 = ms_v3f_dot(b, b);
         if (!(a[3] > 0) || !(n2 > 0) || !isfinite(n2)) return 0;
         for (int k = 0; k < 3; k++) e[k] = a[3] * sqrtf(fmaxf(0.0f, 1.0f - b[k] * b[k] / n2));
         for (int k = 0; k < 3; k++) lo[k] = a[k] - e[k], hi[k] = a[k] + e[k];

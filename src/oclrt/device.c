@@ -1,6 +1,7 @@
-/* device.c: the OpenCL tracer's engine, one per process: the device (MOLSCOPE_OPENCL_DEVICE
- * by index or part of its name, else the first GPU, else any device; MOLSCOPE_NOOPENCL turns
- * OpenCL off), its context and queue, and the kernels of kernels.cl. Built programs are
+/* device.c: the OpenCL tracer's engine, one per process: the kernels of kernels.cl on the
+ * process's one OpenCL device, context and queue, which QuickSurf shares (cl/cl.h: the device
+ * by MOLSCOPE_OPENCL_DEVICE, by index or part of its name, else the first GPU, else any
+ * device; MOLSCOPE_NOOPENCL turns OpenCL off). Built programs are
  * cached as binaries in MOLSCOPE_OPENCL_CACHE (else $XDG_CACHE_HOME/molscope or
  * ~/.cache/molscope), one file per device, driver, options and kernel source (cl/cl.h);
  * PoCL also keeps its own cache (POCL_CACHE_DIR, set beside ours when unset). A failure to
@@ -21,12 +22,12 @@ static orc_engine engine;
 static int state;               /* 0 not started, 1 running, -1 failed */
 static char failure[sizeof(ms_error)];
 
-/* The device: by MOLSCOPE_OPENCL_DEVICE or by rank (cl/cl.h). */
-static int pick_device(orc_engine *e, ms_error *err)
+/* The shared engine's device (cl/cl.h), in the tracer's words when there is none. */
+static int pick_device(ms_cl_engine **cl, ms_error *err)
 {
     cl_int rc;
     const char *want = NULL;
-    switch (ms_cl_pick_device(&e->dev, &rc, &want)) {
+    switch (ms_cl_engine_device(cl, 1, &rc, &want)) {
     case 0: return 0;
     case MS_CL_NOPLATFORM:
         ms_error_set(err, "no OpenCL platform (%d %s)", (int)rc,
@@ -57,26 +58,27 @@ static int build_program(orc_engine *e, const char *source, ms_error *err)
     return -1;
 }
 
+/* The kernels built from source on the shared engine's context. */
 static int start(orc_engine *e, const char *source, ms_error *err)
 {
-    cl_int rc;
-    e->ctx = clCreateContext(NULL, 1, &e->dev.id, NULL, NULL, &rc);
-    if (rc != CL_SUCCESS) return ms_cl_fail(err, "clCreateContext", rc);
-    e->queue = clCreateCommandQueue(e->ctx, e->dev.id, 0, &rc);
-    if (rc != CL_SUCCESS) return ms_cl_fail(err, "clCreateCommandQueue", rc);
+    ms_cl_engine *cl;
+    if (pick_device(&cl, err) || ms_cl_engine_start(cl, err)) return -1;
+    e->dev = cl->dev;
+    e->ctx = cl->ctx;
+    e->queue = cl->queue;
     if (build_program(e, source, err)) return -1;
+    cl_int rc;
     e->init = clCreateKernel(e->program, "orc_init", &rc);
     if (rc == CL_SUCCESS) e->pass = clCreateKernel(e->program, "orc_pass", &rc);
     return rc == CL_SUCCESS ? 0 : ms_cl_fail(err, "clCreateKernel", rc);
 }
 
+/* Release the kernels and the program (the context and queue are the shared engine's). */
 static void stop(orc_engine *e)
 {
     if (e->init) clReleaseKernel(e->init);
     if (e->pass) clReleaseKernel(e->pass);
     if (e->program) clReleaseProgram(e->program);
-    if (e->queue) clReleaseCommandQueue(e->queue);
-    if (e->ctx) clReleaseContext(e->ctx);
     memset(e, 0, sizeof *e);
 }
 
@@ -85,8 +87,7 @@ static void injected_build_failure(ms_error *err)
 {
     orc_engine e;
     memset(&e, 0, sizeof e);
-    if (pick_device(&e, err) == 0 &&
-        start(&e, "__kernel void orc_init(void) { no such thing }", err) == 0)
+    if (start(&e, "__kernel void orc_init(void) { no such thing }", err) == 0)
         ms_error_set(err, "the injected build failure built");
     stop(&e);
 }
@@ -105,9 +106,7 @@ orc_engine *orc_engine_acquire(ms_error *err)
     }
     if (state == 0) {
         ms_error e = {{0}};
-        char dir[1024];
-        if (ms_cl_cache_dir(dir, sizeof dir, 1) == 0) ms_cl_pocl_cache(dir);   /* before PoCL */
-        state = pick_device(&engine, &e) == 0 && start(&engine, kernel_source, &e) == 0 ? 1 : -1;
+        state = start(&engine, kernel_source, &e) == 0 ? 1 : -1;
         if (state < 0) {
             snprintf(failure, sizeof failure, "%s", e.msg);
             stop(&engine);

@@ -95,7 +95,7 @@ static void put_quadric(placer *pl, uint32_t kind, uint32_t g, const float a[4],
 /* p moved to world space, with w = r times the scale. */
 static void world_point(const placer *pl, const float p[3], float r, float out[4])
 {
-    rt_xf_point(pl->ri.xf, p, out);
+    ms_mat4_point(pl->ri.xf, p, out);
     out[3] = r * pl->scale;
 }
 
@@ -126,8 +126,8 @@ static void place_cylinders(placer *pl, const source *s)
             b[k] -= a[k];
             j[k] -= a[k];
         }
-        b[3] = rt_normalize(b);
-        put_quadric(pl, ORC_CYLINDER, g, a, b, cy->color[i], cy->color2[i], sqrtf(rt_dot(j, j)));
+        b[3] = ms_v3f_normalize_rcp(b);
+        put_quadric(pl, ORC_CYLINDER, g, a, b, cy->color[i], cy->color2[i], sqrtf(ms_v3f_dot(j, j)));
     }
 }
 

@@ -40,7 +40,7 @@ static float3 cross3(float3 a, float3 b)
 {
     return (float3)(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
-/* rt_normalize */
+/* as ms_v3f_normalize_rcp (vecmath/vecf.h) */
 static float norm3(float3 *v)
 {
     float l = sqrt(dot3(*v, *v));

@@ -8,6 +8,7 @@
  *
  * The device is the first GPU (else any device), or the one MOLSCOPE_OPENCL_DEVICE names by
  * index or by part of its name; MOLSCOPE_NOOPENCL set to anything but 0 turns OpenCL off.
+ * Its context and queue are the process's one OpenCL engine (cl/cl.h), shared with QuickSurf.
  * Built programs are cached (MOLSCOPE_OPENCL_CACHE, else $XDG_CACHE_HOME/molscope or
  * ~/.cache/molscope). When OpenCL cannot render (no device, a kernel that does not build,
  * device memory exhausted), ms_oclrt_write says why on stderr in one line and renders with

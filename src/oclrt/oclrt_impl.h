@@ -1,7 +1,7 @@
 /* oclrt_impl.h: what the files of the OpenCL tracer share (built with OpenCL):
  * the flat world (flatten.c: every primitive in world space, in the structure-of-arrays
  * layout the kernels read, params.h numbering the kinds), its BVH (bvh.c), and the engine
- * (device.c: device, context, queue, kernels). */
+ * (device.c: the kernels on the shared device, context and queue of cl/cl.h). */
 #ifndef MS_OCLRT_IMPL_H
 #define MS_OCLRT_IMPL_H
 
@@ -83,7 +83,7 @@ int orc_bvh_build(orc_world *w, ms_error *err);
 
 typedef struct orc_engine {
     ms_cl_device dev;           /* the device, its memory and name */
-    cl_context ctx;
+    cl_context ctx;             /* the shared engine's (cl/cl.h), not released here */
     cl_command_queue queue;
     cl_program program;
     cl_kernel init, pass;

@@ -4,7 +4,7 @@
 #ifndef MS_EXPORT_H
 #define MS_EXPORT_H
 
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 #include "scene/scene.h"
 
 #define MS_EXPORT_LINE_RADIUS 0.002f    /* VMD: width 1 lines and size 1 points */

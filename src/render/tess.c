@@ -2,25 +2,9 @@
  * have no such primitives (and for Tachyon's cones). */
 #include "config.h"
 #include "render/export.h"
+#include "vecmath/vecf.h"
 
 #include <math.h>
-
-static void normalize(float v[3])
-{
-    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0) {
-        v[0] /= l;
-        v[1] /= l;
-        v[2] /= l;
-    }
-}
-
-static void cross(const float a[3], const float b[3], float o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* Emit a triangle from three points and three normals. */
 static void tri(ms_tri_cb cb, void *ud, const float *a, const float *b, const float *c,
@@ -67,9 +51,9 @@ static void frame(const float axis[3], float u[3], float v[3])
         t[0] = 0;
         t[1] = 1;
     }
-    cross(axis, t, u);
-    normalize(u);
-    cross(axis, u, v);
+    ms_v3f_cross(axis, t, u);
+    ms_v3f_normalize(u);
+    ms_v3f_cross(axis, u, v);
 }
 
 void ms_tess_cone(const float base[3], const float apex[3], float rb, float ra, int res,
@@ -94,7 +78,7 @@ void ms_tess_cone(const float base[3], const float apex[3], float rb, float ra, 
                 pa[s][k] = apex[k] + ra * radial;
                 nn[s][k] = radial + slope * dir[k];
             }
-            normalize(nn[s]);
+            ms_v3f_normalize(nn[s]);
         }
         tri(cb, ud, pb[0], pb[1], pa[1], nn[0], nn[1], nn[1]);
         if (ra > 0) tri(cb, ud, pb[0], pa[1], pa[0], nn[0], nn[1], nn[0]);

@@ -4,6 +4,7 @@
  * cubic splines through the control points. */
 #include "config.h"
 #include "rep/rep_int.h"
+#include "vecmath/vecf.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -178,22 +179,6 @@ void ms_rep_backbone_free(ms_rep_backbone *bb)
 
 /* ---------------------------------------------------------------- guide vectors */
 
-static void sub3(float *o, const float *a, const float *b)
-{
-    for (int k = 0; k < 3; k++) o[k] = a[k] - b[k];
-}
-static void cross3(float *o, const float *a, const float *b)
-{
-    float t[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    memcpy(o, t, sizeof t);
-}
-static float dot3(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void normalize3(float *v)
-{
-    float l = sqrtf(dot3(v, v));
-    if (l > 0) for (int k = 0; k < 3; k++) v[k] /= l;
-}
-
 void ms_rep_chain_perps(const ms_rep_build *b, const ms_rep_backbone *bb,
                         const ms_rep_chain *ch, float *perp)
 {
@@ -216,13 +201,13 @@ void ms_rep_chain_perps(const ms_rep_build *b, const ms_rep_backbone *bb,
             memcpy(lasto, o, sizeof lasto);
         }
         float a[3], bv[3], cv[3], d[3];
-        sub3(a, c, lastc);                      /* CA(i) - CA(i-1) */
-        sub3(bv, ch->nucleic ? o : lasto, ch->nucleic ? c : lastc);   /* the guide */
-        cross3(cv, a, bv);                      /* normal of the peptide plane */
-        cross3(d, cv, a);                       /* in the plane, across the backbone */
-        if (dot3(d, g) < 0) for (int k = 0; k < 3; k++) d[k] = -d[k];
+        ms_v3f_sub(c, lastc, a);                /* CA(i) - CA(i-1) */
+        ms_v3f_sub(ch->nucleic ? o : lasto, ch->nucleic ? c : lastc, bv);   /* the guide */
+        ms_v3f_cross(a, bv, cv);                /* normal of the peptide plane */
+        ms_v3f_cross(cv, a, d);                 /* in the plane, across the backbone */
+        if (ms_v3f_dot(d, g) < 0) for (int k = 0; k < 3; k++) d[k] = -d[k];
         for (int k = 0; k < 3; k++) g[k] += d[k];
-        normalize3(g);
+        ms_v3f_normalize(g);
         memcpy(perp + 3 * q, g, sizeof g);
         memcpy(lastc, c, sizeof lastc);
         memcpy(lasto, o, sizeof lasto);

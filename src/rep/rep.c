@@ -5,7 +5,7 @@
  * (once per periodic image); resetview's atoms (the displayed reps'); the module's state. */
 #include "config.h"
 #include "rep/rep_int.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <stdio.h>
 #include <stdlib.h>

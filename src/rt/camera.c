@@ -24,10 +24,10 @@ void rt_camera_init(rt_camera *c, const ms_scene *s)
         c->dir[k] = m->dir[k];
         c->up[k] = m->up[k];
     }
-    rt_normalize(c->dir);
-    rt_cross(c->dir, c->up, c->right);
-    rt_normalize(c->right);
-    rt_cross(c->right, c->dir, c->up);
+    ms_v3f_normalize_rcp(c->dir);
+    ms_v3f_cross(c->dir, c->up, c->right);
+    ms_v3f_normalize_rcp(c->right);
+    ms_v3f_cross(c->right, c->dir, c->up);
     float aspect = (float)s->width / (float)s->height;
     float screen = m->eye[2] - m->distance;
     c->half_h = c->ortho ? m->height / 4.0f : (m->height / 2.0f) / screen;
@@ -53,7 +53,7 @@ void rt_camera_ray(const rt_camera *c, float px, float py, const float lens[2], 
         org[k] = c->eye[k];
         dir[k] = c->dir[k] + sx * c->right[k] + sy * c->up[k];
     }
-    rt_normalize(dir);
+    ms_v3f_normalize_rcp(dir);
     if (!lens || !c->dof) return;
     float focus[3];
     for (int k = 0; k < 3; k++) {
@@ -61,5 +61,5 @@ void rt_camera_ray(const rt_camera *c, float px, float py, const float lens[2], 
         org[k] += c->lens_radius * (lens[0] * c->right[k] + lens[1] * c->up[k]);
         dir[k] = focus[k] - org[k];
     }
-    rt_normalize(dir);
+    ms_v3f_normalize_rcp(dir);
 }

@@ -1,34 +1,16 @@
 /* common.c: the parts of TachyonInternal the OpenCL tracer (src/oclrt) uses too, free of
- * Embree: small vector helpers, transforms, Tachyon's texture terms of a material, the
- * secondary-ray offset, the shader settings of a scene, the option checks, and the pass
- * both tracers start from: the scene's lists as sources, with their strokes (strokes.c)
- * and cap discs derived once. */
+ * Embree: transforms, Tachyon's texture terms of a material, the secondary-ray offset,
+ * the shader settings of a scene, the option checks, and the pass both tracers start
+ * from: the scene's lists as sources, with their strokes (strokes.c) and cap discs
+ * derived once. */
 #include "config.h"
 #include "rt/rt_common.h"
-#include "scene/mat4.h"
+#include "vecmath/vecmath.h"
 #include "base/base.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-float rt_normalize(float v[3])
-{
-    float l = sqrtf(rt_dot(v, v));
-    if (l > 0) {
-        float inv = 1.0f / l;
-        v[0] *= inv;
-        v[1] *= inv;
-        v[2] *= inv;
-    }
-    return l;
-}
-
-void rt_xf_point(const float m[12], const float p[3], float out[3])
-{
-    float x = p[0], y = p[1], z = p[2];
-    for (int r = 0; r < 3; r++) out[r] = m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3];
-}
 
 void rt_xf_dir(const float m[12], const float v[3], float out[3])
 {
@@ -63,15 +45,7 @@ int rt_xform_make(rt_xform *out, const float x[16])
     double a[3][3], inv[3][3];
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 3; c++) a[r][c] = x[4 * r + c];
-    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-    if (!(fabs(det) > 1e-30) || !isfinite(det)) return -1;
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++) {
-            int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-            inv[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
-        }
+    if (ms_m3d_inverse(a, inv)) return -1;
     for (int r = 0; r < 3; r++) {
         double t = 0;
         for (int c = 0; c < 3; c++) {
@@ -127,7 +101,7 @@ void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, 
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
         const ms_light *l = &s->settings.lights[i];
         float d[3] = {l->pos[0], l->pos[1], l->pos[2]};
-        if (!l->on || rt_normalize(d) == 0.0f) continue;
+        if (!l->on || ms_v3f_normalize_rcp(d) == 0.0f) continue;
         memcpy(sh->ldir[sh->nlights], d, sizeof d);
         memcpy(sh->lcol[sh->nlights], l->color, sizeof d);
         sh->nlights++;

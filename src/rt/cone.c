@@ -12,7 +12,7 @@ static void cone_bounds(const struct RTCBoundsFunctionArguments *args)
     size_t i = args->primID;
     const float *a = g->a + 3 * i, *b = g->b + 3 * i;
     float ra = g->ra[i], rb = g->rb[i], w[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    float len2 = rt_dot(w, w);
+    float len2 = ms_v3f_dot(w, w);
     struct RTCBounds *o = args->bounds_o;
     if (!(ra >= 0) || !(rb >= 0) || !(ra + rb > 0) || !(len2 > 0) || !isfinite(len2) ||
         !isfinite(ra + rb)) {
@@ -34,16 +34,16 @@ static int cone_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[
 {
     const float *A = g->a + 3 * (size_t)prim, *B = g->b + 3 * (size_t)prim;
     float ra = g->ra[prim], ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
-    float len = rt_normalize(ax), k = (g->rb[prim] - ra) / len;
+    float len = ms_v3f_normalize_rcp(ax), k = (g->rb[prim] - ra) / len;
     float mid[3] = {0.5f * (A[0] + B[0]) - r->o[0], 0.5f * (A[1] + B[1]) - r->o[1],
                     0.5f * (A[2] + B[2]) - r->o[2]};
-    float t0 = rt_dot(mid, r->d) / rt_dot(r->d, r->d), oc[3];
+    float t0 = ms_v3f_dot(mid, r->d) / ms_v3f_dot(r->d, r->d), oc[3];
     for (int j = 0; j < 3; j++) oc[j] = r->o[j] + t0 * r->d[j] - A[j];
-    float ds = rt_dot(r->d, ax), ocs = rt_dot(oc, ax), r0 = ra + k * ocs;
-    float qa = rt_dot(r->d, r->d) - ds * ds - k * k * ds * ds;
-    float qb = rt_dot(oc, r->d) - ocs * ds - k * ds * r0;
-    float qc = rt_dot(oc, oc) - ocs * ocs - r0 * r0, roots[2];
-    if (fabsf(qa) < 1e-12f * rt_dot(r->d, r->d)) {
+    float ds = ms_v3f_dot(r->d, ax), ocs = ms_v3f_dot(oc, ax), r0 = ra + k * ocs;
+    float qa = ms_v3f_dot(r->d, r->d) - ds * ds - k * k * ds * ds;
+    float qb = ms_v3f_dot(oc, r->d) - ocs * ds - k * ds * r0;
+    float qc = ms_v3f_dot(oc, oc) - ocs * ocs - r0 * r0, roots[2];
+    if (fabsf(qa) < 1e-12f * ms_v3f_dot(r->d, r->d)) {
         if (qb == 0.0f) return 0;
         roots[0] = -0.5f * qc / qb;
         roots[1] = INFINITY;
@@ -80,9 +80,9 @@ static void cone_surface(const rt_geom *g, const struct RTCHit *h, const float p
     size_t i = h->primID;
     const float *A = g->a + 3 * i, *B = g->b + 3 * i;
     float ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, q[3] = {p[0] - A[0], p[1] - A[1], p[2] - A[2]};
-    float len = rt_normalize(ax), k = (g->rb[i] - g->ra[i]) / len, s = rt_dot(q, ax), perp[3];
+    float len = ms_v3f_normalize_rcp(ax), k = (g->rb[i] - g->ra[i]) / len, s = ms_v3f_dot(q, ax), perp[3];
     for (int j = 0; j < 3; j++) perp[j] = q[j] - s * ax[j];
-    rt_normalize(perp);
+    ms_v3f_normalize_rcp(perp);
     for (int j = 0; j < 3; j++) n[j] = ng[j] = perp[j] - k * ax[j];
     *c = g->color[i];
 }

@@ -19,7 +19,7 @@ static void cylinder_bounds(const struct RTCBoundsFunctionArguments *args)
     size_t i = args->primID;
     const float *a = g->a + 3 * i, *b = g->b + 3 * i;
     float r = g->ra[i], w[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    float len2 = rt_dot(w, w);
+    float len2 = ms_v3f_dot(w, w);
     struct RTCBounds *o = args->bounds_o;
     if (!(r > 0) || !(len2 > 0) || !isfinite(len2) || !isfinite(r)) {
         rt_bounds_empty(o);
@@ -40,16 +40,16 @@ static int cylinder_test(const rt_geom *g, unsigned prim, const rt_uray *r, floa
 {
     const float *A = g->a + 3 * (size_t)prim, *ax = g->aux + 4 * (size_t)prim;
     float rad = g->ra[prim], oc[3] = {r->o[0] - A[0], r->o[1] - A[1], r->o[2] - A[2]};
-    float ds = rt_dot(r->d, ax), ocs = rt_dot(oc, ax), dp[3], ocp[3];
+    float ds = ms_v3f_dot(r->d, ax), ocs = ms_v3f_dot(oc, ax), dp[3], ocp[3];
     for (int k = 0; k < 3; k++) {
         dp[k] = r->d[k] - ds * ax[k];
         ocp[k] = oc[k] - ocs * ax[k];
     }
-    float qa = rt_dot(dp, dp);
+    float qa = ms_v3f_dot(dp, dp);
     if (!(qa > 0.0f)) return 0;          /* along the axis: an open tube is not hit */
-    float inv = 1.0f / qa, tc = -rt_dot(ocp, dp) * inv, q[3];
+    float inv = 1.0f / qa, tc = -ms_v3f_dot(ocp, dp) * inv, q[3];
     for (int k = 0; k < 3; k++) q[k] = ocp[k] + tc * dp[k];
-    float l2 = rt_dot(q, q);
+    float l2 = ms_v3f_dot(q, q);
     if (l2 > rad * rad) return 0;
     float td = sqrtf((rad * rad - l2) * inv), roots[2] = {tc - td, tc + td};
     int n = 0;
@@ -77,8 +77,8 @@ static void axes_range(void *ctx, size_t b, size_t e, int thread)
             o[k] = g->b[3 * i + k] - g->a[3 * i + k];
             d[k] = g->joint[3 * i + k] - g->a[3 * i + k];
         }
-        o[3] = rt_normalize(o);
-        x->join[i] = sqrtf(rt_dot(d, d));
+        o[3] = ms_v3f_normalize_rcp(o);
+        x->join[i] = sqrtf(ms_v3f_dot(d, d));
     }
 }
 
@@ -112,7 +112,7 @@ static size_t point_slot(const float *p, size_t mask)
 static int tube_ok(const rt_geom *g, size_t i)
 {
     const float *a = g->a + 3 * i, *b = g->b + 3 * i;
-    float w[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, l2 = rt_dot(w, w);
+    float w[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, l2 = ms_v3f_dot(w, w);
     return g->ra[i] > 0.0f && isfinite(g->ra[i]) && l2 > 0.0f && isfinite(l2);
 }
 
@@ -260,8 +260,8 @@ static void cylinder_surface(const rt_geom *g, const struct RTCHit *h, const flo
     }
     const float *A = g->a + 3 * (size_t)h->primID, *B = g->b + 3 * (size_t)h->primID;
     float ax[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, q[3] = {p[0] - A[0], p[1] - A[1], p[2] - A[2]};
-    rt_normalize(ax);
-    float s = rt_dot(q, ax);
+    ms_v3f_normalize_rcp(ax);
+    float s = ms_v3f_dot(q, ax);
     for (int k = 0; k < 3; k++) n[k] = ng[k] = q[k] - s * ax[k];
     *c = s > g->join[h->primID] ? g->color2[h->primID] : g->color[h->primID];
 }

@@ -11,7 +11,7 @@ static void ring_bounds(const struct RTCBoundsFunctionArguments *args)
     const rt_geom *g = args->geometryUserPtr;
     size_t i = args->primID;
     const float *c = g->a + 3 * i, *nr = g->b + 3 * i;
-    float r = g->ra[i], n2 = rt_dot(nr, nr);
+    float r = g->ra[i], n2 = ms_v3f_dot(nr, nr);
     struct RTCBounds *o = args->bounds_o;
     if (!(r > 0) || !(n2 > 0) || !isfinite(n2) || !isfinite(r) ||
         !isfinite(c[0] + c[1] + c[2])) {
@@ -29,14 +29,14 @@ static int ring_test(const rt_geom *g, unsigned prim, const rt_uray *r, float t[
 {
     const float *c = g->a + 3 * (size_t)prim;
     float n[3] = {g->b[3 * (size_t)prim], g->b[3 * (size_t)prim + 1], g->b[3 * (size_t)prim + 2]};
-    rt_normalize(n);
-    float den = rt_dot(r->d, n);
+    ms_v3f_normalize_rcp(n);
+    float den = ms_v3f_dot(r->d, n);
     if (den == 0.0f) return 0;
     float co[3] = {c[0] - r->o[0], c[1] - r->o[1], c[2] - r->o[2]};
-    float tt = rt_dot(co, n) / den;
+    float tt = ms_v3f_dot(co, n) / den;
     if (!(tt > r->tnear && tt < r->tfar)) return 0;
     float q[3] = {tt * r->d[0] - co[0], tt * r->d[1] - co[1], tt * r->d[2] - co[2]};
-    float d2 = rt_dot(q, q), ro = g->ra[prim], ri = g->rb[prim];
+    float d2 = ms_v3f_dot(q, q), ro = g->ra[prim], ri = g->rb[prim];
     if (d2 > ro * ro || d2 < ri * ri) return 0;
     t[0] = tt;
     return 1;

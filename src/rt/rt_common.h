@@ -1,7 +1,7 @@
 /* rt_common.h: what TachyonInternal shares with the OpenCL tracer (src/oclrt), free of
  * Embree so that both build without the other: Tachyon's texture terms, transforms, the
- * camera, the shader settings, strokes as cylinders and spheres, the option checks and the
- * small vector helpers (common.c, camera.c, strokes.c). */
+ * camera, the shader settings, strokes as cylinders and spheres, the option checks
+ * (common.c, camera.c, strokes.c); vectors and matrices are vecmath/vecf.h's. */
 #ifndef MS_RT_COMMON_H
 #define MS_RT_COMMON_H
 
@@ -9,6 +9,7 @@
 #include "scene/displaylist.h"
 #include "scene/material.h"
 #include "scene/scene.h"
+#include "vecmath/vecf.h"
 
 /* Tachyon's smallest contribution worth computing (1/512). */
 #define RT_MINCONTRIB 0.001953125f
@@ -114,23 +115,8 @@ void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, 
 
 /* ---------------------------------------------------------------- small vectors */
 
-static inline float rt_dot(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static inline void rt_cross(const float a[3], const float b[3], float out[3])
-{
-    float x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2],
-          z = a[0] * b[1] - a[1] * b[0];
-    out[0] = x;
-    out[1] = y;
-    out[2] = z;
-}
-/* Normalise in place; a zero vector stays zero. Returns the old length. */
-float rt_normalize(float v[3]);
-/* out = m (3x4 row-major) applied to point p, or (3x3) to vector v. */
-void rt_xf_point(const float m[12], const float p[3], float out[3]);
-/* A direction by a 3x4 transform's linear part. */
+/* out = m (3x3 row-major) applied to vector v (points: ms_mat4_point of vecmath/vecf.h). */
+/* A direction by a 3x4 transform's linear part (not normalised). */
 void rt_xf_dir(const float m[12], const float v[3], float out[3]);
 void rt_m3_vec(const float m[9], const float v[3], float out[3]);
 

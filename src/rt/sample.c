@@ -36,9 +36,9 @@ void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t 
     float a[3] = {1.0f, 0.0f, 0.0f};
     if (fabsf(n[0]) > 0.5f) a[0] = 0.0f, a[1] = 1.0f;
     for (int k = 0; k < 3; k++) h->n[k] = n[k];
-    rt_cross(n, a, h->t);
-    rt_normalize(h->t);
-    rt_cross(n, h->t, h->b);
+    ms_v3f_cross(n, a, h->t);
+    ms_v3f_normalize_rcp(h->t);
+    ms_v3f_cross(n, h->t, h->b);
     h->count = count;
     h->r1 = rt_randf(rng);
     h->r2 = rt_randf(rng);

@@ -65,8 +65,8 @@ static void solid_cut(const ms_scene_item *it, const float d[3], surface *s)
         const ms_clip_plane *cp = &it->clip[i];
         if (!cp->solid) continue;
         float n[3] = {cp->eq[0], cp->eq[1], cp->eq[2]};
-        if (!(rt_normalize(n) > 0.0f)) continue;
-        float side = rt_dot(n, d) > 0.0f ? -1.0f : 1.0f;
+        if (!(ms_v3f_normalize_rcp(n) > 0.0f)) continue;
+        float side = ms_v3f_dot(n, d) > 0.0f ? -1.0f : 1.0f;
         for (int k = 0; k < 3; k++) s->n[k] = side * n[k], s->col[k] = cp->color[k];
         return;
     }
@@ -82,14 +82,14 @@ static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s
     ms_rgba8 c;
     s->t = rh->ray.tfar;
     for (int k = 0; k < 3; k++) s->p[k] = o[k] + s->t * d[k];
-    rt_xf_point(it->inv, s->p, po);
+    ms_mat4_point(it->inv, s->p, po);
     rt_prims[g->kind]->surface(g, &rh->hit, po, n, ng, &c);
     rt_m3_vec(it->nm, n, s->n);
     rt_m3_vec(it->nm, ng, ng);
     /* Tachyon's rule: the geometric normal decides the side seen (for a mesh, its winding),
      * and the shading normal turns with it */
-    float side = rt_dot(ng, d) > 0.0f ? -1.0f : 1.0f;
-    if (!(rt_normalize(s->n) > 0.0f) || !isfinite(s->n[0] + s->n[1] + s->n[2])) {
+    float side = ms_v3f_dot(ng, d) > 0.0f ? -1.0f : 1.0f;
+    if (!(ms_v3f_normalize_rcp(s->n) > 0.0f) || !isfinite(s->n[0] + s->n[1] + s->n[2])) {
         memcpy(s->n, d, sizeof d);
         side = -1.0f;
     }
@@ -163,9 +163,9 @@ static void occlusion(const rt_shader *sh, rt_thread *th, const surface *s, floa
 static float blinn(const float n[3], const float l[3], const float d[3], float exponent)
 {
     float h[3] = {l[0] - d[0], l[1] - d[1], l[2] - d[2]};
-    float i = rt_dot(n, h);
+    float i = ms_v3f_dot(n, h);
     if (!(i > RT_MINCONTRIB)) return 0.0f;
-    return powf(i / sqrtf(rt_dot(h, h)), exponent);
+    return powf(i / sqrtf(ms_v3f_dot(h, h)), exponent);
 }
 
 /* Diffuse light (with occlusion) and highlights at s. */
@@ -178,7 +178,7 @@ static void direct(const rt_shader *sh, rt_thread *th, const surface *s, const f
     if (!(m->diffuse > RT_MINCONTRIB || m->phong > RT_MINCONTRIB)) return;
     for (int i = 0; i < sh->nlights; i++) {
         const float *l = sh->ldir[i];
-        float inten = sh->light_scale * rt_dot(s->n, l);
+        float inten = sh->light_scale * ms_v3f_dot(s->n, l);
         if (!(inten > RT_MINCONTRIB)) continue;
         if (sh->full) {
             float v = visibility(sh, th, s->p, l, MS_RT_SHADOW);
@@ -215,7 +215,7 @@ static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const fl
                   const float dir[3], int depth, int primary, float out[3])
 {
     const rt_material *m = s->mat;
-    float diffuse[3], phong[3], nd = rt_dot(s->n, dir), f = m->diffuse;
+    float diffuse[3], phong[3], nd = ms_v3f_dot(s->n, dir), f = m->diffuse;
     direct(sh, th, s, dir, diffuse, phong);
     if (m->outline > 0.0f) {
         float e = 1.0f - powf(1.0f - nd * nd, (1.0f - m->outlinewidth) * 32.0f);
@@ -237,7 +237,7 @@ static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const fl
         secondary(sh, th, s->p, dir, org, dir, depth, c);
         for (int k = 0; k < 3; k++) out[k] = a * out[k] + (1.0f - a) * c[k];
     }
-    if (sh->fog) fog(sh, primary ? s->t * rt_dot(dir, sh->cam.dir) : s->t, out);
+    if (sh->fog) fog(sh, primary ? s->t * ms_v3f_dot(dir, sh->cam.dir) : s->t, out);
 }
 
 /* The nearest hit that no clip plane of its item cuts away: a cut hit is passed and the ray

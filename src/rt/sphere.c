@@ -48,9 +48,9 @@ static void sphere_bounds(const struct RTCBoundsFunctionArguments *args)
 int rt_sphere_hits(const float c[3], float rad, const rt_uray *r, float t[2])
 {
     float oc[3] = {c[0] - r->o[0], c[1] - r->o[1], c[2] - r->o[2]};
-    float inv = 1.0f / rt_dot(r->d, r->d), tc = rt_dot(oc, r->d) * inv, q[3];
+    float inv = 1.0f / ms_v3f_dot(r->d, r->d), tc = ms_v3f_dot(oc, r->d) * inv, q[3];
     for (int k = 0; k < 3; k++) q[k] = oc[k] - tc * r->d[k];
-    float l2 = rt_dot(q, q);
+    float l2 = ms_v3f_dot(q, q);
     if (l2 > rad * rad) return 0;
     float td = sqrtf((rad * rad - l2) * inv);
     int n = 0;

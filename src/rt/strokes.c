@@ -5,7 +5,7 @@
 #include "config.h"
 #include "rt/rt_common.h"
 #include "render/export.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <string.h>
 

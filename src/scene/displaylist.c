@@ -2,7 +2,7 @@
  * walking a list's cylinders as VMD's pieces (a bond's two halves), counting and bounding. */
 #include "config.h"
 #include "scene/displaylist.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <stdlib.h>
 #include <string.h>

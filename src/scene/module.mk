@@ -1,6 +1,5 @@
 # src/scene: display lists, colours, materials, user graphics and the Scene devices draw.
 src_libmscore_la_SOURCES += \
-	src/scene/mat4.h src/scene/mat4.c \
 	src/scene/displaylist.h src/scene/displaylist.c \
 	src/scene/color.h src/scene/color.c src/scene/colormaps.h src/scene/colormaps.c \
 	src/scene/material.h src/scene/material.c \

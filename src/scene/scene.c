@@ -2,6 +2,7 @@
  * scene is assembled from the molecules in assemble/build.c). */
 #include "config.h"
 #include "scene/scene.h"
+#include "vecmath/vecf.h"
 
 #include "vecmath/vecmath.h"
 
@@ -89,11 +90,6 @@ ms_displaylist *ms_scene_new_list(ms_scene *s, ms_error *err)
 
 /* ---------------------------------------------------------------- camera */
 
-static float dot3(const float *a, const float *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Distance from the eye to the screen plane, and the visible half-height there. */
 static float screen_dist(const ms_camera *c)
 {
@@ -107,7 +103,7 @@ int ms_scene_project(const ms_scene *s, const float world[3], float *px, float *
                       c->dir[2] * c->up[0] - c->dir[0] * c->up[2],
                       c->dir[0] * c->up[1] - c->dir[1] * c->up[0]};
     float rel[3] = {world[0] - c->eye[0], world[1] - c->eye[1], world[2] - c->eye[2]};
-    float xe = dot3(rel, right), ye = dot3(rel, c->up), d = dot3(rel, c->dir);
+    float xe = ms_v3f_dot(rel, right), ye = ms_v3f_dot(rel, c->up), d = ms_v3f_dot(rel, c->dir);
     float half_h, xs, ys;
     if (c->projection == MS_PROJ_ORTHOGRAPHIC) {
         half_h = c->height / 4.0f;

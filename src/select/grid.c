@@ -1,9 +1,10 @@
-/* grid.c: `within d of S` through a uniform cell grid. The atoms of S (and, for pbwithin,
- * their periodic images near the candidates) are sorted into cubic cells at least d wide;
+/* grid.c: `within d of S` through the cell grid of base/grid.h. The atoms of S (and, for
+ * pbwithin, their periodic images near the candidates) are sorted into cells at least d wide;
  * each candidate atom then looks only at the 27 cells around its own. Building is linear in
  * |S|, the search linear in the candidates, and the candidate loop runs in parallel. */
 #include "config.h"
 #include "select/selint.h"
+#include "base/grid.h"
 #include "base/threads.h"
 
 #include <math.h>
@@ -12,12 +13,9 @@
 #include <string.h>
 
 typedef struct grid {
-    double lo[3];            /* origin: the lowest corner of the points */
-    double inv;              /* 1 / cell size */
+    ms_grid cells;           /* the points by cell */
+    float *pts;              /* their coordinates in cell order, xyz */
     float reach_lo[3], reach_hi[3];  /* the points' box grown by d: nothing outside is near */
-    long dim[3];
-    uint32_t *start;         /* cells + 1 offsets into pts */
-    float *pts;              /* points sorted by cell, xyz */
 } grid;
 
 /* ---------------------------------------------------------------- gathering S */
@@ -83,76 +81,25 @@ static int gather(const ms_selctx *c, const ms_bitset *cand, const ms_bitset *sr
 
 /* ---------------------------------------------------------------- the grid */
 
-/* Choose the cell size: at least d, and coarse enough that the grid has no more than a few
- * cells per point (memory stays linear however spread out the points are). */
-static int grid_shape(grid *g, const points *p, double d)
+/* The cell grid of base/grid.h over the points (cells at least d wide, a few per point),
+ * their coordinates copied in cell order, and the box of the points grown by d. */
+static int grid_build(grid *g, const points *p, double d, ms_error *err)
 {
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; i < p->n; i++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = MS_MIN(lo[k], p->xyz[3 * i + k]);
-            hi[k] = MS_MAX(hi[k], p->xyz[3 * i + k]);
-        }
+    ms_grid_points gp = {p->xyz, 3, NULL, p->n};
     /* a hair wider than d, so rounding never puts two points d apart two cells apart */
-    double h = MS_MAX(d * 1.000001, 1e-3), limit = 8.0 * (double)p->n + 4096;
-    for (int tries = 0; tries < 200; tries++) {
-        double cells = 1;
-        for (int k = 0; k < 3; k++) cells *= floor((hi[k] - lo[k]) / h) + 1;
-        if (cells <= limit) break;
-        h *= MS_MAX(1.1, cbrt(cells / limit));
-    }
+    ms_grid_spec spec = {MS_MAX(d * 1.000001, 1e-3), 8.0, 4096.0, 1.26, 0};
+    if (ms_grid_build(&g->cells, &gp, &spec, err)) return -1;
+    g->pts = ms_alloc_array(3 * p->n, sizeof *g->pts);
+    if (!g->pts) return -1;
+    for (size_t k = 0; k < p->n; k++)
+        memcpy(g->pts + 3 * k, p->xyz + 3 * (size_t)g->cells.items[k], 3 * sizeof(float));
+    const double *lo = g->cells.origin, *hi = g->cells.top;
     for (int k = 0; k < 3; k++) {
-        g->lo[k] = lo[k];
-        g->dim[k] = (long)floor((hi[k] - lo[k]) / h) + 1;
         /* generous by 1e-3 relative: the exact test is the distance, this only skips */
         double pad = d + 1e-3 * (fabs(lo[k]) + fabs(hi[k]) + d) + 1e-3;
         g->reach_lo[k] = (float)(lo[k] - pad);
         g->reach_hi[k] = (float)(hi[k] + pad);
     }
-    g->inv = 1.0 / h;
-    return 0;
-}
-
-/* The cell of coordinate x along axis k, clamped to [-2, dim+1] (NaN gives -2). */
-static long cell_coord(const grid *g, float x, int k)
-{
-    double f = floor(((double)x - g->lo[k]) * g->inv);
-    if (!(f >= -2)) return -2;
-    return f > (double)g->dim[k] + 1 ? g->dim[k] + 1 : (long)f;
-}
-
-static size_t cell_index(const grid *g, long x, long y, long z)
-{
-    return ((size_t)z * (size_t)g->dim[1] + (size_t)y) * (size_t)g->dim[0] + (size_t)x;
-}
-
-/* Counting sort of the points into cells. */
-static int grid_build(grid *g, const points *p, double d)
-{
-    grid_shape(g, p, d);
-    size_t ncells = (size_t)g->dim[0] * (size_t)g->dim[1] * (size_t)g->dim[2];
-    uint32_t *cellof = ms_alloc_array(p->n, sizeof *cellof);
-    g->start = ms_calloc_array(ncells + 2, sizeof *g->start);
-    g->pts = ms_alloc_array(3 * p->n, sizeof *g->pts);
-    if (!cellof || !g->start || !g->pts) {
-        free(cellof);
-        return -1;
-    }
-    for (size_t i = 0; i < p->n; i++) {
-        const float *q = p->xyz + 3 * i;
-        long x = cell_coord(g, q[0], 0), y = cell_coord(g, q[1], 1), z = cell_coord(g, q[2], 2);
-        x = MS_MIN(MS_MAX(x, 0), g->dim[0] - 1);   /* rounding at the top edge */
-        y = MS_MIN(MS_MAX(y, 0), g->dim[1] - 1);
-        z = MS_MIN(MS_MAX(z, 0), g->dim[2] - 1);
-        cellof[i] = (uint32_t)cell_index(g, x, y, z);
-        g->start[cellof[i] + 2]++;
-    }
-    for (size_t k = 2; k < ncells + 2; k++) g->start[k] += g->start[k - 1];
-    for (size_t i = 0; i < p->n; i++) {
-        uint32_t at = g->start[cellof[i] + 1]++;
-        memcpy(g->pts + 3 * at, p->xyz + 3 * i, 3 * sizeof(float));
-    }
-    free(cellof);
     return 0;
 }
 
@@ -177,16 +124,14 @@ static uint64_t in_reach(const grid *g, const float *pos, size_t i0, size_t n)
 /* Is p within d (d2 = d*d) of a point in the 27 cells around it? */
 static int near_point(const grid *g, const float *p, float d2)
 {
-    long cx = cell_coord(g, p[0], 0), cy = cell_coord(g, p[1], 1), cz = cell_coord(g, p[2], 2);
-    if (cx < -1 || cy < -1 || cz < -1 || cx > g->dim[0] || cy > g->dim[1] || cz > g->dim[2])
-        return 0;
-    for (long z = MS_MAX(cz - 1, 0); z <= MS_MIN(cz + 1, g->dim[2] - 1); z++)
-        for (long y = MS_MAX(cy - 1, 0); y <= MS_MIN(cy + 1, g->dim[1] - 1); y++) {
-            long x0 = MS_MAX(cx - 1, 0), x1 = MS_MIN(cx + 1, g->dim[0] - 1);
-            /* cells x0..x1 of one row are contiguous: one run of points */
-            const float *q = g->pts + 3 * g->start[cell_index(g, x0, y, z)];
-            const float *end = g->pts + 3 * g->start[cell_index(g, x1, y, z) + 1];
-            for (; q < end; q += 3) {
+    long lo[3], hi[3];
+    if (!ms_grid_block(&g->cells, p, lo, hi)) return 0;
+    for (long z = lo[2]; z <= hi[2]; z++)
+        for (long y = lo[1]; y <= hi[1]; y++) {
+            /* cells lo..hi of one row are contiguous: one run of points */
+            ms_grid_run r = ms_grid_row(&g->cells, lo[0], hi[0], y, z);
+            for (const float *q = g->pts + 3 * (size_t)r.begin, *end = g->pts + 3 * (size_t)r.end;
+                 q < end; q += 3) {
                 float dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
                 if (dx * dx + dy * dy + dz * dz <= d2) return 1;
             }
@@ -241,7 +186,7 @@ int ms_sel_within(ms_selctx *c, const ms_bitset *cand, const ms_bitset *src, dou
         /* S has no finite coordinates: only its own atoms are within */
         for (size_t w = 0; w < nw; w++) out->words[w] = cand->words[w] & src->words[w];
         rc = 0;
-    } else if (gathered && grid_build(&g, &pts, cutoff) == 0) {
+    } else if (gathered && grid_build(&g, &pts, cutoff, c->err) == 0) {
         search_job j = {c, &g, cand, src, out, (float)(cutoff * cutoff)};
         ms_parallel_for(nw, 256, search_range, &j);
         rc = 0;
@@ -249,7 +194,7 @@ int ms_sel_within(ms_selctx *c, const ms_bitset *cand, const ms_bitset *src, dou
         ms_error_set(c->err, "out of memory in a within search over %zu atoms", pts.n);
     }
     free(pts.xyz);
-    free(g.start);
+    ms_grid_free(&g.cells);
     free(g.pts);
     return rc;
 }

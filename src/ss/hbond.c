@@ -6,6 +6,7 @@
  * which keeps the result independent of the schedule. */
 #include "config.h"
 #include "ss/ssint.h"
+#include "base/grid.h"
 #include "base/threads.h"
 
 #include <math.h>
@@ -55,77 +56,20 @@ static float energy(const ms_ss_chain *c, size_t d, size_t a)
 
 /* ---------------------------------------------------------------- the CA grid */
 
-typedef struct ca_grid {
-    double origin[3], cell;
-    long dim[3];
-    uint32_t *start;   /* ncells + 1 */
-    uint32_t *res;     /* residues by cell */
-} ca_grid;
-
-static long cell_coord(const ca_grid *g, const float *p, int k)
+/* The residues by the cell of their CA (base/grid.h): cells at least the cutoff wide, at
+ * most about four per residue. */
+static int grid_build(ms_grid *g, const ms_ss_chain *c, ms_error *err)
 {
-    long v = (long)floor((p[k] - g->origin[k]) / g->cell);
-    return v < 0 ? 0 : v >= g->dim[k] ? g->dim[k] - 1 : v;
-}
-
-static size_t cell_of(const ca_grid *g, const float *p)
-{
-    return ((size_t)cell_coord(g, p, 2) * (size_t)g->dim[1] + (size_t)cell_coord(g, p, 1)) *
-               (size_t)g->dim[0] + (size_t)cell_coord(g, p, 0);
-}
-
-/* Cells at least the cutoff wide, at most about four per residue. */
-static size_t grid_shape(ca_grid *g, const ms_ss_chain *c)
-{
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t k = 0; k < c->n; k++)
-        for (int d = 0; d < 3; d++) {
-            double v = ms_ss_atom(c, k, 1)[d];
-            lo[d] = v < lo[d] ? v : lo[d];
-            hi[d] = v > hi[d] ? v : hi[d];
-        }
-    double limit = 4.0 * (double)c->n + 64.0;
-    for (g->cell = MS_SS_CA_CUTOFF;; g->cell *= 1.26) {
-        double cells = 1.0;
-        for (int d = 0; d < 3; d++) cells *= floor((hi[d] - lo[d]) / g->cell) + 1.0;
-        if (cells <= limit) break;
-    }
-    size_t ncells = 1;
-    for (int d = 0; d < 3; d++) {
-        g->origin[d] = lo[d];
-        g->dim[d] = (long)floor((hi[d] - lo[d]) / g->cell) + 1;
-        ncells *= (size_t)g->dim[d];
-    }
-    return ncells;
-}
-
-static int grid_build(ca_grid *g, const ms_ss_chain *c)
-{
-    size_t ncells = grid_shape(g, c);
-    uint32_t *which = ms_alloc_array(c->n, sizeof *which);
-    g->start = calloc(ncells + 1, sizeof *g->start);
-    g->res = ms_alloc_array(c->n, sizeof *g->res);
-    if (!which || !g->start || !g->res) {
-        free(which);
-        return -1;
-    }
-    for (size_t k = 0; k < c->n; k++) {
-        which[k] = (uint32_t)cell_of(g, ms_ss_atom(c, k, 1));
-        g->start[which[k] + 1]++;
-    }
-    for (size_t i = 0; i < ncells; i++) g->start[i + 1] += g->start[i];
-    for (size_t k = 0; k < c->n; k++) g->res[g->start[which[k]]++] = (uint32_t)k;
-    for (size_t i = ncells; i > 0; i--) g->start[i] = g->start[i - 1];   /* undo the bumps */
-    g->start[0] = 0;
-    free(which);
-    return 0;
+    ms_grid_points p = {c->bb + 3, 12, NULL, c->n};
+    ms_grid_spec spec = {MS_SS_CA_CUTOFF, 4.0, 64.0, 1.26, 0};
+    return ms_grid_build(g, &p, &spec, err);
 }
 
 /* ---------------------------------------------------------------- the search */
 
 typedef struct search_job {
     ms_ss_chain *c;
-    const ca_grid *g;
+    const ms_grid *g;
 } search_job;
 
 static void keep_best(ms_ss_chain *c, size_t d, size_t a, float e)
@@ -142,24 +86,20 @@ static void keep_best(ms_ss_chain *c, size_t d, size_t a, float e)
 
 /* Every acceptor of donor d in the 27 cells around its CA. The C=O of the residue just
  * before d is left out, as DSSP does. */
-static void search_donor(ms_ss_chain *c, const ca_grid *g, size_t d)
+static void search_donor(ms_ss_chain *c, const ms_grid *g, size_t d)
 {
     const float *ca = ms_ss_atom(c, d, 1);
-    long x0 = cell_coord(g, ca, 0), y0 = cell_coord(g, ca, 1), z0 = cell_coord(g, ca, 2);
     const double cut2 = (double)MS_SS_CA_CUTOFF * MS_SS_CA_CUTOFF;
-    for (long z = MS_MAX(z0 - 1, 0); z <= MS_MIN(z0 + 1, g->dim[2] - 1); z++)
-        for (long y = MS_MAX(y0 - 1, 0); y <= MS_MIN(y0 + 1, g->dim[1] - 1); y++)
-            for (long x = MS_MAX(x0 - 1, 0); x <= MS_MIN(x0 + 1, g->dim[0] - 1); x++) {
-                size_t cell = ((size_t)z * (size_t)g->dim[1] + (size_t)y) * (size_t)g->dim[0] +
-                              (size_t)x;
-                for (uint32_t q = g->start[cell]; q < g->start[cell + 1]; q++) {
-                    size_t a = g->res[q];
-                    if (a == d || a + 1 == d) continue;
-                    if (dist2(ca, ms_ss_atom(c, a, 1)) >= cut2) continue;
-                    float e = energy(c, d, a);
-                    if (e < 0) keep_best(c, d, a, e);
-                }
-            }
+    ms_grid_run runs[9];
+    int nr = ms_grid_near(g, ca, runs);
+    for (int r = 0; r < nr; r++)
+        for (uint32_t q = runs[r].begin; q < runs[r].end; q++) {
+            size_t a = g->items[q];
+            if (a == d || a + 1 == d) continue;
+            if (dist2(ca, ms_ss_atom(c, a, 1)) >= cut2) continue;
+            float e = energy(c, d, a);
+            if (e < 0) keep_best(c, d, a, e);
+        }
 }
 
 static void search_range(void *ctx, size_t begin, size_t end, int thread)
@@ -182,16 +122,10 @@ int ms_ss_hbonds(ms_ss_chain *c, ms_error *err)
         c->energy[k] = 0.0f;
     }
     if (c->n == 0) return 0;
-    ca_grid g = {{0}, 0, {0}, NULL, NULL};
-    if (grid_build(&g, c)) {
-        free(g.start);
-        free(g.res);
-        ms_error_set(err, "out of memory for the hydrogen bond grid of %zu residues", c->n);
-        return -1;
-    }
+    ms_grid g;
+    if (grid_build(&g, c, err)) return -1;
     search_job j = {c, &g};
     ms_parallel_for(c->n, 512, search_range, &j);
-    free(g.start);
-    free(g.res);
+    ms_grid_free(&g);
     return 0;
 }

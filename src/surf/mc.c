@@ -11,6 +11,7 @@
 #include "config.h"
 #include "surf/qsurf_impl.h"
 #include "base/threads.h"
+#include "vecmath/vecmath.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -36,19 +37,12 @@ size_t ms_qsurf_extract_bytes(int nx, int ny, int layers)
 /* gradm = inverse transpose of the matrix whose columns are the axes. */
 static int gradient_matrix(ms_qsurf_extract *mc)
 {
-    double a[3][3];
+    double a[3][3], inv[3][3];
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 3; c++) a[r][c] = mc->axis[c][r];
-    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-    if (!(fabs(det) > 1e-30) || !isfinite(det)) return -1;
+    if (ms_m3d_inverse(a, inv)) return -1;
     for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++) {
-            int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-            /* cofactor of a[r][c] over det is inverse[c][r], so gradm[r][c] = that. */
-            mc->gradm[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
-        }
+        for (int c = 0; c < 3; c++) mc->gradm[r][c] = inv[c][r];
     return 0;
 }
 

@@ -1,6 +1,6 @@
-/* opencl.c: the engine of QuickSurf's OpenCL path. One engine per process: the device
- * (a GPU first, or the one MOLSCOPE_OPENCL_DEVICE names by index or name), its context and
- * queue, and the kernels of kernels.cl built once (kept as a binary in the OpenCL cache of
+/* opencl.c: the engine of QuickSurf's OpenCL path. One engine per process: the kernels of
+ * kernels.cl on the process's one OpenCL device, context and queue, which the OpenCL tracer
+ * shares (cl/cl.h: a GPU first, or the one MOLSCOPE_OPENCL_DEVICE names), built once (kept as a binary in the OpenCL cache of
  * cl/cl.h; PoCL keeps its own in POCL_CACHE_DIR, set here to a per-user folder when unset);
  * and the buffers of the surface being computed, sized from the device's memory.
  * opencl_slab.c runs the slabs. Every error is returned as a message; the caller falls back
@@ -42,13 +42,17 @@ static int engine_state;     /* 0 not started, 1 device found, 2 running, -1 fai
 static int engine_absent;
 static char engine_failure[sizeof(ms_error)];
 
-/* The device: by MOLSCOPE_OPENCL_DEVICE or by rank (cl/cl.h). */
+/* The shared engine's device (cl/cl.h), in QuickSurf's words when there is none. */
 static int pick_device(ms_qsurf_cl *cl, ms_error *err)
 {
     cl_int e;
     const char *want = NULL;
-    int rc = ms_cl_pick_device(&cl->dev, &e, &want);
-    if (rc == 0) return 0;
+    ms_cl_engine *shared;
+    int rc = ms_cl_engine_device(&shared, 0, &e, &want);
+    if (rc == 0) {
+        cl->dev = shared->dev;
+        return 0;
+    }
     engine_absent = 1;
     if (rc == MS_CL_NOPLATFORM)
         return ms_cl_fail(err, "clGetPlatformIDs (no OpenCL platform)", e);
@@ -92,14 +96,16 @@ static int scan_group(ms_qsurf_cl *cl, ms_error *err)
     return 0;
 }
 
-/* The context, queue and kernels, made the first time the device is used. */
+/* The kernels on the shared context (made then if the tracer has not), the first time the
+ * device is used. */
 static int start(ms_qsurf_cl *cl, ms_error *err)
 {
+    ms_cl_engine *shared;
     cl_int e;
-    cl->ctx = clCreateContext(NULL, 1, &cl->dev.id, NULL, NULL, &e);
-    if (e != CL_SUCCESS) return ms_cl_fail(err, "clCreateContext", e);
-    cl->queue = clCreateCommandQueue(cl->ctx, cl->dev.id, 0, &e);
-    if (e != CL_SUCCESS) return ms_cl_fail(err, "clCreateCommandQueue", e);
+    const char *want;
+    if (ms_cl_engine_device(&shared, 0, &e, &want) || ms_cl_engine_start(shared, err)) return -1;
+    cl->ctx = shared->ctx;
+    cl->queue = shared->queue;
     if (build_program(cl, err) < 0) return -1;
     return scan_group(cl, err);
 }
@@ -122,11 +128,7 @@ ms_qsurf_cl *ms_qsurf_cl_acquire(int any_type, int *absent, ms_error *err)
     }
     pthread_mutex_lock(&engine_lock);
     ms_error e = {{0}};
-    if (engine_state == 0) {
-        char dir[1024];
-        if (ms_cl_cache_dir(dir, sizeof dir, 0) == 0) ms_cl_pocl_cache(dir);   /* before PoCL */
-        engine_state = pick_device(&engine, &e) == 0 ? 1 : -1;
-    }
+    if (engine_state == 0) engine_state = pick_device(&engine, &e) == 0 ? 1 : -1;
     int wanted = any_type || engine.dev.named ||
                  (engine.dev.type & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR));
     if (engine_state == 1 && wanted) engine_state = start(&engine, &e) == 0 ? 2 : -1;

@@ -15,7 +15,7 @@ enum { K_DENSITY, K_COUNT, K_SCAN, K_SCAN_ADD, K_VERTICES, K_TRIANGLES, K_COUNT_
 
 struct ms_qsurf_cl {
     ms_cl_device dev;        /* the device, its type, memory and name */
-    cl_context ctx;
+    cl_context ctx;          /* the shared engine's (cl/cl.h), not released here */
     cl_command_queue queue;
     cl_program program;
     cl_kernel k[K_COUNT_OF];

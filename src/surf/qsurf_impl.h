@@ -256,8 +256,8 @@ int ms_qsurf_mesh_fits(ms_qsurf_extract *mc, size_t nv, size_t nt, ms_error *err
 void ms_qsurf_advise_huge(void *p, size_t bytes);
 
 /* ---------------------------------------------------------------- OpenCL engine
- * One engine per process (device, context, queue, built kernels), shared by every surface
- * and used by one surface at a time. A slab runs on the device from density to mesh: its
+ * One engine per process (built kernels on the device, context and queue of cl/cl.h, which
+ * the OpenCL tracer shares), shared by every surface and used by one surface at a time. A slab runs on the device from density to mesh: its
  * density stays there, marching cubes runs there, and only the mesh comes back, appended
  * to the host mesh in the host extractor's order (the same mesh, index for index). */
 typedef struct ms_qsurf_cl ms_qsurf_cl;

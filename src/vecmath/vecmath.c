@@ -1,4 +1,5 @@
-/* vecmath.c: 3-vectors and VMD-style 4x4 transformation matrices in double precision. */
+/* vecmath.c: the double-precision functions of vecmath.h that vec_tmpl.h does not give:
+ * angles, the 4x4 inverse, VMD's rotations, the 3x3 inverse. */
 #include "config.h"
 #include "vecmath/vecmath.h"
 
@@ -6,20 +7,6 @@
 #include <string.h>
 
 #define RAD2DEG (180.0 / M_PI)
-
-void ms_v3_sub(const double a[3], const double b[3], double out[3])
-{
-    for (int k = 0; k < 3; k++) out[k] = a[k] - b[k];
-}
-
-void ms_v3_cross(const double a[3], const double b[3], double out[3])
-{
-    double t[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                   a[0] * b[1] - a[1] * b[0]};
-    memcpy(out, t, sizeof t);
-}
-
-double ms_v3_length(const double a[3]) { return sqrt(ms_v3_dot(a, a)); }
 
 double ms_v3_angle(const double a[3], const double b[3])
 {
@@ -46,32 +33,6 @@ double ms_v3_dihedral(const double a[3], const double b[3], const double c[3], c
 }
 
 /* ---------------------------------------------------------------- 4x4 matrices */
-
-void ms_mat4d_identity(double m[16])
-{
-    memset(m, 0, 16 * sizeof *m);
-    m[0] = m[5] = m[10] = m[15] = 1.0;
-}
-
-void ms_mat4d_mul(const double a[16], const double b[16], double out[16])
-{
-    double t[16];
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) {
-            double s = 0.0;
-            for (int k = 0; k < 4; k++) s += a[4 * r + k] * b[4 * k + c];
-            t[4 * r + c] = s;
-        }
-    memcpy(out, t, sizeof t);
-}
-
-void ms_mat4d_transpose(const double a[16], double out[16])
-{
-    double t[16];
-    for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) t[4 * c + r] = a[4 * r + c];
-    memcpy(out, t, sizeof t);
-}
 
 /* Swap rows r and s of both halves of the augmented system. */
 static void swap_rows(double a[16], double b[16], int r, int s)
@@ -127,35 +88,6 @@ void ms_mat4d_apply(const double m[16], const double v[4], double out[4])
     memcpy(out, t, sizeof t);
 }
 
-void ms_mat4d_apply_point(const double m[16], const double p[3], double out[3])
-{
-    double v[4] = {p[0], p[1], p[2], 1.0};
-    ms_mat4d_apply(m, v, v);
-    memcpy(out, v, 3 * sizeof *out);
-}
-
-void ms_mat4d_translation(double m[16], const double t[3])
-{
-    ms_mat4d_identity(m);
-    m[3] = t[0];
-    m[7] = t[1];
-    m[11] = t[2];
-}
-
-void ms_mat4d_axis_rotation(double m[16], char axis, double rad)
-{
-    /* The two coordinates that turn, in right-handed order: y->z about x, z->x about y,
-     * x->y about z. */
-    int i = axis == 'x' ? 1 : axis == 'y' ? 2 : 0;
-    int j = axis == 'x' ? 2 : axis == 'y' ? 0 : 1;
-    double c = cos(rad), s = sin(rad);
-    ms_mat4d_identity(m);
-    m[4 * i + i] = c;
-    m[4 * i + j] = -s;
-    m[4 * j + i] = s;
-    m[4 * j + j] = c;
-}
-
 /* Azimuth (about z) and elevation (towards z) of v. */
 static void direction_angles(const double v[3], double *theta, double *phi)
 {
@@ -195,4 +127,21 @@ void ms_mat4d_rotate_about(double m[16], const double axis[3], double rad)
     ms_mat4d_identity(m);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) m[4 * i + j] = r[3 * i + j];
+}
+
+/* ---------------------------------------------------------------- 3x3 matrices */
+
+int ms_m3d_inverse(const double a[3][3], double inv[3][3])
+{
+    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    if (!(fabs(det) > 1e-30) || !isfinite(det)) return -1;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            /* the cofactor of a[c][r] */
+            int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+            inv[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
+        }
+    return 0;
 }

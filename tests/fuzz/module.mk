@@ -11,7 +11,7 @@
 FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin
 FUZZ_CORE = \
 	src/base/base.c src/base/strtab.c src/base/threads.c src/base/bitset.c \
-	src/base/safewrite.c \
+	src/base/safewrite.c src/base/grid.c \
 	src/molecule/molecule.c src/molecule/volume.c src/molecule/elements.c \
 	src/molecule/bonds.c src/molecule/classify.c src/molecule/molset.c \
 	src/fileio/registry.c src/fileio/load.c src/fileio/assembly.c src/fileio/write.c

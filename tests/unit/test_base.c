@@ -1,13 +1,17 @@
 /* test_base.c: unit tests of the base utilities: interned strings, array growth, the
- * worker pool, hybrid-36 numbers and field parsing of the plugin helpers. */
+ * worker pool, the neighbour cell grid (against brute force), hybrid-36 numbers and field
+ * parsing of the plugin helpers. */
 #include "config.h"
 #include "ms_test.h"
 #include "base/base.h"
 #include "base/strtab.h"
 #include "base/threads.h"
+#include "base/grid.h"
 #include "plugin_util.h"
 
+#include <math.h>
 #include <stdatomic.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void test_strtab(void)
@@ -124,6 +128,134 @@ static void test_thread_limit(void)
     free(c.seen);
 }
 
+/* Points in clusters with a few outliers far out, a NaN and an infinity. */
+static float *grid_points(size_t n, unsigned seed)
+{
+    float *p = malloc(3 * n * sizeof *p);
+    srand(seed);
+    for (size_t i = 0; p && i < 3 * n; i++)
+        p[i] = (float)(rand() % 20000) / 1000.0f + (i / 3 % 50 == 7 ? 400.0f : 0.0f);
+    if (p && n > 10) p[3 * 3 + 1] = NAN, p[3 * 5 + 2] = INFINITY;
+    return p;
+}
+
+static int finite_point(const float *p)
+{
+    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+}
+
+static double dist2(const float *a, const float *b)
+{
+    double d = 0;
+    for (int k = 0; k < 3; k++) d += ((double)a[k] - b[k]) * ((double)a[k] - b[k]);
+    return d;
+}
+
+/* ms_grid_near's cells hold exactly the points within the cutoff of q. */
+static int near_agrees(const ms_grid *g, const float *pts, size_t n, const float *q, double cut)
+{
+    ms_grid_run runs[9];
+    int nr = ms_grid_near(g, q, runs);
+    size_t found = 0, want = 0;
+    for (size_t j = 0; j < n; j++) want += finite_point(pts + 3 * j) && dist2(q, pts + 3 * j) <= cut * cut;
+    for (int r = 0; r < nr; r++)
+        for (uint32_t k = runs[r].begin; k < runs[r].end; k++)
+            found += dist2(q, pts + 3 * (size_t)g->items[k]) <= cut * cut;
+    return found == want;
+}
+
+/* In double precision, then in single (the cells the representations' pair search uses). */
+static void test_grid_near(int single)
+{
+    t_suite = single ? "grid, single precision" : "grid";
+    size_t n = 3000;
+    float *pts = grid_points(n, 7);
+    ms_grid g;
+    ms_error err = {{0}};
+    ms_grid_points gp = {pts, 3, NULL, n};
+    ms_grid_spec spec = {2.5, 4.0, 64.0, 1.26, single};
+    t_ok(pts && ms_grid_build(&g, &gp, &spec, &err) == 0, "a grid over 3000 points builds");
+    t_ok(g.n == n - 2 && g.start[g.ncells] == n - 2, "the two non-finite points are left out");
+    t_ok(g.cell >= 2.5 && (double)g.ncells <= 4.0 * (double)g.n + 64.0,
+         "cells at least the cutoff wide, at most 4 per point + 64 (%zu cells, %.2f wide)",
+         g.ncells, g.cell);
+    int ok = 1;
+    for (size_t c = 0; c < g.ncells; c++)
+        for (uint32_t k = g.start[c] + 1; k < g.start[c + 1]; k++) ok &= g.items[k] > g.items[k - 1];
+    t_ok(ok, "items ascend inside every cell");
+    ok = 1;
+    for (size_t i = 0; i < n; i++) ok &= near_agrees(&g, pts, n, pts + 3 * i, 2.5);
+    float outside[3] = {-3.0f, 5.0f, 5.0f}, far[3] = {-1000.0f, 5.0f, 5.0f};
+    if (!single) ok &= near_agrees(&g, pts, n, outside, 2.5);   /* single: own points only */
+    ms_grid_run runs[9];
+    t_ok(ok, "the cells near each point hold every point within the cutoff");
+    t_ok(ms_grid_near(&g, far, runs) == 0 && ms_grid_near(&g, pts + 9, runs) == 0,
+         "a point far outside, or not finite, has no cells near it");
+    ms_grid_free(&g);
+    free(pts);
+}
+
+/* Each cell's own pairs and those with its forward half find every close pair once. */
+static void test_grid_pairs(void)
+{
+    size_t n = 2000;
+    float *pts = grid_points(n, 11);
+    uint32_t *ids = malloc(n / 2 * sizeof *ids);
+    for (size_t i = 0; ids && i < n / 2; i++) ids[i] = (uint32_t)(2 * i + 1);   /* odd ones */
+    ms_grid g;
+    ms_error err = {{0}};
+    ms_grid_points gp = {pts, 3, ids, n / 2};
+    ms_grid_spec spec = {1.7, 8.0, 64.0, 1.1, 0};
+    t_ok(pts && ids && ms_grid_build(&g, &gp, &spec, &err) == 0, "a grid over a subset builds");
+    size_t found = 0, want = 0, odd = 1;
+    for (long z = 0; z < g.dim[2]; z++)
+        for (long y = 0; y < g.dim[1]; y++)
+            for (long x = 0; x < g.dim[0]; x++) {
+                size_t c = ms_grid_index(&g, x, y, z);
+                ms_grid_run runs[5];
+                int nr = ms_grid_forward(&g, x, y, z, runs);
+                for (uint32_t a = g.start[c]; a < g.start[c + 1]; a++) {
+                    odd &= g.items[a] % 2;
+                    for (uint32_t b = a + 1; b < g.start[c + 1]; b++)
+                        found += dist2(pts + 3 * g.items[a], pts + 3 * g.items[b]) <= 1.7 * 1.7;
+                    for (int r = 0; r < nr; r++)
+                        for (uint32_t b = runs[r].begin; b < runs[r].end; b++)
+                            found += dist2(pts + 3 * g.items[a], pts + 3 * g.items[b]) <= 1.7 * 1.7;
+                }
+            }
+    for (size_t i = 1; i < n; i += 2)
+        for (size_t j = i + 2; j < n; j += 2)
+            want += finite_point(pts + 3 * i) && finite_point(pts + 3 * j) &&
+                    dist2(pts + 3 * i, pts + 3 * j) <= 1.7 * 1.7;
+    t_ok(odd, "the items are the ids given");
+    t_ok(found == want && want > 0, "every pair within the cutoff is found once (%zu of %zu)",
+         found, want);
+    ms_grid_free(&g);
+    free(ids);
+    free(pts);
+}
+
+static void test_grid_edges(void)
+{
+    ms_grid g;
+    ms_error err = {{0}};
+    float one[3] = {1, 2, 3}, sparse[6] = {0, 0, 0, 1e30f, -1e30f, 1e30f};
+    ms_grid_points none = {one, 3, NULL, 0}, far = {sparse, 3, NULL, 2};
+    ms_grid_spec spec = {1.0, 2.0, 8.0, 1.26, 0};
+    t_ok(ms_grid_build(&g, &none, &spec, &err) == 0 && g.n == 0 && g.ncells == 1,
+         "no points: one empty cell");
+    ms_grid_free(&g);
+    int built = ms_grid_build(&g, &far, &spec, &err) == 0;
+    t_ok(built && g.ncells <= 12 && g.n == 2, "two points 1e30 apart: a handful of cells (%zu)",
+         g.ncells);
+    ms_grid_run runs[9];
+    int nr = ms_grid_near(&g, sparse + 3, runs);
+    size_t held = 0;
+    for (int r = 0; r < nr; r++) held += runs[r].end - runs[r].begin;
+    t_ok(held >= 1, "a point's own cell is near it");
+    ms_grid_free(&g);
+}
+
 static void test_hy36(void)
 {
     t_suite = "hybrid36";
@@ -169,6 +301,11 @@ int main(void)
     test_grow();
     test_threads();
     test_thread_limit();
+    test_grid_near(0);
+    test_grid_near(1);
+    test_grid_pairs();
+    t_suite = "grid";
+    test_grid_edges();
     test_hy36();
     test_fields();
     return t_done();

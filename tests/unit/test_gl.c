@@ -13,7 +13,7 @@
 #include "assemble/view.h"
 #include "fileio/load.h"
 #include "gl/gl.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 
 #include <math.h>
 #include <stdlib.h>

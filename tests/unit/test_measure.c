@@ -96,15 +96,15 @@ static void test_matrices(void)
     ms_mat4d_mul(ref, tvi, ref);
     t_ok(mat_diff(r, ref) < 1e-12, "rotation about an axis matches transvec.Rx.transvecinv");
     double ex[3] = {1, 0, 0}, out[3], len = ms_v3_length(axis);
-    ms_mat4d_apply_point(tv, ex, out);
+    ms_mat4d_point(tv, ex, out);
     t_ok(near(out[0], axis[0] / len, 1e-12) && near(out[1], axis[1] / len, 1e-12) &&
              near(out[2], axis[2] / len, 1e-12), "transvec takes x onto the vector's direction");
     double z[3] = {0, 0, 1}, q[3];
     ms_mat4d_axis_rotation(r, 'z', M_PI / 2);
-    ms_mat4d_apply_point(r, ex, q);
+    ms_mat4d_point(r, ex, q);
     t_ok(near(q[1], 1, 1e-12) && near(q[0], 0, 1e-12), "rotation about z turns x onto y");
     ms_mat4d_rotate_about(r, z, M_PI / 2);
-    ms_mat4d_apply_point(r, ex, q);
+    ms_mat4d_point(r, ex, q);
     t_ok(near(q[1], 1, 1e-12), "rotation about {0 0 1} turns x onto y");
 }
 
@@ -200,7 +200,7 @@ static void test_inertia_box(void)
     ms_mat4d_rotate_about(R, axis, 0.9);
     for (int k = 0; k < 8; k++) {
         double p[3] = {k & 1 ? 3 : -3, k & 2 ? 2 : -2, k & 4 ? 1 : -1};
-        ms_mat4d_apply_point(R, p, xyz + 3 * k);
+        ms_mat4d_point(R, p, xyz + 3 * k);
         xyz[3 * k] += 10;   /* and moved off the origin */
     }
     ms_molecule *m = make_mol(8, xyz);
@@ -230,7 +230,7 @@ static double fitted_rmsd(size_t n, const double *x, const double *y, const doub
     double s = 0;
     for (size_t i = 0; i < n; i++) {
         double p[3], d[3];
-        ms_mat4d_apply_point(m, x + 3 * i, p);
+        ms_mat4d_point(m, x + 3 * i, p);
         ms_v3_sub(p, y + 3 * i, d);
         s += ms_v3_dot(d, d);
     }
@@ -254,7 +254,7 @@ static void test_fit_rotation(void)
     ms_mat4d_rotate_about(R, axis, 37 * M_PI / 180);
     for (int k = 0; k < 3; k++) R[4 * k + 3] = t[k];
     for (int i = 0; i < 3 * N; i++) x[i] = 10 * rnd() - 5;
-    for (int i = 0; i < N; i++) ms_mat4d_apply_point(R, x + 3 * i, y + 3 * i);
+    for (int i = 0; i < N; i++) ms_mat4d_point(R, x + 3 * i, y + 3 * i);
     rc = ms_measure_fit_points(N, x, y, NULL, m, &err);
     t_ok(rc == 0, "fit of a rotated copy");
     t_ok(mat_diff(m, R) < 1e-10, "the rotation and translation come back (%g)", mat_diff(m, R));
@@ -296,7 +296,7 @@ static void test_fit_mirror(void)
         double axis[3] = {rnd() - 0.5, rnd() - 0.5, rnd() - 0.5}, r[16], cx[3] = {0.4, 0.6, 0.8};
         double cy[3] = {-0.4, 0.6, 0.8}, rc[3];
         ms_mat4d_rotate_about(r, axis, 2 * M_PI * rnd());
-        ms_mat4d_apply_point(r, cx, rc);
+        ms_mat4d_point(r, cx, rc);
         for (int j = 0; j < 3; j++) r[4 * j + 3] = cy[j] - rc[j];
         if (fitted_rmsd(5, x, y, r) < best - 1e-9) beaten++;
     }
@@ -343,7 +343,7 @@ static void test_fit_sets(void)
     R[3] = 1, R[7] = 2, R[11] = -3;
     for (int i = 0; i < N; i++) {
         double p[3];
-        ms_mat4d_apply_point(R, x + 3 * i, p);
+        ms_mat4d_point(R, x + 3 * i, p);
         for (int k = 0; k < 3; k++) f->pos[3 * i + k] = (float)p[k];
     }
     uint32_t *idx = iota(N), order[N];

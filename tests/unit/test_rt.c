@@ -15,7 +15,7 @@
 #include "image/image.h"
 #include "rt/rt.h"
 #include "scene/displaylist.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 #include "scene/material.h"
 #include "scene/scene.h"
 
@@ -30,6 +30,8 @@ static ms_materials *mats;
 #include <dirent.h>
 
 #include "oclrt/oclrt.h"
+#include "oclrt/oclrt_impl.h"
+#include "surf/opencl_impl.h"
 #define TRACER "TachyonLOpenCLInternal"
 static int ocl_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt_stats *st,
                       ms_error *err)
@@ -895,6 +897,25 @@ static int on_pass(void *user, int passes, const ms_image *img)
     return passes >= 5;
 }
 
+/* The tracer and QuickSurf use the one device, context and queue of cl/cl.h. */
+static void test_shared_engine(void)
+{
+    t_suite = "OpenCL engine";
+    ms_error err = {{0}};
+    orc_engine *e = orc_engine_acquire(&err);
+    t_ok(e != NULL, "the tracer's engine starts (%s)", err.msg);
+    if (!e) return;
+    cl_context ctx = e->ctx;
+    cl_command_queue queue = e->queue;
+    orc_engine_release(e);
+    int absent = 0;
+    ms_qsurf_cl *cl = ms_qsurf_cl_acquire(1, &absent, &err);
+    t_ok(cl && cl->ctx == ctx && cl->queue == queue && !strcmp(cl->dev.name, ms_oclrt_device_name()),
+         "QuickSurf's OpenCL engine has the tracer's device, context and queue (%s)",
+         cl ? cl->dev.name : err.msg);
+    if (cl) ms_qsurf_cl_release(cl);
+}
+
 /* The pass callback sees each pass's average; a nonzero return stops the render. */
 static void test_callback(void)
 {
@@ -1085,6 +1106,7 @@ int main(void)
     test_session();
     test_degenerate();
 #ifdef MS_TEST_OCLRT
+    test_shared_engine();
     test_callback();
     /* the memory plan, the fallback and rtcBuildBVH are Embree's */
     if (!ms_rt_available()) {

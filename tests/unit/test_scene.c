@@ -9,7 +9,7 @@
 #include "scene/color.h"
 #include "scene/displaylist.h"
 #include "scene/graphics.h"
-#include "scene/mat4.h"
+#include "vecmath/vecf.h"
 #include "scene/material.h"
 #include "scene/scene.h"
 
@@ -186,7 +186,7 @@ static void test_matrices_and_camera(void)
 {
     t_suite = "camera";
     float r[16], p[3], x[3] = {1, 0, 0};
-    ms_mat4_rotation(r, 'z', 90);
+    ms_mat4_axis_rotation(r, 'z', ms_deg_rad(90));
     ms_mat4_point(r, x, p);
     t_ok(near(p[0], 0, 1e-6f) && near(p[1], 1, 1e-6f), "z 90 turns x into y");
     ms_mat4_scaling(r, 0.25f);
