@@ -7,6 +7,15 @@
 
 #define ORC_LIGHTS 4                /* MS_SCENE_LIGHTS */
 
+/* an item (a placed list) in float4s: its normal matrix in three rows (w of the first: the
+ * sign of the transform's determinant), then its clip planes (a point p is cut away when
+ * eq . (p, 1) < 0; MS_SCENE_CLIPS of them at most, in world space), then their colours (w:
+ * 1 for a solid cut, VMD's status 2) */
+#define ORC_CLIPS 6                 /* MS_SCENE_CLIPS */
+#define ORC_ITEM_PLANES 3
+#define ORC_ITEM_COLORS (ORC_ITEM_PLANES + ORC_CLIPS)
+#define ORC_ITEM (ORC_ITEM_COLORS + ORC_CLIPS)
+
 /* primitive kinds, in the top bits of a leaf reference */
 #define ORC_SPHERE 0u
 #define ORC_CYLINDER 1u
