@@ -215,6 +215,7 @@ static void place_source(orc_world *w, const source *s)
         for (int c = 0; c < 3; c++) it[4 * r + c] = pl.ri.nm[3 * r + c];
     it[3] = det < 0 ? -1.0f : 1.0f;
     pl.nclip = put_clips(it, s->item);
+    w->nclipped += pl.nclip > 0;
     place_spheres(&pl, s);
     place_cylinders(&pl, s);
     place_cones(&pl, s);

@@ -62,6 +62,7 @@ static void make_params(const ms_scene *s, const ms_rt_options *o, const orc_wor
     P[P_EPS] = w->eps;
     P[P_DEPTH] = (float)(o->max_depth > 0 && o->max_depth < MS_RT_MAX_DEPTH ? o->max_depth : MS_RT_MAX_DEPTH);
     P[P_NNODES] = (float)w->nnodes;
+    P[P_CLIPPED] = (float)w->nclipped;
 }
 
 /* ---------------------------------------------------------------- buffers */

@@ -352,6 +352,7 @@ static float traverse(const scene *S, float3 o, float3 d, float tnear, int any, 
                       float *u, float *v)
 {
     int stack[MAXDEPTH_BVH], sp = 0, node = 0, nnodes = (int)S->P[P_NNODES];
+    int clips = S->P[P_CLIPPED] != 0.0f;
     float3 inv = 1.0f / d;
     float tfar = INFINITY, f = 1.0f;
     int hit = 0;
@@ -374,7 +375,7 @@ static float traverse(const scene *S, float3 o, float3 d, float tnear, int any, 
                 uint pr = S->leaf[p];
                 float tt[2], uu, vv;
                 int n = prim_test(S, pr, o, d, tnear, tfar, tt, &uu, &vv);
-                if (n) n = unclipped(S, pr, o, d, tt, n);
+                if (n && clips) n = unclipped(S, pr, o, d, tt, n);
                 if (!n) continue;
                 if (!any) {
                     tfar = tt[0], *t = tt[0], *ref = pr, *u = uu, *v = vv, hit = 1;

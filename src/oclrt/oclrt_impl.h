@@ -37,7 +37,7 @@ typedef struct orc_world {
     int32_t *gflag;
     /* items (placed lists): ORC_ITEM float4s each (params.h): the normal matrix and the
      * item's clip planes */
-    size_t nitems;
+    size_t nitems, nclipped;    /* items, and those with clip planes */
     float *item;
     /* the BVH: per node the boxes of its two children and (child, child, count, count):
      * a count of 0 makes the child an inner node (or nothing when negative), else a leaf of
