@@ -345,9 +345,8 @@ static float box_hit(float4 lo, float4 hi, float3 o, float3 inv, float tnear, fl
 
 /* Walk the tree: closest (any == 0: the nearest hit in *t, *ref, *u, *v) or visibility
  * (any == 1: the light left after the transparent crossings, 0 at an opaque one, as
- * rt_user_block and rt_occlusion_filter count them). Crossings a clip plane cut away are
- * passed by both. Returns whether something was hit
- * (closest) or the light left (visibility). */
+ * rt_user_block and rt_occlusion_filter count them); both pass the crossings a clip plane
+ * cut away. Returns whether something was hit (closest) or the light left (visibility). */
 static float traverse(const scene *S, float3 o, float3 d, float tnear, int any, float *t, uint *ref,
                       float *u, float *v)
 {
