@@ -5,7 +5,8 @@
  * moved to world space here (positions by the transform, radii by its scale: VMD's
  * transforms are rotations, translations and uniform scales), while mesh normals stay the
  * list's quantized bytes and the kernel turns them with the list's normal matrix. A bond is
- * one cylinder with its second colour and the joint's distance along the axis. */
+ * one cylinder with its second colour and the joint's distance along the axis. Each item
+ * carries its scene item's clip planes (world space), which the kernels test at every hit. */
 #include "config.h"
 #include "oclrt/oclrt_impl.h"
 
@@ -48,7 +49,7 @@ static int alloc_arrays(orc_world *w, size_t nsrc, ms_error *err)
     w->gmat0 = ms_alloc_array(ng, 4 * sizeof(float));
     w->gmat1 = ms_alloc_array(ng, 4 * sizeof(float));
     w->gflag = ms_calloc_array(ng, 4 * sizeof(int32_t));
-    w->item = ms_calloc_array(nsrc + 1, 12 * sizeof(float));
+    w->item = ms_calloc_array(nsrc + 1, ORC_ITEM * 4 * sizeof(float));
     if (w->qa && w->qb && w->qm && w->qkind && w->tri && w->vxyz && w->vnorm && w->vcol &&
         w->gmat0 && w->gmat1 && w->gflag && w->item)
         return 0;
@@ -63,6 +64,7 @@ typedef struct placer {
     rt_xform ri;
     float scale;                /* the transform's (uniform) scale */
     uint32_t item;
+    int nclip;                  /* the item's clip planes */
 } placer;
 
 static uint32_t add_geom(placer *pl, const rt_material *m, int alpha)
@@ -73,7 +75,7 @@ static uint32_t add_geom(placer *pl, const rt_material *m, int alpha)
     a[0] = m->ambient, a[1] = m->diffuse, a[2] = m->mirror, a[3] = m->phong;
     b[0] = m->phongexp, b[1] = m->opacity, b[2] = m->outline, b[3] = m->outlinewidth;
     int32_t *f = w->gflag + 4 * g;
-    f[0] = m->r3d, f[1] = alpha, f[2] = (int32_t)pl->item, f[3] = 0;
+    f[0] = m->r3d, f[1] = alpha, f[2] = (int32_t)pl->item, f[3] = pl->nclip;
     return (uint32_t)g;
 }
 
@@ -181,7 +183,23 @@ static void place_mesh(placer *pl, const source *s)
     w->ntri += m->ntris;
 }
 
-/* A list's item (normal matrix; -1 when its transform is singular) and its primitives. */
+/* The clip planes of the scene item a source comes from (already in world space, as the
+ * flattened primitives are) into the item's record. */
+static int put_clips(float *it, const ms_scene_item *si)
+{
+    int n = si ? si->nclip : 0;
+    for (int i = 0; i < n; i++) {
+        const ms_clip_plane *cp = &si->clip[i];
+        float *eq = it + 4 * (ORC_ITEM_PLANES + i), *col = it + 4 * (ORC_ITEM_COLORS + i);
+        memcpy(eq, cp->eq, 4 * sizeof(float));
+        memcpy(col, cp->color, 3 * sizeof(float));
+        col[3] = cp->solid ? 1.0f : 0.0f;
+    }
+    return n;
+}
+
+/* A list's item (normal matrix, clip planes; -1 when its transform is singular) and its
+ * primitives. */
 static void place_source(orc_world *w, const source *s)
 {
     placer pl;
@@ -192,10 +210,12 @@ static void place_source(orc_world *w, const source *s)
     float det = x[0] * (x[5] * x[10] - x[6] * x[9]) - x[1] * (x[4] * x[10] - x[6] * x[8]) +
                 x[2] * (x[4] * x[9] - x[5] * x[8]);
     pl.scale = cbrtf(fabsf(det));
-    float *it = w->item + 12 * w->nitems++;
+    float *it = w->item + 4 * ORC_ITEM * w->nitems++;
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 3; c++) it[4 * r + c] = pl.ri.nm[3 * r + c];
     it[3] = det < 0 ? -1.0f : 1.0f;
+    pl.nclip = put_clips(it, s->item);
+    w->nclipped += pl.nclip > 0;
     place_spheres(&pl, s);
     place_cylinders(&pl, s);
     place_cones(&pl, s);

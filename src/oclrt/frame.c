@@ -62,6 +62,7 @@ static void make_params(const ms_scene *s, const ms_rt_options *o, const orc_wor
     P[P_EPS] = w->eps;
     P[P_DEPTH] = (float)(o->max_depth > 0 && o->max_depth < MS_RT_MAX_DEPTH ? o->max_depth : MS_RT_MAX_DEPTH);
     P[P_NNODES] = (float)w->nnodes;
+    P[P_CLIPPED] = (float)w->nclipped;
 }
 
 /* ---------------------------------------------------------------- buffers */
@@ -92,7 +93,7 @@ static int upload(ocl_frame *f, const orc_world *w, const float *P, ms_error *er
         {ro, nq * 16, w->qa}, {ro, nq * 16, w->qb}, {ro, nq * 16, w->qm}, {ro, nt * 16, w->tri},
         {ro, nv * 16, w->vxyz}, {ro, nv * 4, w->vnorm}, {ro, nv * 4, w->vcol},
         {ro, ng * 16, w->gmat0}, {ro, ng * 16, w->gmat1}, {ro, ng * 16, w->gflag},
-        {ro, w->nitems * 48, w->item}, {rw, f->npix * 12, NULL}, {rw, f->npix * 4, NULL},
+        {ro, w->nitems * ORC_ITEM * 16, w->item}, {rw, f->npix * 12, NULL}, {rw, f->npix * 4, NULL},
         {rw, f->npix * 16, NULL}};
     double total = 0;
     for (int i = 0; i < B_COUNT; i++) total += (double)b[i].bytes;

@@ -281,12 +281,19 @@ static int prim_test(const scene *S, uint ref, float3 o, float3 d, float tnear, 
     return ring_test(a, b, o, d, tnear, tfar, t);
 }
 
+/* The geometry of primitive ref. */
+static uint prim_geom(const scene *S, uint ref)
+{
+    uint i = ref & ORC_INDEX_MASK;
+    return ref >> ORC_KIND_SHIFT == ORC_TRIANGLE ? S->tri[i].w : S->qm[i].x;
+}
+
 /* user.c's rt_geom_opacity: the material's opacity times the colour's alpha (a mesh's
  * interpolated at u, v). */
 static float prim_opacity(const scene *S, uint ref, float u, float v)
 {
     uint kind = ref >> ORC_KIND_SHIFT, i = ref & ORC_INDEX_MASK;
-    uint g = kind == ORC_TRIANGLE ? S->tri[i].w : S->qm[i].x;
+    uint g = prim_geom(S, ref);
     float op = S->gmat1[g].y;
     if (!S->gflag[g].y) return op;
     float a;
@@ -298,6 +305,31 @@ static float prim_opacity(const scene *S, uint ref, float u, float v)
         a = (float)as_uchar4(S->qm[i].y).w;
     }
     return op * a * (1.0f / 255.0f);
+}
+
+/* user.c's rt_geom_clipped (scene.h's ms_scene_clipped): is world point p cut away by a
+ * clip plane of geometry g's item? */
+static int clipped(const scene *S, uint g, float3 p)
+{
+    int4 f = S->gflag[g];
+    for (int i = 0; i < f.w; i++) {
+        float4 e = S->item[ORC_ITEM * f.z + ORC_ITEM_PLANES + i];
+        if (e.x * p.x + e.y * p.y + e.z * p.z + e.w < 0.0f) return 1;
+    }
+    return 0;
+}
+
+/* The n crossings t[] of primitive ref less those its clip planes cut away (shade.c's
+ * intersect_unclipped passes them and goes on; occlusion rays pass them too): how many are
+ * left, nearest first in t[]. */
+static int unclipped(const scene *S, uint ref, float3 o, float3 d, float *t, int n)
+{
+    uint g = prim_geom(S, ref);
+    if (S->gflag[g].w == 0) return n;
+    int kept = 0;
+    for (int k = 0; k < n; k++)
+        if (!clipped(S, g, o + t[k] * d)) t[kept++] = t[k];
+    return kept;
 }
 
 /* ---------------------------------------------------------------- traversal */
@@ -313,12 +345,13 @@ static float box_hit(float4 lo, float4 hi, float3 o, float3 inv, float tnear, fl
 
 /* Walk the tree: closest (any == 0: the nearest hit in *t, *ref, *u, *v) or visibility
  * (any == 1: the light left after the transparent crossings, 0 at an opaque one, as
- * rt_user_block and rt_transparent_filter count them). Returns whether something was hit
- * (closest) or the light left (visibility). */
+ * rt_user_block and rt_occlusion_filter count them); both pass the crossings a clip plane
+ * cut away. Returns whether something was hit (closest) or the light left (visibility). */
 static float traverse(const scene *S, float3 o, float3 d, float tnear, int any, float *t, uint *ref,
                       float *u, float *v)
 {
     int stack[MAXDEPTH_BVH], sp = 0, node = 0, nnodes = (int)S->P[P_NNODES];
+    int clips = S->P[P_CLIPPED] != 0.0f;
     float3 inv = 1.0f / d;
     float tfar = INFINITY, f = 1.0f;
     int hit = 0;
@@ -341,6 +374,7 @@ static float traverse(const scene *S, float3 o, float3 d, float tnear, int any, 
                 uint pr = S->leaf[p];
                 float tt[2], uu, vv;
                 int n = prim_test(S, pr, o, d, tnear, tfar, tt, &uu, &vv);
+                if (n && clips) n = unclipped(S, pr, o, d, tt, n);
                 if (!n) continue;
                 if (!any) {
                     tfar = tt[0], *t = tt[0], *ref = pr, *u = uu, *v = vv, hit = 1;
@@ -418,6 +452,23 @@ static float dequant(char c)
     return (2.0f * (float)c + 1.0f) * (1.0f / 255.0f);
 }
 
+/* shade.c's solid_cut: the inside of a surface seen through a cut of a solid clip plane
+ * (VMD's status 2) takes the plane's colour and faces the viewer as the plane does. */
+static void solid_cut(const scene *S, float3 d, surface *s)
+{
+    int4 f = S->gflag[s->g];
+    for (int i = 0; i < f.w; i++) {
+        float4 c = S->item[ORC_ITEM * f.z + ORC_ITEM_COLORS + i];
+        if (c.w == 0.0f) continue;
+        float3 n = S->item[ORC_ITEM * f.z + ORC_ITEM_PLANES + i].xyz;
+        if (!(norm3(&n) > 0.0f)) continue;
+        float side = dot3(n, d) > 0.0f ? -1.0f : 1.0f;
+        s->n = side * n;
+        s->col = c.xyz;
+        return;
+    }
+}
+
 /* shade.c's surface_at with the primitive files' surface functions (world space here). */
 static void surface_at(const scene *S, float3 o, float3 d, float t, uint ref, float u, float v,
                        surface *s)
@@ -435,7 +486,8 @@ static void surface_at(const scene *S, float3 o, float3 d, float t, uint ref, fl
                              wa * dequant(na.y) + wb * dequant(nb.y) + wc * dequant(nc.y),
                              wa * dequant(na.z) + wb * dequant(nb.z) + wc * dequant(nc.z));
         int it = S->gflag[tr.w].z;
-        float4 m0 = S->item[3 * it], m1 = S->item[3 * it + 1], m2 = S->item[3 * it + 2];
+        __global const float4 *m = S->item + ORC_ITEM * it;
+        float4 m0 = m[0], m1 = m[1], m2 = m[2];
         n = (float3)(dot3(m0.xyz, nl), dot3(m1.xyz, nl), dot3(m2.xyz, nl));
         float3 v0 = S->vxyz[tr.x].xyz;
         ng = cross3(S->vxyz[tr.y].xyz - v0, S->vxyz[tr.z].xyz - v0) * m0.w;
@@ -474,6 +526,7 @@ static void surface_at(const scene *S, float3 o, float3 d, float t, uint ref, fl
     }
     s->n = s->n * side;
     s->col = (float3)(c.x * (1.0f / 255.0f), c.y * (1.0f / 255.0f), c.z * (1.0f / 255.0f));
+    if (side < 0.0f) solid_cut(S, d, s);
     s->opacity = S->gmat1[s->g].y * (float)c.w * (1.0f / 255.0f);
 }
 

@@ -30,13 +30,14 @@ typedef struct orc_world {
     int8_t *vnorm;
     ms_rgba8 *vcol;
     /* geometries (one kind of one list): (ambient, diffuse, mirror, phong), (phong exponent,
-     * opacity, outline, outline width), (angle-modulated, alpha varies, item, 0) */
+     * opacity, outline, outline width), (angle-modulated, alpha varies, item, its item's
+     * number of clip planes) */
     size_t ngeoms;
     float *gmat0, *gmat1;
     int32_t *gflag;
-    /* items (placed lists): the normal matrix in three float4 rows, w of the first: the sign
-     * of the transform's determinant */
-    size_t nitems;
+    /* items (placed lists): ORC_ITEM float4s each (params.h): the normal matrix and the
+     * item's clip planes */
+    size_t nitems, nclipped;    /* items, and those with clip planes */
     float *item;
     /* the BVH: per node the boxes of its two children and (child, child, count, count):
      * a count of 0 makes the child an inner node (or nothing when negative), else a leaf of

@@ -190,18 +190,21 @@ static void capsule_bounds(const struct RTCBoundsFunctionArguments *args)
     }
 }
 
-/* The crossings of the cylinder and of its end spheres: how many, and the nearest with its
- * part (0 the tube, 1 the base sphere, 2 the far sphere). */
-static int capsule_test(const rt_geom *g, unsigned prim, const rt_uray *r, float *near, int *part)
+/* The crossings of the cylinder and of its end spheres: how many (in all[] when given), and
+ * the nearest with its part (0 the tube, 1 the base sphere, 2 the far sphere). */
+static int capsule_test(const rt_geom *g, unsigned prim, const rt_uray *r, float *near, int *part,
+                        float all[6])
 {
     float t[2];
     int n = cylinder_test(g, prim, r, t), total = n;
     *near = n ? t[0] : INFINITY;
     *part = 0;
+    if (all) memcpy(all, t, (size_t)n * sizeof *t);
     for (int e = 0; e < 2; e++) {
         const float *c = g->ends + 8 * (size_t)prim + 4 * e;
         if (!(c[3] > 0.0f)) continue;
         n = rt_sphere_hits(c, c[3], r, t);
+        if (all) memcpy(all + total, t, (size_t)n * sizeof *t);
         total += n;
         if (n && t[0] < *near) *near = t[0], *part = e + 1;
     }
@@ -217,7 +220,7 @@ static void capsule_intersect(const struct RTCIntersectFunctionNArguments *args)
         int part;
         if (!args->valid[i]) continue;
         rt_user_ray((const float *)args->rayhit, args->N, i, &r);
-        if (capsule_test(g, args->primID, &r, &t, &part)) rt_user_hit_part(args, i, t, (float)part);
+        if (capsule_test(g, args->primID, &r, &t, &part, NULL)) rt_user_hit_part(args, i, t, (float)part);
     }
 }
 
@@ -226,12 +229,12 @@ static void capsule_occluded(const struct RTCOccludedFunctionNArguments *args)
     const rt_geom *g = args->geometryUserPtr;
     for (unsigned i = 0; i < args->N; i++) {
         rt_uray r;
-        float t;
+        float t, all[6];
         int part;
         if (!args->valid[i]) continue;
         rt_user_ray((const float *)args->ray, args->N, i, &r);
-        int n = capsule_test(g, args->primID, &r, &t, &part);
-        if (n) rt_user_block(args, i, n, &r);
+        int n = capsule_test(g, args->primID, &r, &t, &part, all);
+        if (n) rt_user_block(args, i, n, all, &r);
     }
 }
 

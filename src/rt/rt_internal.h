@@ -70,6 +70,7 @@ typedef struct rt_geom {
     const ms_dl_spheres *spheres;  /* the spheres the cylinders may take (world.c sets it) */
     uint8_t *taken;             /* per sphere: 1 when a cylinder took it (cylinder.c sets it) */
     const ms_scene_item *item;  /* the scene item (its clip planes, in world coordinates) */
+    const float *xf;            /* its instance's list-to-world transform (rt_item's xf) */
 } rt_geom;
 
 /* The lists placed by one transform (a molecule's representations share its transform): an
@@ -139,8 +140,13 @@ typedef struct rt_ctx {
 
 /* Opacity of primitive prim at a hit (u, v: a mesh's barycentric coordinates). */
 float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v);
-/* The occlusion filter of transparent built-in geometries (spheres, meshes). */
-void rt_transparent_filter(const struct RTCFilterFunctionNArguments *args);
+/* Does one of g's clip planes cut away the point at t along the ray o + t d (in the list's
+ * coordinates)? */
+int rt_geom_clipped(const rt_geom *g, const float o[3], const float d[3], float t);
+/* The occlusion filter of built-in geometries (spheres, meshes) that are transparent or
+ * clipped: a crossing a clip plane cut away is passed, as is a transparent one (filtering
+ * the light); anything else blocks. */
+void rt_occlusion_filter(const struct RTCFilterFunctionNArguments *args);
 
 /* ---------------------------------------------------------------- user geometries (user.c) */
 
@@ -172,10 +178,11 @@ void rt_user_hit(const struct RTCIntersectFunctionNArguments *args, unsigned i, 
 /* The same, with which part of a composite primitive was hit in the hit's u. */
 void rt_user_hit_part(const struct RTCIntersectFunctionNArguments *args, unsigned i, float t,
                       float part);
-/* An occlusion call's hits (nhits crossings): an opaque one blocks the ray, transparent ones
- * filter it, (1 - opacity) a crossing. */
+/* An occlusion call's crossings (nhits of them, at t[]): those a clip plane cut away are
+ * passed; of the others an opaque one blocks the ray, transparent ones filter it,
+ * (1 - opacity) a crossing. */
 void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i, int nhits,
-                   const rt_uray *r);
+                   const float *t, const rt_uray *r);
 /* Roots t0 <= t1 of a t^2 + 2 b t + c = 0 (a != 0), computed stably; 0 when none. */
 int rt_quadratic(float a, float b, float c, float *t0, float *t1);
 /* A sphere's crossings in (tnear, tfar), nearest first (sphere.c). */
@@ -207,7 +214,7 @@ static inline void rt_user_occluded(const struct RTCOccludedFunctionNArguments *
         if (!args->valid[i]) continue;
         rt_user_ray((const float *)args->ray, args->N, i, &r);
         int n = test(g, args->primID, &r, t);
-        if (n) rt_user_block(args, i, n, &r);
+        if (n) rt_user_block(args, i, n, t, &r);
     }
 }
 

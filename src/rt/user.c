@@ -1,6 +1,7 @@
 /* user.c: what the user geometries (cylinder.c, cone.c, ring.c) share: reading ray i of the
  * N-ray packets Embree hands their callbacks (N is 1 for the single rays molscope traces,
- * but any N works), and reporting a hit or an occlusion back. The layout is Embree's
+ * but any N works), and reporting a hit or an occlusion back (passing crossings that a clip
+ * plane cut away, as Tachyon's clip groups do for shadow rays). The layout is Embree's
  * RTCRayHitN: twelve ray fields of N lanes each, then the hit fields. */
 #include "config.h"
 #include "rt/rt_internal.h"
@@ -33,14 +34,17 @@ void rt_user_hit_part(const struct RTCIntersectFunctionNArguments *args, unsigne
 }
 
 void rt_user_block(const struct RTCOccludedFunctionNArguments *args, unsigned i, int nhits,
-                   const rt_uray *r)
+                   const float *t, const rt_uray *r)
 {
     const rt_geom *g = args->geometryUserPtr;
+    int kept = 0;
+    for (int k = 0; k < nhits; k++) kept += !rt_geom_clipped(g, r->o, r->d, t[k]);
+    if (!kept) return;
     if (g->transparent) {
         float op = rt_geom_opacity(g, args->primID, 0.0f, 0.0f);
         if (op < 1.0f) {
             float *f = &((rt_ctx *)args->context)->filter[r->id];
-            for (int k = 0; k < nhits; k++) *f *= 1.0f - op;
+            for (int k = 0; k < kept; k++) *f *= 1.0f - op;
             return;
         }
     }
@@ -60,18 +64,34 @@ float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v)
     return g->mat.opacity * a * (1.0f / 255.0f);
 }
 
-void rt_transparent_filter(const struct RTCFilterFunctionNArguments *args)
+int rt_geom_clipped(const rt_geom *g, const float o[3], const float d[3], float t)
+{
+    if (!g->item || !g->item->nclip) return 0;
+    float p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]}, w[3];
+    rt_xf_point(g->xf, p, w);
+    return ms_scene_clipped(g->item, w);
+}
+
+/* Embree calls the filter with the ray in the instance's (the list's) coordinates and its
+ * tfar at the crossing. */
+void rt_occlusion_filter(const struct RTCFilterFunctionNArguments *args)
 {
     const rt_geom *g = args->geometryUserPtr;
     const float *hit = (const float *)args->hit, *ray = (const float *)args->ray;
     unsigned N = args->N;
     for (unsigned i = 0; i < N; i++) {
         if (!args->valid[i]) continue;
+        rt_uray r;
+        rt_user_ray(ray, N, i, &r);
+        if (rt_geom_clipped(g, r.o, r.d, r.tfar)) {
+            args->valid[i] = 0;                       /* cut away: the traversal goes on */
+            continue;
+        }
+        if (!g->transparent) continue;                /* an opaque geometry: it blocks */
         unsigned prim = ((const unsigned *)hit)[(H_PRIM - H_NGX) * N + i];
         float op = rt_geom_opacity(g, prim, hit[(H_U - H_NGX) * N + i], hit[(H_V - H_NGX) * N + i]);
         if (op >= 1.0f) continue;                     /* an opaque primitive: it blocks */
-        unsigned id = ((const unsigned *)ray)[R_ID * N + i];
-        ((rt_ctx *)args->context)->filter[id] *= 1.0f - op;
+        ((rt_ctx *)args->context)->filter[r.id] *= 1.0f - op;
         args->valid[i] = 0;                           /* passed: the traversal goes on */
     }
 }
