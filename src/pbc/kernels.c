@@ -62,7 +62,6 @@ KINLINE void store(float *restrict p, size_t m, const double *restrict b)
         p[3 * i] = (float)b[i], p[3 * i + 1] = (float)b[BLOCK + i], p[3 * i + 2] = (float)b[2 * BLOCK + i];
 }
 
-/* The lower-triangular cell as scalars the loops keep in registers. */
 /* Ask for the block after next (the hardware's own prefetch alone leaves the loops waiting
  * for memory: 20% slower on 1M atoms); past the end of the atoms it does nothing. */
 KINLINE void ahead(const float *p)
@@ -80,6 +79,7 @@ KINLINE uint64_t bits(double n)
     return u;
 }
 
+/* The lower-triangular cell as scalars the loops keep in registers. */
 typedef struct kcell {
     double i00, i10, i20, i11, i21, i22;   /* inverse */
     double v00, v10, v20, v11, v21, v22;   /* lattice vectors */
