@@ -5,11 +5,16 @@
 # by f (1.3, -0.7, 0.4) A, every frame in the monoclinic cell (0.8 x the structure's extent,
 # angles 80 85 90; gamma 90 because MDAnalysis 2.4's wrap is not the exact parallelepiped
 # otherwise). Timed: wrap of every frame (atoms into the cell), then unwrap of the wrapped
-# frames (every atom to the image nearest its previous position). MDAnalysis: AtomGroup.wrap
-# per frame on a MemoryReader trajectory; for unwrap (2.4 has no NoJump) the loop its users
-# write with MDAnalysis' minimize_vectors. molscope also times `pbc join residue -all`.
-# Wall and CPU time; molscope with all cores and with MOLSCOPE_THREADS=1 (MDAnalysis runs
-# on one). A checksum of the last frame shows both computed the same coordinates.
+# frames (every atom to the image nearest its previous position). MDAnalysis on a
+# MemoryReader trajectory, each way a user may write it, every variant from the same
+# starting coordinates: wrap by AtomGroup.wrap per frame (what its transformations.wrap
+# does) and by its C routine apply_PBC straight on each frame's coordinate array (no
+# AtomGroup copies); unwrap (2.4 has no NoJump) by the loop with minimize_vectors against
+# the previous frame, and vectorised with numpy: fractional offsets by its C transform_RtoS,
+# rounded by numpy, back by transform_StoR, in place. molscope also times
+# `pbc join residue -all`. Wall and CPU time; molscope with all cores and with
+# MOLSCOPE_THREADS=1 (MDAnalysis runs on one). A checksum of the last frame shows every
+# variant computed the same coordinates.
 #
 # usage: scripts/bench/bench_pbc.sh [builddir]   (NATOMS, NFRAMES override)
 set -eu
@@ -69,7 +74,7 @@ warnings.simplefilter("ignore")
 import numpy as np
 import MDAnalysis as mda
 from MDAnalysis.coordinates.memory import MemoryReader
-from MDAnalysis.lib.distances import minimize_vectors
+from MDAnalysis.lib.distances import apply_PBC, minimize_vectors, transform_RtoS, transform_StoR
 
 u = mda.Universe(sys.argv[1])
 n = int(sys.argv[2])
@@ -83,6 +88,9 @@ for f in range(n):
 u.load_new(coords, format=MemoryReader, dimensions=np.tile(dims, (n, 1)))
 del coords
 ag = u.atoms
+ca = u.trajectory.coordinate_array    # (frames, atoms, 3), what every frame's positions view
+da = u.trajectory.dimensions_array
+start = ca.copy()
 
 
 def timed(name, fn):
@@ -90,15 +98,20 @@ def timed(name, fn):
     fn()
     wall, cpu = time.perf_counter() - t, time.process_time() - c
     u.trajectory[-1]
-    print("mdanalysis %s %.3f %.3f %.1f" % (name, wall, cpu, float(np.abs(ag.positions.astype(np.float64)).sum())))
+    print("mdanalysis %s %.3f %.3f %.1f" % (name, wall, cpu, float(np.abs(ag.positions.astype(np.float64)).sum())), flush=True)
 
 
-def wrap():
+def wrap_atomgroup():
     for ts in u.trajectory:
         ag.wrap(compound="atoms")
 
 
-def unwrap():
+def wrap_apply_pbc():
+    for f in range(n):
+        ca[f] = apply_PBC(ca[f], da[f])
+
+
+def unwrap_minimize_vectors():
     prev = None
     for ts in u.trajectory:
         if prev is not None:
@@ -106,6 +119,18 @@ def unwrap():
         prev = ag.positions.copy()
 
 
-timed("wrap", wrap)
-timed("unwrap", unwrap)
+def unwrap_numpy():
+    for f in range(1, n):
+        s = transform_RtoS(ca[f] - ca[f - 1], da[f])
+        np.rint(s, out=s)
+        ca[f] -= transform_StoR(s, da[f])
+
+
+timed("wrap(AtomGroup.wrap)", wrap_atomgroup)
+ca[...] = start
+timed("wrap(apply_PBC)", wrap_apply_pbc)
+start[...] = ca
+timed("unwrap(minimize_vectors)", unwrap_minimize_vectors)
+ca[...] = start
+timed("unwrap(numpy)", unwrap_numpy)
 PY

@@ -1,9 +1,10 @@
 /* groups.c: atoms grouped into the compounds pbctools moves as a whole: residues, segments,
  * chains, fragments, or atoms bonded to each other within the atoms given. Each atom gets a
  * key, the keys are numbered densely, and a counting sort lays the atoms out compound by
- * compound (ascending inside each). */
+ * compound (ascending inside each). Also runs of consecutive atoms, what the vectorised
+ * loops take when atoms move alone. */
 #include "config.h"
-#include "pbc/pbc.h"
+#include "pbc/internal.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -117,6 +118,22 @@ int ms_pbc_groups_make(const ms_molecule *m, int kind, const uint32_t *atoms, si
         ms_pbc_groups_free(g);
         ms_error_set(err, "out of memory grouping %zu atoms into compounds", n);
         return -1;
+    }
+    return 0;
+}
+
+int ms_pbc_runs_make(const uint32_t *atoms, size_t n, size_t maxlen, ms_pbc_runs *r)
+{
+    size_t count = 0;
+    for (size_t i = 0, len = 0; i < n; i++, len++)
+        if (i == 0 || atoms[i] != atoms[i - 1] + 1 || len == maxlen) count++, len = 0;
+    r->n = count;
+    r->run = ms_alloc_array(count ? count : 1, sizeof *r->run);
+    if (!r->run) return -1;
+    for (size_t i = 0, k = 0, len = 0; i < n; i++, len++) {
+        if (i == 0 || atoms[i] != atoms[i - 1] + 1 || len == maxlen)
+            r->run[k][0] = atoms[i], r->run[k++][1] = 0, len = 0;
+        r->run[k - 1][1]++;
     }
     return 0;
 }

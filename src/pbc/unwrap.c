@@ -1,7 +1,8 @@
 /* unwrap.c: `pbc unwrap` and `pbc join`. Both move an atom by the lattice vector that
  * brings it nearest a reference point (rounding its fractional offset): for unwrap the
  * atom's own position in the frame before (already unwrapped), for join its compound's
- * reference atom or, with the bond list, the bonded atom it was reached from. */
+ * reference atom or, with the bond list, the bonded atom it was reached from. Unwrap runs
+ * through the vectorised loops of kernels.c. */
 #include "config.h"
 #include "base/threads.h"
 #include "pbc/internal.h"
@@ -21,20 +22,26 @@ static void nearest_image(const ms_pbc_cell *c, float *p, const float *r)
     for (int k = 0; k < 3; k++) p[k] = (float)(p[k] - t[k]);
 }
 
+/* Unwrap goes by runs of consecutive atoms, each through every frame before the next run,
+ * so that the previous frame's atoms are still in the cache. */
+enum { RUN_ATOMS = 4096 };
+
 typedef struct unwrap_job {
-    const ms_pbc_cell *c;
-    float *pos;
-    const float *prev;
-    const uint32_t *atoms;
+    const ms_molecule *m;
+    size_t first, last;
+    const ms_pbc_cell *cells;       /* frames first..last */
+    const ms_pbc_runs *runs;
 } unwrap_job;
 
 static void unwrap_range(void *ctx, size_t begin, size_t end, int thread)
 {
     (void)thread;
     const unwrap_job *j = ctx;
-    for (size_t i = begin; i < end; i++) {
-        size_t a = 3 * (size_t)j->atoms[i];
-        nearest_image(j->c, j->pos + a, j->prev + a);
+    for (size_t k = begin; k < end; k++) {
+        size_t a = 3 * (size_t)j->runs->run[k][0], n = j->runs->run[k][1];
+        for (size_t f = j->first + 1; f <= j->last; f++)
+            ms_pbc_unwrap_run(j->m->frames[f].pos + a, j->m->frames[f - 1].pos + a, n,
+                              &j->cells[f - j->first]);
     }
 }
 
@@ -42,12 +49,18 @@ int ms_pbc_unwrap(ms_molecule *m, size_t first, size_t last, const uint32_t *ato
                   ms_error *err)
 {
     if (ms_pbc_check_frames(m, first, last, err)) return -1;
-    for (size_t f = first + 1; f <= last; f++) {
-        ms_pbc_cell c;
-        ms_pbc_cell_make(m->frames[f].cell, &c);
-        unwrap_job j = {&c, m->frames[f].pos, m->frames[f - 1].pos, atoms};
-        ms_parallel_for(n, 16384, unwrap_range, &j);
+    ms_pbc_cell *cells = ms_alloc_array(last - first + 1, sizeof *cells);
+    ms_pbc_runs runs = {0, NULL};
+    if (!cells || ms_pbc_runs_make(atoms, n, RUN_ATOMS, &runs)) {
+        free(cells);
+        ms_error_set(err, "out of memory");
+        return -1;
     }
+    for (size_t f = first; f <= last; f++) ms_pbc_cell_make(m->frames[f].cell, &cells[f - first]);
+    unwrap_job j = {m, first, last, cells, &runs};
+    ms_parallel_for(runs.n, 1, unwrap_range, &j);
+    free(runs.run);
+    free(cells);
     return 0;
 }
 

@@ -1,7 +1,8 @@
 /* wrap.c: `pbc wrap`: every group (an atom alone, or a compound by its mean position) is
  * moved by the lattice vector that puts it into the cell centred on the wrapping centre:
  * the parallelepiped A B C, or with orthorhombic the brick Ax x By x Cz (z first, then y,
- * then x, which the triangular cell allows). Groups run in parallel, frame after frame. */
+ * then x, which the triangular cell allows). Groups run in parallel, frame after frame;
+ * atoms that move alone go by runs of consecutive atoms through the vectorised loops. */
 #include "config.h"
 #include "base/threads.h"
 #include "measure/measure.h"
@@ -9,6 +10,8 @@
 
 #include <math.h>
 #include <stdlib.h>
+
+enum { RUN_ATOMS = 8192 };   /* atoms handed to a thread at once */
 
 int ms_pbc_center_of(const ms_molecule *m, size_t f, const ms_pbc_cell *c,
                      const ms_pbc_wrap_opts *o, double center[3], ms_error *err)
@@ -44,6 +47,7 @@ int ms_pbc_center_of(const ms_molecule *m, size_t f, const ms_pbc_cell *c,
 typedef struct wrap_job {
     float *pos;
     const ms_pbc_groups *g;
+    const ms_pbc_runs *runs;        /* when every group is one atom */
     const ms_pbc_cell *c;
     double origin[3];      /* the cell's lowest corner */
     int ortho;
@@ -74,15 +78,15 @@ static void move(float *p, const double t[3])
     for (int d = 0; d < 3; d++) p[d] = (float)(p[d] + t[d]);
 }
 
-/* Groups of one atom: no means, no indirection through the groups. */
-static void wrap_atoms(const wrap_job *j, size_t begin, size_t end)
+/* Groups of one atom: runs of consecutive atoms through the vectorised loops. */
+static void wrap_runs(void *ctx, size_t begin, size_t end, int thread)
 {
-    const uint32_t *at = j->g->atoms;
+    (void)thread;
+    const wrap_job *j = ctx;
     for (size_t k = begin; k < end; k++) {
-        float *p = j->pos + 3 * (size_t)at[k];
-        double q[3] = {p[0] - j->origin[0], p[1] - j->origin[1], p[2] - j->origin[2]}, t[3];
-        shift_into(j, q, t);
-        move(p, t);
+        float *p = j->pos + 3 * (size_t)j->runs->run[k][0];
+        if (j->ortho) ms_pbc_wrap_run_brick(p, j->runs->run[k][1], j->c, j->origin);
+        else ms_pbc_wrap_run(p, j->runs->run[k][1], j->c, j->origin);
     }
 }
 
@@ -90,10 +94,6 @@ static void wrap_range(void *ctx, size_t begin, size_t end, int thread)
 {
     (void)thread;
     const wrap_job *j = ctx;
-    if (j->g->n == j->g->start[j->g->n]) {
-        wrap_atoms(j, begin, end);
-        return;
-    }
     for (size_t k = begin; k < end; k++) {
         const uint32_t *at = j->g->atoms + j->g->start[k];
         size_t n = j->g->start[k + 1] - j->g->start[k];
@@ -111,18 +111,27 @@ int ms_pbc_wrap(ms_molecule *m, size_t first, size_t last, const ms_pbc_wrap_opt
                 ms_error *err)
 {
     if (ms_pbc_check_frames(m, first, last, err)) return -1;
-    for (size_t f = first; f <= last; f++) {
+    const ms_pbc_groups *g = o->groups;
+    ms_pbc_runs runs = {0, NULL};
+    if (g->n == g->start[g->n] && ms_pbc_runs_make(g->atoms, g->n, RUN_ATOMS, &runs)) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    int rc = 0;
+    for (size_t f = first; rc == 0 && f <= last; f++) {
         ms_pbc_cell c;
         double center[3];
         ms_pbc_cell_make(m->frames[f].cell, &c);
-        if (ms_pbc_center_of(m, f, &c, o, center, err)) return -1;
-        wrap_job j = {m->frames[f].pos, o->groups, &c, {0, 0, 0}, o->orthorhombic};
+        if ((rc = ms_pbc_center_of(m, f, &c, o, center, err))) break;
+        wrap_job j = {m->frames[f].pos, g, &runs, &c, {0, 0, 0}, o->orthorhombic};
         for (int d = 0; d < 3; d++) {
             double half = o->orthorhombic ? c.v[d][d]
                                           : c.v[0][d] + c.v[1][d] + c.v[2][d];
             j.origin[d] = center[d] - 0.5 * half;
         }
-        ms_parallel_for(o->groups->n, 4096, wrap_range, &j);
+        if (runs.run) ms_parallel_for(runs.n, 1, wrap_runs, &j);
+        else ms_parallel_for(g->n, 4096, wrap_range, &j);
     }
-    return 0;
+    free(runs.run);
+    return rc;
 }

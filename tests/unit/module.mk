@@ -4,7 +4,7 @@ check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_
 	tests/unit/test_select tests/unit/test_ss tests/unit/test_measure tests/unit/test_scene \
 	tests/unit/test_rep tests/unit/test_gl tests/unit/test_qsurf tests/unit/test_rt \
 	tests/unit/test_xtc tests/unit/test_live tests/unit/test_oclrt tests/unit/test_safewrite \
-	tests/unit/test_limits tests/unit/test_map
+	tests/unit/test_limits tests/unit/test_map tests/unit/test_pbc
 
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h
 tests_unit_test_base_LDADD = $(TEST_LIBS)
@@ -56,3 +56,5 @@ tests_unit_test_map_LDADD = $(TEST_LIBS)
 tests_unit_test_oclrt_SOURCES = tests/unit/test_rt.c tests/unit/ms_test.h
 tests_unit_test_oclrt_CPPFLAGS = $(AM_CPPFLAGS) -DMS_TEST_OCLRT
 tests_unit_test_oclrt_LDADD = $(TEST_LIBS)
+tests_unit_test_pbc_SOURCES = tests/unit/test_pbc.c tests/unit/ms_test.h
+tests_unit_test_pbc_LDADD = $(TEST_LIBS)
