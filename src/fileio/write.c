@@ -184,11 +184,12 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     w.view.get_atom = view_get_atom;
     w.view.get_bonds = view_get_bonds;
     w.view.remarks = m->remarks;
-    float *buf = NULL;
+    float *buf = NULL, *vbuf = NULL;   /* the selected atoms' positions, velocities */
     long written = 0;
     ms_ofile *out = NULL;
     if (view_build_bonds(&w, n, err)) goto fail_view;
-    if (o->atoms && !(buf = ms_alloc_array(3 * n, sizeof *buf))) {
+    if (o->atoms && (!(buf = ms_alloc_array(3 * n, sizeof *buf)) ||
+                     !(vbuf = ms_alloc_array(3 * n, sizeof *vbuf)))) {
         ms_error_set(err, "out of memory");
         goto fail_view;
     }
@@ -205,6 +206,7 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
         ms_frame_in in;
         memset(&in, 0, sizeof in);
         in.pos = gather(&w, fr->pos, buf, n);
+        in.vel = fr->vel ? gather(&w, fr->vel, vbuf, n) : NULL;
         memcpy(in.cell, fr->cell, sizeof in.cell);
         in.time = fr->time;
         in.index = (int)written;
@@ -216,12 +218,14 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     out = NULL;
     if (failed) goto fail_view;
     free(buf);
+    free(vbuf);
     free(w.bond_start);
     free(w.bond_to);
     return written;
 fail_view:
     ms_ofile_abort(out);
     free(buf);
+    free(vbuf);
     free(w.bond_start);
     free(w.bond_to);
     return -1;
