@@ -18,6 +18,12 @@ DMS (Python's sqlite3, the schema of Desmond's DMS files): pept.dms, helix.psf's
   atoms with their masses, charges, bonds (order 2 for the C=O bonds), the first frame of
   helix.dcd, velocities i * (0.1, -0.2, 0.3) A/ps and an orthorhombic global_cell.
 
+js (Python's struct, the layout of doc/js-format.md; no independent js writer exists):
+  hand.js         5 atoms of one alanine (every optional field, 4 bonds with orders, one
+                  angle), 2 frames with a cell (20 21 22, 90 90 120), native (little-endian)
+                  byte order, no block padding
+  hand_be.js      the same, big-endian, frames aligned to 512-byte blocks
+
 Run from this folder: /usr/bin/python3 make_formats3.py
 """
 import os
@@ -119,12 +125,75 @@ def dms():
     db.close()
 
 
+JS = {
+    "name": ["N", "CA", "C", "O", "CB"], "type": ["NH1", "CT1", "C", "O", "CT3"],
+    "resname": ["ALA"] * 5, "segid": ["PRO"] * 5, "chain": ["A"] * 5, "resid": [7] * 5,
+    "occupancy": [1.0, 0.5, 1.0, 0.25, 1.0], "beta": [10.0, 11.0, 12.0, 13.0, 14.0],
+    "mass": [14.007, 12.011, 12.011, 15.999, 12.011], "charge": [-0.47, 0.07, 0.51, -0.51, -0.27],
+    "radius": [1.85, 2.275, 2.0, 1.7, 2.06], "anum": [7, 6, 6, 8, 6],
+    "bonds": [(1, 2, 1.0), (2, 3, 1.0), (3, 4, 2.0), (2, 5, 1.0)],
+    "cell": [20.0, 21.0, 22.0, 90.0, 90.0, 120.0],
+}
+
+
+def js_frame(k):
+    """Coordinates of frame k: atom i at (i + k, 2 i, -i)."""
+    return [c for i in range(5) for c in (i + k, 2.0 * i, -1.0 * i)]
+
+
+def write_js(name, order, block):
+    """A js file by the documented layout: header, option flags, (block size), string
+    tables, index and value arrays, bonds, angles, then frames padded to `block` bytes."""
+    import math
+    import struct
+    e = order
+    opt = 0x1 | 0x2 | 0x4 | 0x8 | 0x100 | 0x200 | 0x400 | 0x800 | 0x1000 | 0x2000
+    if block > 1:
+        opt |= 0x10000000
+    b = b"JS Binary Structure and Trajectory File Format"
+    b += struct.pack(e + "6i", 0x31337, 0x12345678, 2, 9, 5, 2) + struct.pack(e + "i", opt)
+    if block > 1:
+        b += struct.pack(e + "i", block)
+    tables = []
+    for field, width in (("name", 16), ("type", 16), ("resname", 8), ("segid", 8),
+                         ("chain", 2)):
+        uniq = list(dict.fromkeys(JS[field]))
+        tables.append((field, width, uniq))
+    b += struct.pack(e + "5i", *[len(u) for _, _, u in tables])
+    for _, width, uniq in tables:
+        b += b"".join(s.encode().ljust(width, b"\0") for s in uniq)
+    for field, _, uniq in tables:
+        b += struct.pack(e + "5h", *[uniq.index(s) for s in JS[field]])
+    b += struct.pack(e + "5i", *JS["resid"])
+    for field in ("occupancy", "beta", "mass", "charge", "radius"):
+        b += struct.pack(e + "5f", *JS[field])
+    b += struct.pack(e + "5i", *JS["anum"])
+    bonds = JS["bonds"]
+    b += struct.pack(e + "i", len(bonds)) + struct.pack(e + "4i", *[x[0] for x in bonds])
+    b += struct.pack(e + "4i", *[x[1] for x in bonds]) + struct.pack(e + "4f", *[x[2] for x in bonds])
+    b += struct.pack(e + "i3i", 1, 1, 2, 3) + struct.pack(e + "i", 0) + struct.pack(e + "i", 0)
+    pad = lambda data: data + b"\0" * ((block - len(data) % block) % block)
+    c = JS["cell"]
+    cell = struct.pack(e + "6d", c[0], c[1], c[2],
+                       *[math.sin(math.radians(90.0 - a)) for a in c[3:]])
+    out = pad(b)
+    for k in range(2):
+        out += pad(struct.pack(e + "15f", *js_frame(k))) + pad(cell)
+    open(path(name), "wb").write(out)
+
+
+def js():
+    write_js("hand.js", "<", 1)
+    write_js("hand_be.js", ">", 512)
+
+
 def seeds():
     """Seeds: the test files, and small cuts of them."""
     import shutil
     sets = {"poscar": ["POSCAR_spc", "CONTCAR_pept", "POSCAR4_pept", "POSCAR_negscale"],
             "xdatcar": ["XDATCAR_spc", "XDATCAR_npt"],
-            "cor": ["helix.crd", "helix_ext.crd"], "dms": ["pept.dms"]}
+            "cor": ["helix.crd", "helix_ext.crd"], "dms": ["pept.dms"],
+            "js": ["hand.js", "hand_be.js"]}
     for fmt, names in sets.items():
         d = os.path.join(CORPUS, fmt)
         os.makedirs(d, exist_ok=True)
@@ -144,4 +213,5 @@ if __name__ == "__main__":
     vasp()
     charmm()
     dms()
+    js()
     seeds()
