@@ -207,9 +207,15 @@ static int js_header(js_reader *r, ms_perr *err)
         at += 4;
     }
     if (!(r->opt & JS_STRUCTURE)) {
+        /* only frames vouch for the atom count: the file must hold one */
         r->bonds_at = at;
         r->opt &= ~(unsigned)(JS_BONDS | JS_ANGLES | JS_CTERMS);
-        return js_tail_layout(r, err);
+        if (js_tail_layout(r, err)) return MS_PLUGIN_ERROR;
+        if (r->ts_at + 12LL * r->natoms + 48 > r->size)
+            return ms_perr_set(err, "a js file without structure must hold a frame: %ld atoms "
+                               "need %lld bytes, the file has %lld", r->natoms,
+                               r->ts_at + 12LL * r->natoms + 48, r->size);
+        return MS_PLUGIN_OK;
     }
     return js_structure_layout(r, at, err) || js_tail_layout(r, err) ? MS_PLUGIN_ERROR
                                                                       : MS_PLUGIN_OK;
