@@ -489,7 +489,7 @@ static uint32_t js_hash(const char *s, int width)
 static int js_table_index(js_table *t, const char *s)
 {
     char key[16] = {0};
-    snprintf(key, (size_t)t->width, "%s", s ? s : "");
+    for (int k = 0; s && k < t->width - 1 && s[k]; k++) key[k] = s[k];
     for (uint32_t h = js_hash(key, t->width) & 65535;; h = (h + 1) & 65535) {
         int32_t e = t->slot[h];
         if (!e) break;
@@ -510,10 +510,19 @@ static const char *js_field(const ms_atom_in *a, int f)
     return s[f];
 }
 
-/* Build the five tables and the atoms' indices (idx: T_N arrays of natoms). */
-static int js_build_tables(const ms_struct_view *v, js_table **tab, int16_t *idx, ms_perr *err)
+/* The per-atom arrays in file order: T_N arrays of int16 indices, then 7 arrays of 32-bit
+ * numbers (resid, occupancy, beta, mass, charge, radius, atomic number). */
+typedef struct js_columns {
+    int16_t *idx;
+    uint32_t *num;
+} js_columns;
+
+/* One pass over the atoms: the five tables, every atom's indices and numbers. */
+static int js_build_columns(const ms_struct_view *v, js_table **tab, js_columns *c,
+                            ms_perr *err)
 {
-    for (size_t i = 0; i < v->natoms; i++) {
+    size_t n = v->natoms;
+    for (size_t i = 0; i < n; i++) {
         ms_atom_in a;
         v->get_atom(v, i, &a);
         for (int f = 0; f < T_N; f++) {
@@ -521,31 +530,15 @@ static int js_build_tables(const ms_struct_view *v, js_table **tab, int16_t *idx
             if (k < 0)
                 return ms_perr_set(err, "more than 32767 distinct %ss: the js format cannot "
                                    "hold them", js_table_name[f]);
-            idx[(size_t)f * v->natoms + i] = (int16_t)k;
+            c->idx[(size_t)f * n + i] = (int16_t)k;
         }
+        const float fv[F_N] = {a.occupancy, a.beta, a.mass, a.charge, a.radius};
+        const int32_t iv[2] = {a.resid, a.atomicnumber};
+        memcpy(&c->num[i], &iv[0], 4);
+        for (int f = 0; f < F_N; f++) memcpy(&c->num[(size_t)(1 + f) * n + i], &fv[f], 4);
+        memcpy(&c->num[(size_t)(1 + F_N) * n + i], &iv[1], 4);
     }
     return MS_PLUGIN_OK;
-}
-
-/* Per-atom numbers: resid, the five float fields, atomic numbers; one pass each. */
-static void js_write_numbers(js_writer *w, const ms_struct_view *v)
-{
-    int32_t ibuf[1024];
-    float fbuf[1024];
-    for (int f = -1; f <= F_N; f++) {
-        for (size_t i = 0; i < v->natoms; i += 1024) {
-            size_t n = v->natoms - i < 1024 ? v->natoms - i : 1024;
-            for (size_t k = 0; k < n; k++) {
-                ms_atom_in a;
-                v->get_atom(v, i + k, &a);
-                const float fv[F_N] = {a.occupancy, a.beta, a.mass, a.charge, a.radius};
-                if (f < 0) ibuf[k] = a.resid;
-                else if (f == F_N) ibuf[k] = a.atomicnumber;
-                else fbuf[k] = fv[f];
-            }
-            js_put(w, f < 0 || f == F_N ? (const void *)ibuf : (const void *)fbuf, 4 * n);
-        }
-    }
 }
 
 /* Bonds i < j: the count, all from (1-based), then all to. */
@@ -571,17 +564,18 @@ static int js_write_structure(void *h, const ms_struct_view *v, ms_perr *err)
 {
     js_writer *w = h;
     js_table *tab[T_N] = {0};
-    int16_t *idx = malloc(2 * T_N * v->natoms + 1);
-    int rc = idx ? MS_PLUGIN_OK : ms_perr_set(err, "out of memory for %zu atoms", v->natoms);
+    size_t n = v->natoms;
+    js_columns c = {malloc(2 * T_N * n + 1), malloc(4 * (F_N + 2) * n + 1)};
+    int rc = c.idx && c.num ? MS_PLUGIN_OK : ms_perr_set(err, "out of memory for %zu atoms", n);
     for (int f = 0; rc == MS_PLUGIN_OK && f < T_N; f++) {
         tab[f] = calloc(1, sizeof *tab[f]);
         if (tab[f]) tab[f]->text = malloc(32768 * (size_t)js_width[f]);
         if (!tab[f] || !tab[f]->text) rc = ms_perr_set(err, "out of memory");
         else tab[f]->width = js_width[f];
     }
-    if (rc == MS_PLUGIN_OK) rc = js_build_tables(v, tab, idx, err);
+    if (rc == MS_PLUGIN_OK) rc = js_build_columns(v, tab, &c, err);
     if (rc == MS_PLUGIN_OK) {
-        const int32_t head[6] = {JS_MAGIC, JS_ENDIAN, 2, 9, (int32_t)v->natoms, 0};
+        const int32_t head[6] = {JS_MAGIC, JS_ENDIAN, 2, 9, (int32_t)n, 0};
         js_put(w, JS_MAGIC_TEXT, JS_TEXT_LEN);
         js_put(w, head, sizeof head);
         js_put_int(w, JS_STRUCTURE | JS_BONDS | JS_OCCUPANCY | JS_BFACTOR | JS_MASS | JS_CHARGE |
@@ -589,15 +583,16 @@ static int js_write_structure(void *h, const ms_struct_view *v, ms_perr *err)
         js_put_int(w, JS_BLOCK);
         for (int f = 0; f < T_N; f++) js_put_int(w, tab[f]->n);
         for (int f = 0; f < T_N; f++) js_put(w, tab[f]->text, (size_t)tab[f]->n * js_width[f]);
-        js_put(w, idx, 2 * T_N * v->natoms);
-        js_write_numbers(w, v);
+        js_put(w, c.idx, 2 * T_N * n);
+        js_put(w, c.num, 4 * (F_N + 2) * n);
         js_write_bonds(w, v);
         js_pad(w);
         if (w->out.failed) rc = ms_perr_set(err, "write failed");
     }
     for (int f = 0; f < T_N; f++)
         if (tab[f]) free(tab[f]->text), free(tab[f]);
-    free(idx);
+    free(c.idx);
+    free(c.num);
     return rc;
 }
 
