@@ -273,10 +273,24 @@ static int js_read_tables(js_reader *r, js_tables *t, ms_perr *err)
 
 /* One chunk of every per-atom array. */
 typedef struct js_chunk {
-    int16_t idx[T_N][JS_CHUNK];
-    int32_t resid[JS_CHUNK], anum[JS_CHUNK];
-    float f[F_N][JS_CHUNK];
+    int16_t *idx[T_N];
+    int32_t *resid, *anum;
+    float *f[F_N];
+    char *block;                 /* the arrays above, for at most n atoms each */
 } js_chunk;
+
+/* Room for n atoms (no more than a file's atom count: small files stay cheap). */
+static int js_chunk_alloc(js_chunk *c, long n)
+{
+    size_t per = 2 * T_N + 8 + 4 * F_N, un = (size_t)n;
+    if (!(c->block = malloc(per * un))) return -1;
+    char *p = c->block;
+    c->resid = (int32_t *)p, p += 4 * un;
+    c->anum = (int32_t *)p, p += 4 * un;
+    for (int f = 0; f < F_N; f++) c->f[f] = (float *)p, p += 4 * un;
+    for (int t = 0; t < T_N; t++) c->idx[t] = (int16_t *)p, p += 2 * un;
+    return 0;
+}
 
 static int js_read_chunk(js_reader *r, js_chunk *c, long first, long n, ms_perr *err)
 {
@@ -339,8 +353,11 @@ static int js_atom(const js_reader *r, const js_tables *t, const js_chunk *c, lo
 static int js_read_atoms(js_reader *r, ms_struct_sink *sink, ms_perr *err)
 {
     js_tables t = {{0}};
-    js_chunk *c = malloc(sizeof *c);
-    int rc = c ? js_read_tables(r, &t, err) : ms_perr_set(err, "out of memory");
+    js_chunk chunk, *c = &chunk;
+    memset(c, 0, sizeof *c);
+    int rc = js_chunk_alloc(c, r->natoms < JS_CHUNK ? r->natoms : JS_CHUNK) == 0
+                 ? js_read_tables(r, &t, err)
+                 : ms_perr_set(err, "out of memory");
     for (long first = 0; rc == MS_PLUGIN_OK && first < r->natoms; first += JS_CHUNK) {
         long n = r->natoms - first < JS_CHUNK ? r->natoms - first : JS_CHUNK;
         rc = js_read_chunk(r, c, first, n, err);
@@ -351,7 +368,7 @@ static int js_read_atoms(js_reader *r, ms_struct_sink *sink, ms_perr *err)
                 rc = ms_perr_set(err, "out of memory at atom %ld", first + k + 1);
         }
     }
-    free(c);
+    free(c->block);
     js_tables_free(&t);
     return rc;
 }
@@ -475,8 +492,30 @@ static void js_pad(js_writer *w)
 typedef struct js_table {
     int width, n;
     char *text;                  /* n entries of width bytes */
-    int32_t slot[65536];         /* hash slots: entry + 1, 0 empty */
+    int32_t *slot;               /* hash slots: entry + 1, 0 empty */
+    uint32_t mask;               /* slots - 1: at least twice the entries there can be */
 } js_table;
+
+/* A table for the distinct strings of n atoms (at most 32767). */
+static js_table *js_table_new(int width, size_t n)
+{
+    js_table *t = calloc(1, sizeof *t);
+    size_t most = n < 32767 ? n : 32767, slots = 16;
+    while (slots < 2 * most) slots *= 2;
+    if (t && (t->text = malloc(most * (size_t)width + 1)) &&
+        (t->slot = calloc(slots, sizeof *t->slot))) {
+        t->width = width;
+        t->mask = (uint32_t)(slots - 1);
+        return t;
+    }
+    if (t) free(t->text), free(t);
+    return NULL;
+}
+
+static void js_table_free(js_table *t)
+{
+    if (t) free(t->text), free(t->slot), free(t);
+}
 
 static uint32_t js_hash(const char *s, int width)
 {
@@ -490,14 +529,14 @@ static int js_table_index(js_table *t, const char *s)
 {
     char key[16] = {0};
     for (int k = 0; s && k < t->width - 1 && s[k]; k++) key[k] = s[k];
-    for (uint32_t h = js_hash(key, t->width) & 65535;; h = (h + 1) & 65535) {
+    for (uint32_t h = js_hash(key, t->width) & t->mask;; h = (h + 1) & t->mask) {
         int32_t e = t->slot[h];
         if (!e) break;
         if (memcmp(t->text + (size_t)(e - 1) * t->width, key, (size_t)t->width) == 0) return e - 1;
     }
-    if (t->n >= 32767) return -1;
-    uint32_t h = js_hash(key, t->width) & 65535;
-    while (t->slot[h]) h = (h + 1) & 65535;
+    if (t->n >= 32767 || 2 * (uint32_t)t->n >= t->mask) return -1;
+    uint32_t h = js_hash(key, t->width) & t->mask;
+    while (t->slot[h]) h = (h + 1) & t->mask;
     t->slot[h] = ++t->n;
     memcpy(t->text + (size_t)(t->n - 1) * t->width, key, (size_t)t->width);
     return t->n - 1;
@@ -567,12 +606,8 @@ static int js_write_structure(void *h, const ms_struct_view *v, ms_perr *err)
     size_t n = v->natoms;
     js_columns c = {malloc(2 * T_N * n + 1), malloc(4 * (F_N + 2) * n + 1)};
     int rc = c.idx && c.num ? MS_PLUGIN_OK : ms_perr_set(err, "out of memory for %zu atoms", n);
-    for (int f = 0; rc == MS_PLUGIN_OK && f < T_N; f++) {
-        tab[f] = calloc(1, sizeof *tab[f]);
-        if (tab[f]) tab[f]->text = malloc(32768 * (size_t)js_width[f]);
-        if (!tab[f] || !tab[f]->text) rc = ms_perr_set(err, "out of memory");
-        else tab[f]->width = js_width[f];
-    }
+    for (int f = 0; rc == MS_PLUGIN_OK && f < T_N; f++)
+        if (!(tab[f] = js_table_new(js_width[f], n))) rc = ms_perr_set(err, "out of memory");
     if (rc == MS_PLUGIN_OK) rc = js_build_columns(v, tab, &c, err);
     if (rc == MS_PLUGIN_OK) {
         const int32_t head[6] = {JS_MAGIC, JS_ENDIAN, 2, 9, (int32_t)n, 0};
@@ -589,8 +624,7 @@ static int js_write_structure(void *h, const ms_struct_view *v, ms_perr *err)
         js_pad(w);
         if (w->out.failed) rc = ms_perr_set(err, "write failed");
     }
-    for (int f = 0; f < T_N; f++)
-        if (tab[f]) free(tab[f]->text), free(tab[f]);
+    for (int f = 0; f < T_N; f++) js_table_free(tab[f]);
     free(c.idx);
     free(c.num);
     return rc;
