@@ -66,6 +66,35 @@ plugins_LTLIBRARIES += plugins/namdbin.la
 plugins_namdbin_la_SOURCES = plugins/namdbin.c $(PLUGIN_UTIL)
 plugins_namdbin_la_LDFLAGS = $(PLUGIN_FLAGS)
 
+plugins_LTLIBRARIES += plugins/poscar.la
+plugins_poscar_la_SOURCES = plugins/poscar.c plugins/vasp_util.h plugins/gmx_util.h $(PLUGIN_UTIL)
+plugins_poscar_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_poscar_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/xdatcar.la
+plugins_xdatcar_la_SOURCES = plugins/xdatcar.c plugins/vasp_util.h plugins/gmx_util.h $(PLUGIN_UTIL)
+plugins_xdatcar_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_xdatcar_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/cor.la
+plugins_cor_la_SOURCES = plugins/cor.c $(PLUGIN_UTIL)
+plugins_cor_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_cor_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/js.la
+plugins_js_la_SOURCES = plugins/js.c $(PLUGIN_UTIL)
+plugins_js_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_js_la_LIBADD = -lm
+
+# The DMS plugin needs SQLite (configure: --with-sqlite3); built only when it was found.
+if HAVE_SQLITE3
+plugins_LTLIBRARIES += plugins/dms.la
+plugins_dms_la_SOURCES = plugins/dms.c plugins/gmx_util.h $(PLUGIN_UTIL)
+plugins_dms_la_CFLAGS = $(AM_CFLAGS) $(SQLITE3_CFLAGS)
+plugins_dms_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_dms_la_LIBADD = $(SQLITE3_LIBS) -lm
+endif
+
 # Every plugin in one convenience library, each under its own entry name (plugins/builtin/),
 # for the programs that read files without the plugin directory: tests, tools, benchmarks.
 noinst_LTLIBRARIES += plugins/libbuiltin.la
@@ -73,6 +102,12 @@ plugins_libbuiltin_la_SOURCES = plugins/builtin/builtin.h \
 	plugins/builtin/pdb.c plugins/builtin/psf.c plugins/builtin/dcd.c plugins/builtin/xyz.c \
 	plugins/builtin/gro.c plugins/builtin/dx.c plugins/builtin/ccp4.c plugins/builtin/cube.c \
 	plugins/builtin/xtc.c plugins/builtin/trr.c plugins/builtin/pdbx.c plugins/builtin/pqr.c \
-	plugins/builtin/mol2.c plugins/builtin/namdbin.c plugins/cif_tok.c plugins/gmx_util.h \
-	$(PLUGIN_UTIL)
+	plugins/builtin/mol2.c plugins/builtin/namdbin.c plugins/builtin/poscar.c \
+	plugins/builtin/xdatcar.c plugins/builtin/cor.c plugins/builtin/js.c \
+	plugins/cif_tok.c plugins/gmx_util.h plugins/vasp_util.h $(PLUGIN_UTIL)
 plugins_libbuiltin_la_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/plugins/builtin
+if HAVE_SQLITE3
+plugins_libbuiltin_la_SOURCES += plugins/builtin/dms.c
+plugins_libbuiltin_la_CPPFLAGS += $(SQLITE3_CFLAGS)
+plugins_libbuiltin_la_LIBADD = $(SQLITE3_LIBS)
+endif

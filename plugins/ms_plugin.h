@@ -180,7 +180,9 @@ typedef struct ms_plugin {
     int abi;                 /* MS_PLUGIN_ABI */
     const char *name;        /* type name, as in `mol new x type pdb` */
     const char *description;
-    const char *extensions;  /* space-separated, without dots: "pdb ent" */
+    const char *extensions;  /* space-separated, without dots: "pdb ent"; a word with a '*'
+                              * is a pattern for whole file names ("POSCAR*"), tried when no
+                              * plugin has the file's extension */
     unsigned caps;           /* MS_CAN_* bits */
 
     /* Reading. open_read sets *natoms to the atom count, or -1 when only read_structure

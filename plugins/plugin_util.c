@@ -356,6 +356,46 @@ int ms_tokens(char *line, char **tok, int max)
     return n;
 }
 
+/* ---------------------------------------------------------------- elements */
+
+/* Element symbols by atomic number, space-separated (0 is "X"). */
+static const char element_symbols[] =
+    "X H He Li Be B C N O F Ne Na Mg Al Si P S Cl Ar K Ca Sc Ti V Cr Mn Fe Co Ni Cu Zn Ga "
+    "Ge As Se Br Kr Rb Sr Y Zr Nb Mo Tc Ru Rh Pd Ag Cd In Sn Sb Te I Xe Cs Ba La Ce Pr Nd Pm "
+    "Sm Eu Gd Tb Dy Ho Er Tm Yb Lu Hf Ta W Re Os Ir Pt Au Hg Tl Pb Bi Po At Rn Fr Ra Ac Th "
+    "Pa U Np Pu Am Cm Bk Cf Es Fm Md No Lr Rf Db Sg Bh Hs Mt Ds Rg Cn Nh Fl Mc Lv Ts Og";
+
+int ms_plugin_symbol_of(long z, char out[4])
+{
+    const char *p = element_symbols;
+    for (long k = 0; k < z && *p; k++) p += strcspn(p, " ") + (p[strcspn(p, " ")] == ' ');
+    if (z < 1 || !*p) return 0;
+    size_t n = strcspn(p, " ");
+    memcpy(out, p, n);
+    out[n] = '\0';
+    return 1;
+}
+
+int ms_plugin_element_number(const char *sym)
+{
+    size_t n = strlen(sym);
+    if (n < 1 || n > 2) return 0;
+    const char *p = element_symbols;
+    for (int z = 0; *p; z++) {
+        size_t len = strcspn(p, " ");
+        if (z > 0 && len == n && strncmp(p, sym, n) == 0) return z;
+        p += len + (p[len] == ' ');
+    }
+    return 0;
+}
+
+int ms_plugin_element_like(const char *s)
+{
+    if (!(s[0] >= 'A' && s[0] <= 'Z')) return 0;
+    if (s[1] == '\0') return 1;
+    return s[1] >= 'a' && s[1] <= 'z' && (s[2] == '\0' || (s[2] >= 'a' && s[2] <= 'z' && !s[3]));
+}
+
 /* ---------------------------------------------------------------- volume data */
 
 /* Parse the numbers of one line into dst[*got..n); returns -1 with err set on a bad token. */

@@ -88,6 +88,16 @@ int ms_hy36_encode(long v, size_t width, char *out);
 /* Split a line into whitespace-separated tokens; returns the count (at most max). */
 int ms_tokens(char *line, char **tok, int max);
 
+/* ---------------------------------------------------------------- elements */
+
+/* Copy the symbol of element z into out (size >= 4); 0 when z is out of range. */
+int ms_plugin_symbol_of(long z, char out[4]);
+/* The atomic number of a symbol in its usual case ("C", "Cl"), 0 when it is none. */
+int ms_plugin_element_number(const char *sym);
+/* "C", "Cl": a symbol in its usual case is taken as an element; "CA" or "CL" (an atom name
+ * in capitals) is left for the host to guess from the name. */
+int ms_plugin_element_like(const char *s);
+
 /* ---------------------------------------------------------------- volume data */
 
 /* Read n whitespace-separated numbers from the lines that follow (and the rest of `first`,

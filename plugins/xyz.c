@@ -15,34 +15,6 @@ typedef struct xyz_reader {
     long long size;
 } xyz_reader;
 
-/* Element symbols by atomic number, space-separated (0 is "X"). */
-static const char xyz_symbols[] =
-    "X H He Li Be B C N O F Ne Na Mg Al Si P S Cl Ar K Ca Sc Ti V Cr Mn Fe Co Ni Cu Zn Ga "
-    "Ge As Se Br Kr Rb Sr Y Zr Nb Mo Tc Ru Rh Pd Ag Cd In Sn Sb Te I Xe Cs Ba La Ce Pr Nd Pm "
-    "Sm Eu Gd Tb Dy Ho Er Tm Yb Lu Hf Ta W Re Os Ir Pt Au Hg Tl Pb Bi Po At Rn Fr Ra Ac Th "
-    "Pa U Np Pu Am Cm Bk Cf Es Fm Md No Lr Rf Db Sg Bh Hs Mt Ds Rg Cn Nh Fl Mc Lv Ts Og";
-
-/* Copy the symbol of element z into out (size >= 4); 0 when z is out of range. */
-static int symbol_of(long z, char out[4])
-{
-    const char *p = xyz_symbols;
-    for (long k = 0; k < z && *p; k++) p += strcspn(p, " ") + (p[strcspn(p, " ")] == ' ');
-    if (z < 1 || !*p) return 0;
-    size_t n = strcspn(p, " ");
-    memcpy(out, p, n);
-    out[n] = '\0';
-    return 1;
-}
-
-/* "C", "Cl": a symbol in its usual case is taken as the element; "CA" or "CL" (an atom
- * name in capitals) is left for the host to guess from the name. */
-static int element_like(const char *s)
-{
-    if (!(s[0] >= 'A' && s[0] <= 'Z')) return 0;
-    if (s[1] == '\0') return 1;
-    return s[1] >= 'a' && s[1] <= 'z' && (s[2] == '\0' || (s[2] >= 'a' && s[2] <= 'z' && !s[3]));
-}
-
 static void *xyz_open_read(const char *path, long *natoms, ms_perr *err)
 {
     xyz_reader *r = ms_lines_create(sizeof *r, path, err);
@@ -118,13 +90,13 @@ static int xyz_read_structure(void *h, ms_struct_sink *sink, ms_perr *err)
         float p[3];
         if (read_atom(r, k, n, name, p, err) != MS_PLUGIN_OK) return MS_PLUGIN_ERROR;
         long z;
-        if (ms_parse_long(name, strlen(name), &z) == 1 && symbol_of(z, sym)) {
+        if (ms_parse_long(name, strlen(name), &z) == 1 && ms_plugin_symbol_of(z, sym)) {
             snprintf(name, sizeof name, "%s", sym);
             a.atomicnumber = (int)z;
             a.has |= MS_HAS_ATOMICNUMBER;
         }
         a.name = a.type = name;
-        a.element = element_like(name) ? name : NULL;
+        a.element = ms_plugin_element_like(name) ? name : NULL;
         a.resid = 1;
         a.x = p[0];
         a.y = p[1];
@@ -176,7 +148,7 @@ static int xyz_write_frame(void *h, const ms_struct_view *v, const ms_frame_in *
         ms_atom_in a;
         char sym[4];
         v->get_atom(v, i, &a);
-        const char *label = a.atomicnumber > 0 && symbol_of(a.atomicnumber, sym) ? sym
+        const char *label = a.atomicnumber > 0 && ms_plugin_symbol_of(a.atomicnumber, sym) ? sym
                             : a.name && a.name[0]                               ? a.name
                                                                                  : "X";
         const float *p = f->pos + 3 * i;

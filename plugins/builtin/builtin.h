@@ -20,6 +20,13 @@ const ms_plugin *ms_plugin_entry_pdbx(void);
 const ms_plugin *ms_plugin_entry_pqr(void);
 const ms_plugin *ms_plugin_entry_mol2(void);
 const ms_plugin *ms_plugin_entry_namdbin(void);
+const ms_plugin *ms_plugin_entry_poscar(void);
+const ms_plugin *ms_plugin_entry_xdatcar(void);
+const ms_plugin *ms_plugin_entry_cor(void);
+const ms_plugin *ms_plugin_entry_js(void);
+#ifdef MS_HAVE_SQLITE3
+const ms_plugin *ms_plugin_entry_dms(void);
+#endif
 
 /* Add all of them to a registry; 0 or -1 (out of memory). */
 static inline int ms_test_add_builtin(ms_registry *r)
@@ -28,7 +35,13 @@ static inline int ms_test_add_builtin(ms_registry *r)
                             ms_plugin_entry_xyz(), ms_plugin_entry_gro(), ms_plugin_entry_dx(),
                             ms_plugin_entry_ccp4(), ms_plugin_entry_cube(), ms_plugin_entry_xtc(),
                             ms_plugin_entry_trr(), ms_plugin_entry_pdbx(), ms_plugin_entry_pqr(),
-                            ms_plugin_entry_mol2(), ms_plugin_entry_namdbin()};
+                            ms_plugin_entry_mol2(), ms_plugin_entry_namdbin(),
+                            ms_plugin_entry_poscar(), ms_plugin_entry_xdatcar(),
+                            ms_plugin_entry_cor(), ms_plugin_entry_js(),
+#ifdef MS_HAVE_SQLITE3
+                            ms_plugin_entry_dms(),
+#endif
+    };
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         if (ms_registry_add(r, p[i], NULL, NULL) < 0) return -1;
     return 0;

@@ -3,6 +3,7 @@
 #include "fileio/registry.h"
 
 #include <dirent.h>
+#include <fnmatch.h>
 #include <dlfcn.h>
 #include <limits.h>
 #include <stdio.h>
@@ -146,21 +147,43 @@ const ms_plugin *ms_registry_find(const ms_registry *r, const char *type)
     return NULL;
 }
 
-const ms_plugin *ms_registry_for_path(const ms_registry *r, const char *path)
+/* The plugin one of whose extension tokens `match` accepts, or NULL. */
+static const ms_plugin *find_token(const ms_registry *r, const char *name,
+                                   int (*match)(const char *tok, size_t len, const char *name))
 {
-    const char *slash = strrchr(path, '/');
-    const char *dot = strrchr(slash ? slash : path, '.');
-    if (!dot || !dot[1]) return NULL;
-    const char *ext = dot + 1;
-    size_t elen = strlen(ext);
     for (size_t i = 0; i < r->n; i++) {
         const char *list = r->plugins[i]->extensions;
         while (list && *list) {
             while (*list == ' ') list++;
             size_t len = strcspn(list, " ");
-            if (len == elen && strncasecmp(list, ext, len) == 0) return r->plugins[i];
+            if (len && match(list, len, name)) return r->plugins[i];
             list += len;
         }
     }
     return NULL;
+}
+
+/* An extension token ("pdb") against a file's extension, case-insensitively. */
+static int match_ext(const char *tok, size_t len, const char *ext)
+{
+    return !memchr(tok, '*', len) && len == strlen(ext) && strncasecmp(tok, ext, len) == 0;
+}
+
+/* A name pattern ("POSCAR*") against a file's base name. */
+static int match_glob(const char *tok, size_t len, const char *base)
+{
+    char pat[64];
+    if (!memchr(tok, '*', len) || len >= sizeof pat) return 0;
+    memcpy(pat, tok, len);
+    pat[len] = '\0';
+    return fnmatch(pat, base, 0) == 0;
+}
+
+const ms_plugin *ms_registry_for_path(const ms_registry *r, const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    const ms_plugin *p = dot && dot[1] ? find_token(r, dot + 1, match_ext) : NULL;
+    return p ? p : find_token(r, base, match_glob);
 }

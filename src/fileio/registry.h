@@ -34,7 +34,9 @@ int ms_registry_load_dir(ms_registry *r, const char *dir);
 void ms_registry_load_default(ms_registry *r, const char *exe_path);
 
 const ms_plugin *ms_registry_find(const ms_registry *r, const char *type);
-/* The plugin for a file name's extension (".pdb" -> pdb), NULL when none matches. */
+/* The plugin for a file name's extension (".pdb" -> pdb), else for its base name by the
+ * name patterns among the plugins' extensions ("POSCAR*": files without an extension);
+ * NULL when none matches. */
 const ms_plugin *ms_registry_for_path(const ms_registry *r, const char *path);
 
 #endif

@@ -111,6 +111,21 @@ int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err)
     return 0;
 }
 
+/* Zero element i of an array of elements of `size` bytes: plain stores for the usual sizes
+ * (a memset call per field and atom costs a load of millions of atoms a fifth of its time). */
+static void zero_element(void *base, size_t i, size_t size)
+{
+    char *p = (char *)base + i * size;
+    static const uint64_t zero = 0;
+    switch (size) {
+    case 1: *p = 0; break;
+    case 2: memcpy(p, &zero, 2); break;
+    case 4: memcpy(p, &zero, 4); break;
+    case 8: memcpy(p, &zero, 8); break;
+    default: memset(p, 0, size);
+    }
+}
+
 long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err)
 {
     ms_atoms *a = &m->atoms;
@@ -120,7 +135,7 @@ long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err)
     }
     size_t i = a->n++;
     for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++)
-        memset((char *)*atom_field(a, k) + i * atom_fields[k].elsize, 0, atom_fields[k].elsize);
+        zero_element(*atom_field(a, k), i, atom_fields[k].elsize);
     a->ss[i] = MS_SS_COIL_CODE;
     return (long)i;
 }

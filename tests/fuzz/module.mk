@@ -8,7 +8,11 @@
 # folder first (new inputs go there) and the seeds second, e.g.
 #   mkdir -p /tmp/c && tests/fuzz/lf_dcd -max_total_time=60 /tmp/c tests/fuzz/corpus/dcd
 # tests/fuzz-run builds them and runs every one for FUZZ_SECONDS on a copy of its corpus.
-FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin
+FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin poscar xdatcar cor \
+	js
+if HAVE_SQLITE3
+FUZZ_FORMATS += dms
+endif
 FUZZ_CORE = \
 	src/base/base.c src/base/strtab.c src/base/threads.c src/base/bitset.c \
 	src/base/safewrite.c src/base/grid.c \
@@ -25,7 +29,7 @@ tests/fuzz/fuzz_%$(EXEEXT): $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c 
 	$(AM_V_CCLD)$(LIBTOOL) $(AM_V_lt) --tag=CC --mode=link $(CC) $(DEFS) $(DEFAULT_INCLUDES) \
 		$(AM_CPPFLAGS) $(CPPFLAGS) $(AM_CFLAGS) $(CFLAGS) $(SAN_CFLAGS) $(LDFLAGS) -o $@ \
 		$(srcdir)/tests/fuzz/fuzz_$*.c $(srcdir)/plugins/$*.c $(srcdir)/tests/fuzz/driver.c \
-		tests/fuzz/libfuzzcore.la $(PTHREAD_LIBS) -lm
+		tests/fuzz/libfuzzcore.la $(SQLITE3_LIBS) $(PTHREAD_LIBS) -lm
 CLEANFILES += $(FUZZ_SMOKE)
 EXTRA_DIST += tests/fuzz/fuzz.h tests/fuzz/driver.c $(FUZZ_FORMATS:%=tests/fuzz/fuzz_%.c)
 
@@ -47,7 +51,7 @@ tests/fuzz/lf_%: $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c $(srcdir)/t
 		$(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
 		-o $@ $(srcdir)/tests/fuzz/fuzz_$*.c $(srcdir)/plugins/$*.c $(LF_CORE) \
-		-lpthread -lm -ldl
+		$(SQLITE3_LIBS) -lpthread -lm -ldl
 tests/fuzz/lf_select: $(srcdir)/tests/fuzz/fuzz_select.c $(LF_SELECT) $(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
 		-o $@ $(srcdir)/tests/fuzz/fuzz_select.c $(LF_SELECT) $(LF_CORE) -lpthread -lm -ldl
