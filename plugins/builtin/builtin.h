@@ -20,6 +20,14 @@ const ms_plugin *ms_plugin_entry_pdbx(void);
 const ms_plugin *ms_plugin_entry_pqr(void);
 const ms_plugin *ms_plugin_entry_mol2(void);
 const ms_plugin *ms_plugin_entry_namdbin(void);
+const ms_plugin *ms_plugin_entry_parm7(void);
+const ms_plugin *ms_plugin_entry_parm(void);
+const ms_plugin *ms_plugin_entry_rst7(void);
+const ms_plugin *ms_plugin_entry_crd(void);
+const ms_plugin *ms_plugin_entry_crdbox(void);
+#ifdef MS_HAVE_NETCDF
+const ms_plugin *ms_plugin_entry_netcdf(void);
+#endif
 
 /* Add all of them to a registry; 0 or -1 (out of memory). */
 static inline int ms_test_add_builtin(ms_registry *r)
@@ -28,7 +36,14 @@ static inline int ms_test_add_builtin(ms_registry *r)
                             ms_plugin_entry_xyz(), ms_plugin_entry_gro(), ms_plugin_entry_dx(),
                             ms_plugin_entry_ccp4(), ms_plugin_entry_cube(), ms_plugin_entry_xtc(),
                             ms_plugin_entry_trr(), ms_plugin_entry_pdbx(), ms_plugin_entry_pqr(),
-                            ms_plugin_entry_mol2(), ms_plugin_entry_namdbin()};
+                            ms_plugin_entry_mol2(), ms_plugin_entry_namdbin(),
+                            ms_plugin_entry_parm7(), ms_plugin_entry_parm(),
+                            ms_plugin_entry_rst7(), ms_plugin_entry_crd(),
+                            ms_plugin_entry_crdbox(),
+#ifdef MS_HAVE_NETCDF
+                            ms_plugin_entry_netcdf(),
+#endif
+    };
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         if (ms_registry_add(r, p[i], NULL, NULL) < 0) return -1;
     return 0;
