@@ -248,11 +248,12 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     w.view.get_bond_info = view_get_bond_info;
     w.view.count_terms = view_count_terms;
     w.view.get_term = view_get_term;
-    float *buf = NULL;
+    float *buf = NULL, *vbuf = NULL;
     long written = 0;
     ms_ofile *out = NULL;
     if (view_build_map(&w, n, err) || view_build_bonds(&w, n, err)) goto fail_view;
-    if (o->atoms && !(buf = ms_alloc_array(3 * n, sizeof *buf))) {
+    if (o->atoms && (!(buf = ms_alloc_array(3 * n, sizeof *buf)) ||
+                     !(vbuf = ms_alloc_array(3 * n, sizeof *vbuf)))) {
         ms_error_set(err, "out of memory");
         goto fail_view;
     }
@@ -269,6 +270,7 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
         ms_frame_in in;
         memset(&in, 0, sizeof in);
         in.pos = gather(&w, fr->pos, buf, n);
+        in.vel = gather(&w, fr->vel, vbuf, n);
         memcpy(in.cell, fr->cell, sizeof in.cell);
         in.time = fr->time;
         in.index = (int)written;
@@ -280,11 +282,13 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     out = NULL;
     if (failed) goto fail_view;
     free(buf);
+    free(vbuf);
     view_free(&w);
     return written;
 fail_view:
     ms_ofile_abort(out);
     free(buf);
+    free(vbuf);
     view_free(&w);
     return -1;
 }

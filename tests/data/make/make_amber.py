@@ -133,7 +133,10 @@ def write_old(parm, path):
         if flag in ("SOLVENT_POINTERS", "ATOMS_PER_MOLECULE", "BOX_DIMENSIONS") and \
                 parm.parm_data["POINTERS"][27] == 0:
             continue
-        lines += old_lines(parm.parm_data[flag], kind)
+        values = parm.parm_data[flag]
+        if flag == "CHARGE":  # ParmEd keeps charges in e once parsed: back to AMBER units
+            values = [q * 18.2223 for q in values]
+        lines += old_lines(values, kind)
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
 
