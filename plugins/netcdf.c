@@ -131,6 +131,143 @@ static int check_header(nc_reader *r, long long size, ms_perr *err)
     return find_vars(r, err);
 }
 
+/* ---------------------------------------------------------------- header check */
+
+/* libnetcdf trusts a classic file's header (it has crashed on damaged ones), so the
+ * header's structure is checked before the library sees it: every count, name, value and
+ * dimension id within the file and consistent (the classic format specification,
+ * "CDF" 1, 2 or 5). This checks, it does not read: the library reads the file. */
+typedef struct cdf_hdr {
+    const unsigned char *p, *end;
+    int version;
+    const char *bad;  /* what was wrong, NULL while all is well */
+} cdf_hdr;
+
+static unsigned long long cdf_uint(cdf_hdr *h, int bytes)
+{
+    if (h->bad || h->end - h->p < bytes) {
+        if (!h->bad) h->bad = "the header ends early";
+        return 0;
+    }
+    unsigned long long v = 0;
+    for (int k = 0; k < bytes; k++) v = v << 8 | *h->p++;
+    return v;
+}
+
+/* A count (4 bytes, 8 in CDF-5) no larger than max. */
+static unsigned long long cdf_count(cdf_hdr *h, unsigned long long max, const char *what)
+{
+    unsigned long long n = cdf_uint(h, h->version == 5 ? 8 : 4);
+    if (!h->bad && n > max) h->bad = what;
+    return h->bad ? 0 : n;
+}
+
+static void cdf_skip(cdf_hdr *h, unsigned long long n)
+{
+    n = (n + 3) & ~3ull;
+    if (h->bad) return;
+    if ((unsigned long long)(h->end - h->p) < n) h->bad = "the header ends early";
+    else h->p += n;
+}
+
+/* A name: 1..256 bytes without NUL, slash or control characters. */
+static void cdf_name(cdf_hdr *h)
+{
+    unsigned long long n = cdf_count(h, 256, "a name longer than 256 bytes");
+    if (!h->bad && n == 0) h->bad = "an empty name";
+    if (!h->bad && (unsigned long long)(h->end - h->p) < n) h->bad = "the header ends early";
+    for (unsigned long long k = 0; !h->bad && k < n; k++)
+        if (h->p[k] < 0x20 || h->p[k] == '/' || h->p[k] == 0x7f) h->bad = "a bad character in a name";
+    cdf_skip(h, n);
+}
+
+static int cdf_type_size(cdf_hdr *h, unsigned long long t)
+{
+    static const int size[] = {0, 1, 1, 2, 4, 4, 8, 1, 2, 4, 8, 8};
+    if (t >= 1 && t <= (h->version == 5 ? 11u : 6u)) return size[t];
+    if (!h->bad) h->bad = "an unknown value type";
+    return 0;
+}
+
+/* A list's tag and count: 0 for an absent list. */
+static unsigned long long cdf_list(cdf_hdr *h, unsigned tag)
+{
+    unsigned long long t = cdf_uint(h, 4), n = cdf_count(h, 1u << 20, "a list too long");
+    if (!h->bad && t != tag && !(t == 0 && n == 0)) h->bad = "a list of the wrong kind";
+    return n;
+}
+
+static void cdf_attrs(cdf_hdr *h)
+{
+    unsigned long long n = cdf_list(h, 0x0C);
+    for (unsigned long long k = 0; k < n && !h->bad; k++) {
+        cdf_name(h);
+        int size = cdf_type_size(h, cdf_uint(h, 4));
+        unsigned long long len = cdf_count(h, (unsigned long long)(h->end - h->p),
+                                           "an attribute longer than the file");
+        cdf_skip(h, len * (unsigned long long)size);
+    }
+}
+
+static void cdf_vars(cdf_hdr *h, unsigned long long ndims, const int *unlimited)
+{
+    unsigned long long n = cdf_list(h, 0x0B);
+    for (unsigned long long k = 0; k < n && !h->bad; k++) {
+        cdf_name(h);
+        unsigned long long nd = cdf_count(h, 1024, "a variable with too many dimensions");
+        for (unsigned long long d = 0; d < nd && !h->bad; d++) {
+            unsigned long long id = cdf_count(h, ndims ? ndims - 1 : 0, "a bad dimension id");
+            if (!h->bad && ndims == 0) h->bad = "a dimension id without dimensions";
+            if (!h->bad && d > 0 && unlimited[id]) h->bad = "the record dimension not first";
+        }
+        cdf_attrs(h);
+        cdf_type_size(h, cdf_uint(h, 4));
+        cdf_uint(h, h->version == 5 ? 8 : 4);       /* vsize */
+        cdf_uint(h, h->version == 1 ? 4 : 8);       /* begin */
+    }
+}
+
+/* NULL when the classic header is sound (or the file is not classic: HDF5-based files
+ * are the HDF5 library's to check), else what is wrong. */
+static const char *cdf_check(const unsigned char *data, size_t size)
+{
+    cdf_hdr h = {data, data + size, 0, NULL};
+    if (size < 4 || memcmp(data, "CDF", 3)) return NULL;
+    h.version = data[3];
+    if (h.version != 1 && h.version != 2 && h.version != 5) return "an unknown CDF version";
+    h.p += 4;
+    cdf_uint(&h, h.version == 5 ? 8 : 4); /* numrecs */
+    unsigned long long nd = cdf_list(&h, 0x0A), nunlim = 0;
+    int *unlimited = calloc(nd ? nd : 1, sizeof *unlimited);
+    if (!unlimited) return "out of memory";
+    for (unsigned long long k = 0; k < nd && !h.bad; k++) {
+        cdf_name(&h);
+        unlimited[k] = cdf_uint(&h, h.version == 5 ? 8 : 4) == 0;
+        nunlim += (unsigned long long)unlimited[k];
+    }
+    if (!h.bad && nunlim > 1) h.bad = "more than one record dimension";
+    cdf_attrs(&h);
+    cdf_vars(&h, nd, unlimited);
+    free(unlimited);
+    return h.bad;
+}
+
+/* The start of the file (the header, at most 16 MiB) through cdf_check. */
+static int check_classic_header(const char *path, ms_perr *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return ms_perr_set(err, "cannot open the file");
+    size_t cap = 1u << 24;
+    unsigned char *buf = malloc(cap);
+    size_t n = buf ? fread(buf, 1, cap, f) : 0;
+    fclose(f);
+    if (!buf) return ms_perr_set(err, "out of memory");
+    const char *bad = cdf_check(buf, n);
+    free(buf);
+    if (bad) return ms_perr_set(err, "damaged NetCDF header: %s", bad);
+    return MS_PLUGIN_OK;
+}
+
 static void *ncr_open(const char *path, long *natoms, ms_perr *err)
 {
     nc_reader *r = calloc(1, sizeof *r);
@@ -138,7 +275,12 @@ static void *ncr_open(const char *path, long *natoms, ms_perr *err)
         ms_perr_set(err, "out of memory");
         return NULL;
     }
-    int st = nc_open(path, NC_NOWRITE, &r->nc);
+    int st = check_classic_header(path, err) ? NC_ENOTNC : nc_open(path, NC_NOWRITE, &r->nc);
+    if (st != NC_NOERR && err->msg[0]) {
+        r->nc = -1;
+        ncr_close(r);
+        return NULL;
+    }
     if (st != NC_NOERR) {
         r->nc = -1;
         ncr_close(r);
