@@ -118,8 +118,9 @@ static int check_frame_size(crd_reader *r, long natoms, ms_perr *err)
     if (r->size < 0 || frame <= 0 || data % frame == 0) return MS_PLUGIN_OK;
     /* A last line without its newline is one byte short. */
     if ((data + 1) % frame == 0) return MS_PLUGIN_OK;
-    return ms_perr_set(err, "wrong atom count: the %lld bytes of frames are not a whole number "
-                            "of %ld-atom frames (%lld bytes each)%s", data, natoms, frame,
+    return ms_perr_set(err, "truncated file or wrong atom count: the %lld bytes of frames are "
+                            "not a whole number of %ld-atom frames (%lld bytes each)%s", data,
+                       natoms, frame,
                        CRD_WITH_BOX ? "" : " (a file with a box is type crdbox)");
 }
 

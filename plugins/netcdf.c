@@ -21,6 +21,7 @@ typedef struct nc_reader {
     int nc;
     int restart;               /* AMBERRESTART: no frame dimension */
     size_t natoms, nframes, next;
+    long long held;            /* whole frames in the file; -1 when the library knows */
     int v_coord, v_vel, v_len, v_ang, v_time;  /* -1 when absent */
     double vel_scale;
 } nc_reader;
@@ -141,6 +142,11 @@ typedef struct cdf_hdr {
     const unsigned char *p, *end;
     int version;
     const char *bad;  /* what was wrong, NULL while all is well */
+    unsigned long long numrecs;
+    /* Where the data ends: fixed variables, and the record variables' extent (the first
+     * record's start, the bytes of a record, the last record variable's end in it). */
+    unsigned long long fixed_end, rec_begin, rec_size;
+    int any_rec, unknown_size;
 } cdf_hdr;
 
 static unsigned long long cdf_uint(cdf_hdr *h, int bytes)
@@ -209,51 +215,85 @@ static void cdf_attrs(cdf_hdr *h)
     }
 }
 
+/* Account for one variable's data: vsize bytes at begin, once or in every record. */
+static void cdf_extent(cdf_hdr *h, int rec, unsigned long long vsize, unsigned long long begin)
+{
+    if (h->bad) return;
+    if (vsize == 0xffffffffull) h->unknown_size = 1; /* over 4 GiB: the size is not stored */
+    if (!rec) {
+        if (begin + vsize > h->fixed_end) h->fixed_end = begin + vsize;
+        return;
+    }
+    if (!h->any_rec || begin < h->rec_begin) h->rec_begin = begin;
+    h->any_rec = 1;
+    h->rec_size += (vsize + 3) & ~3ull;
+}
+
 static void cdf_vars(cdf_hdr *h, unsigned long long ndims, const int *unlimited)
 {
     unsigned long long n = cdf_list(h, 0x0B);
     for (unsigned long long k = 0; k < n && !h->bad; k++) {
         cdf_name(h);
         unsigned long long nd = cdf_count(h, 1024, "a variable with too many dimensions");
+        int rec = 0;
         for (unsigned long long d = 0; d < nd && !h->bad; d++) {
             unsigned long long id = cdf_count(h, ndims ? ndims - 1 : 0, "a bad dimension id");
             if (!h->bad && ndims == 0) h->bad = "a dimension id without dimensions";
             if (!h->bad && d > 0 && unlimited[id]) h->bad = "the record dimension not first";
+            if (!h->bad && d == 0) rec = unlimited[id];
         }
         cdf_attrs(h);
         cdf_type_size(h, cdf_uint(h, 4));
-        cdf_uint(h, h->version == 5 ? 8 : 4);       /* vsize */
-        cdf_uint(h, h->version == 1 ? 4 : 8);       /* begin */
+        unsigned long long vsize = cdf_uint(h, h->version == 5 ? 8 : 4);
+        unsigned long long begin = cdf_uint(h, h->version == 1 ? 4 : 8);
+        cdf_extent(h, rec, vsize, begin);
     }
 }
 
 /* NULL when the classic header is sound (or the file is not classic: HDF5-based files
- * are the HDF5 library's to check), else what is wrong. */
-static const char *cdf_check(const unsigned char *data, size_t size)
+ * are the HDF5 library's to check), else what is wrong. *h holds what the header says. */
+static const char *cdf_check(const unsigned char *data, size_t size, cdf_hdr *h)
 {
-    cdf_hdr h = {data, data + size, 0, NULL};
+    memset(h, 0, sizeof *h);
+    h->p = data;
+    h->end = data + size;
     if (size < 4 || memcmp(data, "CDF", 3)) return NULL;
-    h.version = data[3];
-    if (h.version != 1 && h.version != 2 && h.version != 5) return "an unknown CDF version";
-    h.p += 4;
-    cdf_uint(&h, h.version == 5 ? 8 : 4); /* numrecs */
-    unsigned long long nd = cdf_list(&h, 0x0A), nunlim = 0;
+    h->version = data[3];
+    if (h->version != 1 && h->version != 2 && h->version != 5) return "an unknown CDF version";
+    h->p += 4;
+    h->numrecs = cdf_uint(h, h->version == 5 ? 8 : 4);
+    unsigned long long nd = cdf_list(h, 0x0A), nunlim = 0;
     int *unlimited = calloc(nd ? nd : 1, sizeof *unlimited);
     if (!unlimited) return "out of memory";
-    for (unsigned long long k = 0; k < nd && !h.bad; k++) {
-        cdf_name(&h);
-        unlimited[k] = cdf_uint(&h, h.version == 5 ? 8 : 4) == 0;
+    for (unsigned long long k = 0; k < nd && !h->bad; k++) {
+        cdf_name(h);
+        unlimited[k] = cdf_uint(h, h->version == 5 ? 8 : 4) == 0;
         nunlim += (unsigned long long)unlimited[k];
     }
-    if (!h.bad && nunlim > 1) h.bad = "more than one record dimension";
-    cdf_attrs(&h);
-    cdf_vars(&h, nd, unlimited);
+    if (!h->bad && nunlim > 1) h->bad = "more than one record dimension";
+    cdf_attrs(h);
+    cdf_vars(h, nd, unlimited);
     free(unlimited);
-    return h.bad;
+    return h->bad;
 }
 
-/* The start of the file (the header, at most 16 MiB) through cdf_check. */
-static int check_classic_header(const char *path, ms_perr *err)
+/* How many whole records a classic file of `size` bytes holds (the header's count when
+ * it cannot tell); *fixed_ok is 0 when it is too short for its fixed variables. */
+static unsigned long long cdf_records_held(const cdf_hdr *h, long long size, int *fixed_ok)
+{
+    unsigned long long sz = size > 0 ? (unsigned long long)size : 0;
+    *fixed_ok = h->unknown_size || h->fixed_end <= sz + 4;
+    if (!h->any_rec || h->unknown_size || h->rec_size == 0 || h->numrecs == 0xffffffffull)
+        return h->numrecs;
+    if (sz + 4 < h->rec_begin + h->rec_size) return 0;
+    unsigned long long held = (sz + 4 - h->rec_begin) / h->rec_size;
+    return held < h->numrecs ? held : h->numrecs;
+}
+
+/* The start of the file (the header, at most 16 MiB) through cdf_check; *held: the whole
+ * records the file holds (-1: not a classic file, the library knows). */
+static int check_classic_header(const char *path, long long size, long long *held,
+                                ms_perr *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f) return ms_perr_set(err, "cannot open the file");
@@ -262,9 +302,15 @@ static int check_classic_header(const char *path, ms_perr *err)
     size_t n = buf ? fread(buf, 1, cap, f) : 0;
     fclose(f);
     if (!buf) return ms_perr_set(err, "out of memory");
-    const char *bad = cdf_check(buf, n);
+    cdf_hdr h;
+    const char *bad = cdf_check(buf, n, &h);
     free(buf);
     if (bad) return ms_perr_set(err, "damaged NetCDF header: %s", bad);
+    int fixed_ok = 1;
+    *held = h.version ? (long long)cdf_records_held(&h, size, &fixed_ok) : -1;
+    if (!fixed_ok)
+        return ms_perr_set(err, "truncated: the variables end at byte %llu but the file has "
+                                "%lld bytes", h.fixed_end, size);
     return MS_PLUGIN_OK;
 }
 
@@ -275,7 +321,10 @@ static void *ncr_open(const char *path, long *natoms, ms_perr *err)
         ms_perr_set(err, "out of memory");
         return NULL;
     }
-    int st = check_classic_header(path, err) ? NC_ENOTNC : nc_open(path, NC_NOWRITE, &r->nc);
+    struct stat sb;
+    long long size = stat(path, &sb) == 0 ? (long long)sb.st_size : 0;
+    int st = check_classic_header(path, size, &r->held, err) ? NC_ENOTNC
+                                                             : nc_open(path, NC_NOWRITE, &r->nc);
     if (st != NC_NOERR && err->msg[0]) {
         r->nc = -1;
         ncr_close(r);
@@ -287,8 +336,6 @@ static void *ncr_open(const char *path, long *natoms, ms_perr *err)
         nc_fail(err, st, "not a NetCDF file");
         return NULL;
     }
-    struct stat sb;
-    long long size = stat(path, &sb) == 0 ? (long long)sb.st_size : 0;
     if (check_header(r, size, err)) {
         ncr_close(r);
         return NULL;
@@ -349,6 +396,9 @@ static int ncr_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
     if (natoms != (long)r->natoms)
         return ms_perr_set(err, "the file has %zu atoms, the structure %ld", r->natoms, natoms);
     size_t k = r->next++;
+    if (!r->restart && r->held >= 0 && (long long)k >= r->held)
+        return ms_perr_set(err, "truncated: the header declares %zu frames but the file holds "
+                                "only %lld whole ones", r->nframes, r->held);
     if (!fr->pos) return MS_PLUGIN_OK; /* skipped: frames are read by index */
     int st = get_atoms(r, r->v_coord, k, fr->pos);
     if (st) return nc_fail(err, st, "coordinates");
