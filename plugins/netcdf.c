@@ -183,7 +183,8 @@ static void cdf_name(cdf_hdr *h)
     if (!h->bad && n == 0) h->bad = "an empty name";
     if (!h->bad && (unsigned long long)(h->end - h->p) < n) h->bad = "the header ends early";
     for (unsigned long long k = 0; !h->bad && k < n; k++)
-        if (h->p[k] < 0x20 || h->p[k] == '/' || h->p[k] == 0x7f) h->bad = "a bad character in a name";
+        if (h->p[k] < 0x20 || h->p[k] == '/' || h->p[k] == 0x7f)
+            h->bad = "a bad character in a name";
     cdf_skip(h, n);
 }
 
@@ -323,8 +324,9 @@ static void *ncr_open(const char *path, long *natoms, ms_perr *err)
     }
     struct stat sb;
     long long size = stat(path, &sb) == 0 ? (long long)sb.st_size : 0;
-    int st = check_classic_header(path, size, &r->held, err) ? NC_ENOTNC
-                                                             : nc_open(path, NC_NOWRITE, &r->nc);
+    int st = check_classic_header(path, size, &r->held, err)
+                 ? NC_ENOTNC
+                 : nc_open(path, NC_NOWRITE, &r->nc);
     if (st != NC_NOERR && err->msg[0]) {
         r->nc = -1;
         ncr_close(r);
