@@ -128,7 +128,7 @@ int main(int argc, char **argv)
         }
     }
     if (!m && status == 0) {
-        fprintf(stderr, "usage: msdump [-o out] [-a assembly] [-s step] [-t type] file "
+        fprintf(stderr, "usage: msdump [-f] [-o out] [-a assembly] [-s step] [-t type] file "
                         "[[-t type] file ...]\n");
         status = 1;
     }
