@@ -308,7 +308,9 @@ static int read_old_style(parm_reader *r, ms_struct_sink *sink, ms_perr *err)
     int got = 0;
     while (got < P_NOLD) {
         const char *l = ms_lines_next(&r->in);
-        if (!l) return ms_perr_set(err, "the file ends inside the pointers (line %ld)", r->in.line_no);
+        if (!l)
+            return ms_perr_set(err, "the file ends inside the pointers (line %ld)",
+                               r->in.line_no);
         for (int f = 0; f < 12 && got < P_NOLD; f++) {
             char tok[16];
             ms_field(l, r->in.line_len, (size_t)(6 * f), (size_t)(6 * f + 6), tok);
