@@ -274,7 +274,7 @@ static int read_records(psf_reader *r, ms_struct_sink *sink, const struct psf_se
     const char *l;
     /* A record is width numbers, each a digit and a separator at the least. */
     if (ms_check_room(err, (double)count, 2 * sec->width, ms_lines_left(in), sec->what,
-                      "line %ld: %s declares %ld records", in->line_no, sec->tag, count))
+                      "line %ld: %s declares %ld %ss", in->line_no, sec->tag, count, sec->what))
         return MS_PLUGIN_ERROR;
     long found = 0, v[4];
     int have = 0;
