@@ -95,6 +95,35 @@ plugins_dms_la_LDFLAGS = $(PLUGIN_FLAGS)
 plugins_dms_la_LIBADD = $(SQLITE3_LIBS) -lm
 endif
 
+plugins_LTLIBRARIES += plugins/parm7.la plugins/parm.la
+plugins_parm7_la_SOURCES = plugins/parm7.c $(PLUGIN_UTIL)
+plugins_parm7_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_parm7_la_LIBADD = -lm
+plugins_parm_la_SOURCES = plugins/parm.c $(PLUGIN_UTIL)
+plugins_parm_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_parm_la_LIBADD = -lm
+EXTRA_DIST += plugins/parm7.c plugins/crd.c
+
+plugins_LTLIBRARIES += plugins/rst7.la
+plugins_rst7_la_SOURCES = plugins/rst7.c $(PLUGIN_UTIL)
+plugins_rst7_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+plugins_LTLIBRARIES += plugins/crd.la plugins/crdbox.la
+plugins_crd_la_SOURCES = plugins/crd.c $(PLUGIN_UTIL)
+plugins_crd_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_crdbox_la_SOURCES = plugins/crdbox.c $(PLUGIN_UTIL)
+plugins_crdbox_la_LDFLAGS = $(PLUGIN_FLAGS)
+
+# AMBER NetCDF: only with libnetcdf (configure --with-netcdf).
+if HAVE_NETCDF
+plugins_LTLIBRARIES += plugins/netcdf.la
+plugins_netcdf_la_SOURCES = plugins/netcdf.c
+plugins_netcdf_la_CFLAGS = $(AM_CFLAGS) $(NETCDF_CFLAGS)
+plugins_netcdf_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_netcdf_la_LIBADD = $(NETCDF_LIBS)
+BUILTIN_NETCDF = plugins/builtin/netcdf.c
+endif
+
 # Every plugin in one convenience library, each under its own entry name (plugins/builtin/),
 # for the programs that read files without the plugin directory: tests, tools, benchmarks.
 noinst_LTLIBRARIES += plugins/libbuiltin.la
@@ -104,10 +133,14 @@ plugins_libbuiltin_la_SOURCES = plugins/builtin/builtin.h \
 	plugins/builtin/xtc.c plugins/builtin/trr.c plugins/builtin/pdbx.c plugins/builtin/pqr.c \
 	plugins/builtin/mol2.c plugins/builtin/namdbin.c plugins/builtin/poscar.c \
 	plugins/builtin/xdatcar.c plugins/builtin/cor.c plugins/builtin/js.c \
+	plugins/builtin/parm7.c plugins/builtin/parm.c plugins/builtin/rst7.c \
+	plugins/builtin/crd.c plugins/builtin/crdbox.c $(BUILTIN_NETCDF) \
 	plugins/cif_tok.c plugins/gmx_util.h plugins/vasp_util.h $(PLUGIN_UTIL)
-plugins_libbuiltin_la_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/plugins/builtin
+EXTRA_plugins_libbuiltin_la_SOURCES = plugins/builtin/netcdf.c plugins/builtin/dms.c
+plugins_libbuiltin_la_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/plugins/builtin $(NETCDF_CFLAGS)
+plugins_libbuiltin_la_LIBADD = $(NETCDF_LIBS)
 if HAVE_SQLITE3
 plugins_libbuiltin_la_SOURCES += plugins/builtin/dms.c
 plugins_libbuiltin_la_CPPFLAGS += $(SQLITE3_CFLAGS)
-plugins_libbuiltin_la_LIBADD = $(SQLITE3_LIBS)
+plugins_libbuiltin_la_LIBADD += $(SQLITE3_LIBS)
 endif

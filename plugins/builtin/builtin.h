@@ -24,8 +24,16 @@ const ms_plugin *ms_plugin_entry_poscar(void);
 const ms_plugin *ms_plugin_entry_xdatcar(void);
 const ms_plugin *ms_plugin_entry_cor(void);
 const ms_plugin *ms_plugin_entry_js(void);
+const ms_plugin *ms_plugin_entry_parm7(void);
+const ms_plugin *ms_plugin_entry_parm(void);
+const ms_plugin *ms_plugin_entry_rst7(void);
+const ms_plugin *ms_plugin_entry_crd(void);
+const ms_plugin *ms_plugin_entry_crdbox(void);
 #ifdef MS_HAVE_SQLITE3
 const ms_plugin *ms_plugin_entry_dms(void);
+#endif
+#ifdef MS_HAVE_NETCDF
+const ms_plugin *ms_plugin_entry_netcdf(void);
 #endif
 
 /* Add all of them to a registry; 0 or -1 (out of memory). */
@@ -38,8 +46,14 @@ static inline int ms_test_add_builtin(ms_registry *r)
                             ms_plugin_entry_mol2(), ms_plugin_entry_namdbin(),
                             ms_plugin_entry_poscar(), ms_plugin_entry_xdatcar(),
                             ms_plugin_entry_cor(), ms_plugin_entry_js(),
+                            ms_plugin_entry_parm7(), ms_plugin_entry_parm(),
+                            ms_plugin_entry_rst7(), ms_plugin_entry_crd(),
+                            ms_plugin_entry_crdbox(),
 #ifdef MS_HAVE_SQLITE3
                             ms_plugin_entry_dms(),
+#endif
+#ifdef MS_HAVE_NETCDF
+                            ms_plugin_entry_netcdf(),
 #endif
     };
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)

@@ -23,6 +23,7 @@ typedef struct ms_loader {
     int with_vel;
     ms_asm_plan *plan;        /* frames are read into scratch and expanded (assemblies) */
     float *scratch_pos, *scratch_vel;
+    float *probe_vel;         /* offered to a reader of frames alone while with_vel is 0 */
     long nread;               /* frames of this file added to the molecule so far */
 } ms_loader;
 
@@ -477,8 +478,25 @@ static void loader_free(ms_loader *ld)
     }
     free(ld->scratch_pos);
     free(ld->scratch_vel);
+    free(ld->probe_vel);
     free(ld->path);
     free(ld);
+}
+
+/* Where a kept frame's velocities go when it has no array for them: a buffer offered to
+ * the reader, so a file of frames alone (a restart, a TRR) can say it has velocities; the
+ * frame then adopts it and the frames after it get their own. NULL when out of memory. */
+static float *loader_probe_vel(ms_loader *ld, const ms_molecule *m)
+{
+    if (!ld->probe_vel) ld->probe_vel = ms_alloc_array(3 * m->atoms.n, sizeof(float));
+    return ld->probe_vel;
+}
+
+static void loader_adopt_vel(ms_loader *ld, ms_frame *f)
+{
+    f->vel = ld->probe_vel;
+    ld->probe_vel = NULL;
+    ld->with_vel = 1;
 }
 
 /* Read up to max frames (max < 0: all). Returns 1 more remain, 0 done, -1 error. The frames
@@ -501,7 +519,7 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
                 return -1;
             }
             out.pos = ld->plan ? ld->scratch_pos : f->pos;
-            out.vel = ld->plan ? ld->scratch_vel : f->vel;
+            out.vel = ld->plan ? ld->scratch_vel : f->vel ? f->vel : loader_probe_vel(ld, m);
         }
         int rc = ld->p->read_frame(ld->h, ld->natoms, &out, &perr);
         if (rc != MS_PLUGIN_OK) {
@@ -512,6 +530,7 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         }
         ld->next_index++;
         if (!keep) continue;
+        if (!ld->plan && !f->vel && out.has_vel && out.vel) loader_adopt_vel(ld, f);
         if (ld->plan) {
             ms_asm_expand_xyz(ld->plan, ld->scratch_pos, f->pos, 0);
             if (f->vel && out.has_vel) ms_asm_expand_xyz(ld->plan, ld->scratch_vel, f->vel, 1);

@@ -68,7 +68,7 @@ int rt_geom_clipped(const rt_geom *g, const float o[3], const float d[3], float 
 {
     if (!g->item || !g->item->nclip) return 0;
     float p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]}, w[3];
-    rt_xf_point(g->xf, p, w);
+    ms_mat4_point(g->xf, p, w);
     return ms_scene_clipped(g->item, w);
 }
 

@@ -42,28 +42,59 @@ static int ms_fuzz_scratch(void)
     return 0;
 }
 
-static int ms_fuzz_load(const ms_plugin *p, const uint8_t *data, size_t size)
+/* The input into the scratch file, and a registry holding p alone. */
+static void ms_fuzz_prepare(const ms_plugin *p, const uint8_t *data, size_t size,
+                            ms_registry *reg, ms_load_opts *o)
 {
     if (ms_fuzz_scratch()) abort();
     FILE *f = fopen(ms_fuzz_in, "wb");
     if (!f || fwrite(data, 1, size, f) != size || fclose(f) != 0) abort();
-    ms_registry reg;
-    ms_registry_init(&reg);
-    if (ms_registry_add(&reg, p, NULL, NULL) < 0) abort();
-    ms_load_opts o;
-    ms_load_opts_default(&o);
-    o.type = p->name;
-    o.waitfor = -1;
+    ms_registry_init(reg);
+    if (ms_registry_add(reg, p, NULL, NULL) < 0) abort();
+    ms_load_opts_default(o);
+    o->type = p->name;
+    o->waitfor = -1;
+}
+
+/* Write m back with p when it can write, then free m and the registry. */
+static void ms_fuzz_write_back(const ms_plugin *p, ms_registry *reg, ms_molecule *m)
+{
     ms_error err = {{0}};
-    ms_molecule *m = ms_load_new(&reg, ms_fuzz_in, &o, &err);
     if (m && p->open_write) {
         ms_write_opts w;
         ms_write_opts_default(&w);
         w.type = p->name;
-        if (ms_write_file(&reg, m, ms_fuzz_out, &w, &err) >= 0) unlink(ms_fuzz_out);
+        if (ms_write_file(reg, m, ms_fuzz_out, &w, &err) >= 0) unlink(ms_fuzz_out);
     }
     ms_mol_free(m);
-    ms_registry_free(&reg);
+    ms_registry_free(reg);
+}
+
+static inline int ms_fuzz_load(const ms_plugin *p, const uint8_t *data, size_t size)
+{
+    ms_registry reg;
+    ms_load_opts o;
+    ms_fuzz_prepare(p, data, size, &reg, &o);
+    ms_error err = {{0}};
+    ms_fuzz_write_back(p, &reg, ms_load_new(&reg, ms_fuzz_in, &o, &err));
+    return 0;
+}
+
+/* For a format of frames alone that does not give the atom count (AMBER's crd): add the
+ * input to a molecule of natoms blank atoms, as `mol addfile` after a structure does. */
+static inline int ms_fuzz_load_frames(const ms_plugin *p, size_t natoms, const uint8_t *data,
+                               size_t size)
+{
+    ms_registry reg;
+    ms_load_opts o;
+    ms_fuzz_prepare(p, data, size, &reg, &o);
+    ms_error err = {{0}};
+    ms_molecule *m = ms_mol_new(&err);
+    if (!m) abort();
+    for (size_t i = 0; i < natoms; i++)
+        if (ms_mol_add_blank_atom(m, &err) < 0) abort();
+    ms_load_add(&reg, m, ms_fuzz_in, &o, &err);
+    ms_fuzz_write_back(p, &reg, m);
     return 0;
 }
 

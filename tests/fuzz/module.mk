@@ -9,9 +9,12 @@
 #   mkdir -p /tmp/c && tests/fuzz/lf_dcd -max_total_time=60 /tmp/c tests/fuzz/corpus/dcd
 # tests/fuzz-run builds them and runs every one for FUZZ_SECONDS on a copy of its corpus.
 FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin poscar xdatcar cor \
-	js
+	js parm7 rst7 crd crdbox
 if HAVE_SQLITE3
 FUZZ_FORMATS += dms
+endif
+if HAVE_NETCDF
+FUZZ_FORMATS += netcdf
 endif
 FUZZ_CORE = \
 	src/base/base.c src/base/strtab.c src/base/threads.c src/base/bitset.c \
@@ -27,9 +30,10 @@ FUZZ_SMOKE = $(FUZZ_FORMATS:%=tests/fuzz/fuzz_%$(EXEEXT))
 tests/fuzz/fuzz_%$(EXEEXT): $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c \
 		$(srcdir)/tests/fuzz/fuzz.h $(srcdir)/tests/fuzz/driver.c tests/fuzz/libfuzzcore.la
 	$(AM_V_CCLD)$(LIBTOOL) $(AM_V_lt) --tag=CC --mode=link $(CC) $(DEFS) $(DEFAULT_INCLUDES) \
-		$(AM_CPPFLAGS) $(CPPFLAGS) $(AM_CFLAGS) $(CFLAGS) $(SAN_CFLAGS) $(LDFLAGS) -o $@ \
+		$(AM_CPPFLAGS) $(CPPFLAGS) $(AM_CFLAGS) $(CFLAGS) $(SAN_CFLAGS) $(NETCDF_CFLAGS) \
+		$(LDFLAGS) -o $@ \
 		$(srcdir)/tests/fuzz/fuzz_$*.c $(srcdir)/plugins/$*.c $(srcdir)/tests/fuzz/driver.c \
-		tests/fuzz/libfuzzcore.la $(SQLITE3_LIBS) $(PTHREAD_LIBS) -lm
+		tests/fuzz/libfuzzcore.la $(SQLITE3_LIBS) $(PTHREAD_LIBS) $(NETCDF_LIBS) -lm
 CLEANFILES += $(FUZZ_SMOKE)
 EXTRA_DIST += tests/fuzz/fuzz.h tests/fuzz/driver.c $(FUZZ_FORMATS:%=tests/fuzz/fuzz_%.c)
 
@@ -51,7 +55,7 @@ tests/fuzz/lf_%: $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c $(srcdir)/t
 		$(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
 		-o $@ $(srcdir)/tests/fuzz/fuzz_$*.c $(srcdir)/plugins/$*.c $(LF_CORE) \
-		$(SQLITE3_LIBS) -lpthread -lm -ldl
+		$(NETCDF_CFLAGS) $(SQLITE3_LIBS) -lpthread $(NETCDF_LIBS) -lm -ldl
 tests/fuzz/lf_select: $(srcdir)/tests/fuzz/fuzz_select.c $(LF_SELECT) $(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
 		-o $@ $(srcdir)/tests/fuzz/fuzz_select.c $(LF_SELECT) $(LF_CORE) -lpthread -lm -ldl

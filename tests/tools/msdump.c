@@ -7,7 +7,13 @@
  *   cell    k a b c alpha beta gamma                (once per frame)
  *   xyz     k i x y z                               (per frame and atom)
  *   volume  v n0 n1 n2 ox oy oz d00 d01 ... d22 min max mean  (once per volume)
- * usage: msdump [-o out] [-a assembly] [-s step] [-t type] file [[-t type] file ...]: the
+ * and with -f (first on the line) also the force-field side:
+ *   prop    i type charge mass atomicnumber         (once per atom)
+ *   bond    i j                                     (once per bond, i < j)
+ *   term    kind a b c [d]                          (angle, dihedral, improper)
+ *   vel     k i vx vy vz                            (per frame and atom, with velocities)
+ *   time    k t                                     (once per frame)
+ * usage: msdump [-f] [-o out] [-a assembly] [-s step] [-t type] file [[-t type] file ...]: the
  * first file makes the molecule, the others are added to it (every step-th frame of those
  * after -s); with -o the molecule (every frame) is written to `out` instead, in the format
  * its extension names (a volume format writes the first volume); -a builds a biological
@@ -21,6 +27,35 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The -f lines: types, charges, masses, atomic numbers, bonds, terms, velocities, times. */
+static void dump_full(const ms_molecule *m)
+{
+    const ms_atoms *a = &m->atoms;
+    for (size_t i = 0; i < a->n; i++)
+        printf("prop\t%zu\t%s\t%.9g\t%.9g\t%d\n", i, ms_mol_str(m, a->type[i]),
+               (double)a->charge[i], (double)a->mass[i], a->atomicnumber[i]);
+    for (size_t i = 0; m->has_bonds && i < a->n; i++)
+        for (uint32_t k = m->bonds.start[i]; k < m->bonds.start[i + 1]; k++)
+            if (m->bonds.to[k] > i) printf("bond\t%zu\t%u\n", i, m->bonds.to[k]);
+    static const char *const kinds[MS_TERM_KINDS] = {"angle", "dihedral", "improper"};
+    for (int kind = 0; kind < MS_TERM_KINDS; kind++) {
+        const ms_terms *t = &m->terms[kind];
+        size_t w = ms_term_width(kind);
+        for (size_t k = 0; k < t->n; k++) {
+            printf("term\t%s", kinds[kind]);
+            for (size_t q = 0; q < w; q++) printf("\t%u", t->atoms[k * w + q]);
+            printf("\n");
+        }
+    }
+    for (size_t k = 0; k < m->nframes; k++) {
+        const ms_frame *f = &m->frames[k];
+        printf("time\t%zu\t%.9g\n", k, f->time);
+        for (size_t i = 0; f->vel && i < a->n; i++)
+            printf("vel\t%zu\t%zu\t%.9g\t%.9g\t%.9g\n", k, i, (double)f->vel[3 * i],
+                   (double)f->vel[3 * i + 1], (double)f->vel[3 * i + 2]);
+    }
+}
 
 static void dump(const ms_molecule *m)
 {
@@ -60,8 +95,8 @@ int main(int argc, char **argv)
     ms_error err = {{0}};
     const char *type = NULL, *out = NULL, *assembly = NULL;
     long step = 1;
-    int status = 0;
-    for (int i = 1; i < argc && status == 0; i++) {
+    int status = 0, full = argc > 1 && !strcmp(argv[1], "-f");
+    for (int i = 1 + full; i < argc && status == 0; i++) {
         if (!strcmp(argv[i], "-t") && i + 1 < argc) {
             type = argv[++i];
             continue;
@@ -93,7 +128,7 @@ int main(int argc, char **argv)
         }
     }
     if (!m && status == 0) {
-        fprintf(stderr, "usage: msdump [-o out] [-a assembly] [-s step] [-t type] file "
+        fprintf(stderr, "usage: msdump [-f] [-o out] [-a assembly] [-s step] [-t type] file "
                         "[[-t type] file ...]\n");
         status = 1;
     }
@@ -109,6 +144,7 @@ int main(int argc, char **argv)
         }
     } else if (status == 0) {
         dump(m);
+        if (full) dump_full(m);
     }
     ms_mol_free(m);
     ms_registry_free(&reg);

@@ -1,0 +1,10 @@
+/* fuzz_parm7.c: the fuzz target of the AMBER topology reader (new and old headers): see fuzz.h. Built with
+ * driver.c as the smoke test tests/fuzz/fuzz_parm7, and with libFuzzer by `make fuzz`. */
+#include "fuzz.h"
+
+const ms_plugin *ms_plugin_entry(void);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    return ms_fuzz_load(ms_plugin_entry(), data, size);
+}
