@@ -66,6 +66,16 @@ plugins_LTLIBRARIES += plugins/namdbin.la
 plugins_namdbin_la_SOURCES = plugins/namdbin.c $(PLUGIN_UTIL)
 plugins_namdbin_la_LDFLAGS = $(PLUGIN_FLAGS)
 
+plugins_LTLIBRARIES += plugins/lammpsdata.la
+plugins_lammpsdata_la_SOURCES = plugins/lammpsdata.c plugins/lammps_util.h $(PLUGIN_UTIL)
+plugins_lammpsdata_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_lammpsdata_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/lammpstrj.la
+plugins_lammpstrj_la_SOURCES = plugins/lammpstrj.c plugins/lammps_util.h $(PLUGIN_UTIL)
+plugins_lammpstrj_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_lammpstrj_la_LIBADD = -lm
+
 # Every plugin in one convenience library, each under its own entry name (plugins/builtin/),
 # for the programs that read files without the plugin directory: tests, tools, benchmarks.
 noinst_LTLIBRARIES += plugins/libbuiltin.la
@@ -73,6 +83,7 @@ plugins_libbuiltin_la_SOURCES = plugins/builtin/builtin.h \
 	plugins/builtin/pdb.c plugins/builtin/psf.c plugins/builtin/dcd.c plugins/builtin/xyz.c \
 	plugins/builtin/gro.c plugins/builtin/dx.c plugins/builtin/ccp4.c plugins/builtin/cube.c \
 	plugins/builtin/xtc.c plugins/builtin/trr.c plugins/builtin/pdbx.c plugins/builtin/pqr.c \
-	plugins/builtin/mol2.c plugins/builtin/namdbin.c plugins/cif_tok.c plugins/gmx_util.h \
+	plugins/builtin/mol2.c plugins/builtin/namdbin.c plugins/builtin/lammpsdata.c \
+	plugins/builtin/lammpstrj.c plugins/cif_tok.c plugins/gmx_util.h plugins/lammps_util.h \
 	$(PLUGIN_UTIL)
 plugins_libbuiltin_la_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/plugins/builtin

@@ -20,6 +20,8 @@ const ms_plugin *ms_plugin_entry_pdbx(void);
 const ms_plugin *ms_plugin_entry_pqr(void);
 const ms_plugin *ms_plugin_entry_mol2(void);
 const ms_plugin *ms_plugin_entry_namdbin(void);
+const ms_plugin *ms_plugin_entry_lammpsdata(void);
+const ms_plugin *ms_plugin_entry_lammpstrj(void);
 
 /* Add all of them to a registry; 0 or -1 (out of memory). */
 static inline int ms_test_add_builtin(ms_registry *r)
@@ -28,7 +30,8 @@ static inline int ms_test_add_builtin(ms_registry *r)
                             ms_plugin_entry_xyz(), ms_plugin_entry_gro(), ms_plugin_entry_dx(),
                             ms_plugin_entry_ccp4(), ms_plugin_entry_cube(), ms_plugin_entry_xtc(),
                             ms_plugin_entry_trr(), ms_plugin_entry_pdbx(), ms_plugin_entry_pqr(),
-                            ms_plugin_entry_mol2(), ms_plugin_entry_namdbin()};
+                            ms_plugin_entry_mol2(), ms_plugin_entry_namdbin(),
+                            ms_plugin_entry_lammpsdata(), ms_plugin_entry_lammpstrj()};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         if (ms_registry_add(r, p[i], NULL, NULL) < 0) return -1;
     return 0;

@@ -8,7 +8,7 @@
 # folder first (new inputs go there) and the seeds second, e.g.
 #   mkdir -p /tmp/c && tests/fuzz/lf_dcd -max_total_time=60 /tmp/c tests/fuzz/corpus/dcd
 # tests/fuzz-run builds them and runs every one for FUZZ_SECONDS on a copy of its corpus.
-FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin
+FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin lammpsdata lammpstrj
 FUZZ_CORE = \
 	src/base/base.c src/base/strtab.c src/base/threads.c src/base/bitset.c \
 	src/base/safewrite.c \
