@@ -84,6 +84,7 @@
 #include "molecule/analysis.h"
 #include "molecule/molset.h"
 #include "molecule/serialize.h"
+#include "molecule/combine.h"
 #include "fileio/registry.h"
 #include "fileio/load.h"
 #include "fileio/write.h"
