@@ -117,7 +117,9 @@ proc ::TopoTools::run {sel cmd rest optvar} {
         default {
             if {[catch {::molscope::topo $cmd $sel {*}$rest} result]} {
                 regsub {^::molscope::topo} $result topo result
-                regsub {: must be [^:]*$} $result ": must be one of the commands of 'topo help'" result
+                if {[string match "*unknown subcommand*" $result]} {
+                    regsub {: must be [^:]*$} $result ": must be one of the commands of 'topo help'" result
+                }
                 error $result
             }
             return $result
