@@ -11,6 +11,8 @@
   frame): helix_x.lammpstrj wrapped x y z with image flags ix iy iz, helix_xs scaled xs ys
   zs with image flags, helix_xu unwrapped xu yu zu, helix_xsu scaled unwrapped; the columns
   come in a different order in each file. Wrapping and scaling use LAMMPS' own formulas.
+  helix_ortho.lammpstrj: the first 3 frames wrapped with image flags in an orthogonal box
+  (24 26 28), where MDAnalysis 2.4.2's image unwrapping (box lengths only) applies.
 Run with /usr/bin/python3 from this folder; writes into tests/data."""
 import os
 import warnings
@@ -103,8 +105,8 @@ def lammps_box(dims):
     return h, (xy, xz, yz)
 
 
-def write_dump(path, u, kind, cols, seed):
-    h, tilt = lammps_box(BOX)
+def write_dump(path, u, kind, cols, seed, box=BOX, nframes=None):
+    h, tilt = lammps_box(box)
     hinv = np.linalg.inv(h)
     rng = np.random.default_rng(seed)
     lo = np.array([-5.0, -3.0, -4.0])
@@ -114,7 +116,7 @@ def write_dump(path, u, kind, cols, seed):
     ylo_b = lo[1] + min(0, yz)
     yhi_b = lo[1] + h[1, 1] + max(0, yz)
     with open(path, "w") as f:
-        for ts in u.trajectory:
+        for ts in u.trajectory[:nframes]:
             pos = u.atoms.positions.astype(np.float64)
             s = (hinv @ (pos - lo).T).T          # fractional, unwrapped
             img = np.floor(s).astype(int)
@@ -122,9 +124,13 @@ def write_dump(path, u, kind, cols, seed):
             xw = (h @ sw.T).T + lo
             f.write("ITEM: TIMESTEP\n%d\n" % (100 * ts.frame))
             f.write("ITEM: NUMBER OF ATOMS\n%d\n" % u.atoms.n_atoms)
-            f.write("ITEM: BOX BOUNDS xy xz yz pp pp pp\n")
-            f.write("%.6f %.6f %.6f\n%.6f %.6f %.6f\n%.6f %.6f %.6f\n" % (
-                xlo_b, xhi_b, xy, ylo_b, yhi_b, xz, lo[2], lo[2] + h[2, 2], yz))
+            if box[3:] == [90.0, 90.0, 90.0]:
+                f.write("ITEM: BOX BOUNDS pp pp pp\n%.6f %.6f\n%.6f %.6f\n%.6f %.6f\n" % (
+                    lo[0], lo[0] + h[0, 0], lo[1], lo[1] + h[1, 1], lo[2], lo[2] + h[2, 2]))
+            else:
+                f.write("ITEM: BOX BOUNDS xy xz yz pp pp pp\n")
+                f.write("%.6f %.6f %.6f\n%.6f %.6f %.6f\n%.6f %.6f %.6f\n" % (
+                    xlo_b, xhi_b, xy, ylo_b, yhi_b, xz, lo[2], lo[2] + h[2, 2], yz))
             f.write("ITEM: ATOMS %s\n" % " ".join(cols))
             vals = {"x": xw, "xs": sw, "xu": pos, "xsu": s}[kind]
             names = {"x": "x y z", "xs": "xs ys zs", "xu": "xu yu zu",
@@ -149,6 +155,8 @@ def main():
                 ("xsu", ["id", "xsu", "ysu", "zsu", "type"])]
     for n, (kind, cols) in enumerate(variants):
         write_dump(os.path.join(DATA, "helix_%s.lammpstrj" % kind), u, kind, cols, 7 + n)
+    write_dump(os.path.join(DATA, "helix_ortho.lammpstrj"), u, "x",
+               ["id", "type", "x", "y", "z", "ix", "iy", "iz"], 3, [24.0, 26.0, 28.0, 90.0, 90.0, 90.0], 3)
 
 
 if __name__ == "__main__":
