@@ -16,6 +16,9 @@
 
 enum { K_ATOM, K_BOND, K_ANGLE, K_DIHEDRAL, K_IMPROPER, K_KINDS };
 
+/* Type tables have an entry a type: the header's type counts are bounded. */
+#define MAX_TYPES (1 << 20)
+
 /* The atom styles: the columns of an Atoms line (-1: absent). */
 typedef struct data_style {
     const char *name;
@@ -65,7 +68,7 @@ typedef struct data_reader {
     data_vel *vel;
     size_t nvel, vcap;
     char atoms_comment[64]; /* "full" of "Atoms # full" */
-    double *mass;          /* ntypes[K_ATOM] + 1, NaN when not given */
+    double *mass;          /* ntypes[K_ATOM] + 1, NaN when not given; NULL: no Masses */
     char **labels[K_KINDS];/* ntypes[k] + 1 names, NULL when none */
     data_records rec[K_KINDS]; /* rec[K_ATOM] unused */
 } data_reader;
@@ -165,6 +168,9 @@ static int header_line(data_reader *r, char **tok, int nt, ms_perr *err)
         if (!dst) continue;
         if (n < 0 || n > 2000000000L)
             return ms_perr_set(err, "line %ld: bad count %ld of %s", in->line_no, n, tok[1]);
+        if (dst == &r->ntypes[k] && n > MAX_TYPES)
+            return ms_perr_set(err, "line %ld: %ld %s types: molscope reads at most %d",
+                               in->line_no, n, kind_word[k], MAX_TYPES);
         *dst = n;
         return 0;
     }
@@ -459,8 +465,8 @@ static int read_file(data_reader *r, const char *opt, ms_perr *err)
                                    in->line_no, name);
             continue;
         }
-        if (in_header) {
-            in_header = 0;
+        in_header = 0;
+        if (sec == S_MASSES && !r->mass) {
             if (!(r->mass = malloc(((size_t)r->ntypes[K_ATOM] + 1) * sizeof *r->mass)))
                 return ms_perr_set(err, "out of memory");
             for (long t = 0; t <= r->ntypes[K_ATOM]; t++) r->mass[t] = NAN;
@@ -539,7 +545,7 @@ static int emit_atoms(data_reader *r, ms_struct_sink *sink, ms_perr *err)
         a.resid = (int)d->mol;
         a.charge = d->q;
         a.has = MS_HAS_POS | (r->style->q >= 0 ? MS_HAS_CHARGE : 0);
-        if (!isnan(r->mass[d->type])) a.mass = (float)r->mass[d->type], a.has |= MS_HAS_MASS;
+        if (r->mass && !isnan(r->mass[d->type])) a.mass = (float)r->mass[d->type], a.has |= MS_HAS_MASS;
         double n[3] = {d->img[0], d->img[1], d->img[2]}, shift[3];
         ms_lmp_to_space(&r->box, n, 0, shift);
         a.x = (float)(d->x + shift[0]), a.y = (float)(d->y + shift[1]);
