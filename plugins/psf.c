@@ -273,8 +273,10 @@ static int read_records(psf_reader *r, ms_struct_sink *sink, const struct psf_se
     ms_lines *in = &r->in;
     const char *l;
     /* A record is width numbers, each a digit and a separator at the least. */
-    if (ms_check_room(err, (double)count, 2 * sec->width, ms_lines_left(in), sec->what,
-                      "line %ld: %s declares %ld records", in->line_no, sec->tag, count))
+    char unit[24];
+    snprintf(unit, sizeof unit, "%ss", sec->what);
+    if (ms_check_room(err, (double)count, 2 * sec->width, ms_lines_left(in), unit,
+                      "line %ld: %s declares %ld %s", in->line_no, sec->tag, count, unit))
         return MS_PLUGIN_ERROR;
     long found = 0, v[4];
     int have = 0;
