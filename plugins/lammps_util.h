@@ -100,8 +100,8 @@ static inline void ms_lmp_to_space(const ms_lmp_box *b, const double s[3], int a
 }
 
 /* The box a writer gives a frame: its cell placed around the centre of the atoms' bounding
- * box, else that bounding box (a flat dimension widened to 1 A). */
-static inline void ms_lmp_frame_box(size_t natoms, const float *pos, const float cell[6],
+ * box (returns 1), else that bounding box (a flat dimension widened to 1 A; returns 0). */
+static inline int ms_lmp_frame_box(size_t natoms, const float *pos, const float cell[6],
                                     ms_lmp_box *b)
 {
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
@@ -120,13 +120,14 @@ static inline void ms_lmp_frame_box(size_t natoms, const float *pos, const float
             b->lo[d] = c[d] - half[d];
             b->hi[d] = b->lo[d] + l;
         }
-        return;
+        return 1;
     }
     memset(b, 0, sizeof *b);
     for (int d = 0; d < 3; d++) {
         double pad = hi[d] - lo[d] < 1e-3 ? 0.5 : 0.0;
         b->lo[d] = lo[d] - pad, b->hi[d] = hi[d] + pad;
     }
+    return 0;
 }
 
 /* The value of `key` in an options string ("atom_style=full other=x"), copied into out;

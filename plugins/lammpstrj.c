@@ -7,7 +7,8 @@
  * order of their ids whatever order each frame lists them in; every frame must hold the
  * first one's atoms. The structure comes from the first frame: type (atom name and type;
  * element when given), mol (resid), q, mass, radius or diameter, vx vy vz. The timestep
- * becomes the frame's time. Writes id type x y z frames. */
+ * becomes the frame's time. Writes id type x y z frames (boundaries pp, or ss when the frame
+ * has no cell). */
 #include "ms_plugin.h"
 #include "plugin_util.h"
 #include "lammps_util.h"
@@ -491,11 +492,12 @@ static int dump_write_frame(void *h, const ms_struct_view *v, const ms_frame_in 
     dump_writer *w = h;
     ms_out *o = &w->out;
     ms_lmp_box b;
-    ms_lmp_frame_box(v->natoms, f->pos, f->cell, &b);
+    /* no cell: LAMMPS' shrink-wrapped boundaries, as VMD writes them */
+    const char *bc = ms_lmp_frame_box(v->natoms, f->pos, f->cell, &b) ? "pp pp pp" : "ss ss ss";
     double lo[3], hi[3];
     ms_lmp_bounds_of_box(&b, lo, hi);
     ms_out_printf(o, "ITEM: TIMESTEP\n%d\nITEM: NUMBER OF ATOMS\n%zu\n", f->index, v->natoms);
-    ms_out_printf(o, "ITEM: BOX BOUNDS %spp pp pp\n", b.triclinic ? "xy xz yz " : "");
+    ms_out_printf(o, "ITEM: BOX BOUNDS %s%s\n", b.triclinic ? "xy xz yz " : "", bc);
     double tilt[3] = {b.xy, b.xz, b.yz};
     for (int d = 0; d < 3; d++) {
         ms_out_printf(o, "%.6f %.6f", lo[d], hi[d]);

@@ -208,6 +208,10 @@ ms_molecule *ms_mol_combine(const ms_mol_part *parts, size_t nparts, size_t ncop
              copy_frames(m, parts, nparts, ncopies, shift, all, err) ||
              ms_analysis_classify(m, err);
     free(b.pairs), free(b.order), free(b.type);
+    if (!rc) { /* the copied secondary structure stands when every source had one */
+        m->ss_known = 1;
+        for (size_t p = 0; p < nparts; p++) m->ss_known &= parts[p].m->ss_known;
+    }
     if (rc) {
         if (m && !err->msg[0]) ms_error_set(err, "out of memory");
         ms_mol_free(m);
