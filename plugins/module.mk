@@ -124,6 +124,16 @@ plugins_netcdf_la_LIBADD = $(NETCDF_LIBS)
 BUILTIN_NETCDF = plugins/builtin/netcdf.c
 endif
 
+plugins_LTLIBRARIES += plugins/lammpsdata.la
+plugins_lammpsdata_la_SOURCES = plugins/lammpsdata.c plugins/lammps_util.h $(PLUGIN_UTIL)
+plugins_lammpsdata_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_lammpsdata_la_LIBADD = -lm
+
+plugins_LTLIBRARIES += plugins/lammpstrj.la
+plugins_lammpstrj_la_SOURCES = plugins/lammpstrj.c plugins/lammps_util.h $(PLUGIN_UTIL)
+plugins_lammpstrj_la_LDFLAGS = $(PLUGIN_FLAGS)
+plugins_lammpstrj_la_LIBADD = -lm
+
 # Every plugin in one convenience library, each under its own entry name (plugins/builtin/),
 # for the programs that read files without the plugin directory: tests, tools, benchmarks.
 noinst_LTLIBRARIES += plugins/libbuiltin.la
@@ -135,6 +145,7 @@ plugins_libbuiltin_la_SOURCES = plugins/builtin/builtin.h \
 	plugins/builtin/xdatcar.c plugins/builtin/cor.c plugins/builtin/js.c \
 	plugins/builtin/parm7.c plugins/builtin/parm.c plugins/builtin/rst7.c \
 	plugins/builtin/crd.c plugins/builtin/crdbox.c $(BUILTIN_NETCDF) \
+	plugins/builtin/lammpsdata.c plugins/builtin/lammpstrj.c plugins/lammps_util.h \
 	plugins/cif_tok.c plugins/gmx_util.h plugins/vasp_util.h $(PLUGIN_UTIL)
 EXTRA_plugins_libbuiltin_la_SOURCES = plugins/builtin/netcdf.c plugins/builtin/dms.c
 plugins_libbuiltin_la_CPPFLAGS = $(AM_CPPFLAGS) -I$(top_srcdir)/plugins/builtin $(NETCDF_CFLAGS)

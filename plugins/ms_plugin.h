@@ -117,6 +117,9 @@ struct ms_struct_sink {
     /* ABI 3. One angle, dihedral or improper (kind MS_PTERM_*): 3 or 4 atoms, 0-based in the
      * order added, with a type name (NULL for none). Call it after the atoms. */
     int (*add_term)(ms_struct_sink *s, int kind, const size_t *atoms, const char *type);
+    /* ABI 3. Reader options the caller gave (`key=value` words separated by blanks, such as
+     * "atom_style=full"), NULL when none; a reader ignores keys it does not know. */
+    const char *options;
 };
 
 /* One frame to fill. pos (3*natoms floats) is NULL when the host only skips this frame;
@@ -147,6 +150,8 @@ struct ms_struct_view {
     size_t (*count_terms)(const ms_struct_view *v, int kind);
     void (*get_term)(const ms_struct_view *v, int kind, size_t k, size_t *atoms,
                      const char **type);
+    /* ABI 3. Writer options the caller gave, as ms_struct_sink.options; NULL when none. */
+    const char *options;
 };
 
 typedef struct ms_frame_in {

@@ -91,6 +91,7 @@
 #include "molecule/analysis.h"
 #include "molecule/molset.h"
 #include "molecule/serialize.h"
+#include "molecule/combine.h"
 #include "fileio/registry.h"
 #include "fileio/load.h"
 #include "fileio/write.h"

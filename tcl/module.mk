@@ -3,6 +3,11 @@ dist_tcllib_DATA += tcl/init.tcl tcl/vectors.tcl tcl/movie.tcl
 # $env(VMDDIR)/tachyon_LINUXAMD64, which VMD scripts run: the system's tachyon
 dist_tcllib_SCRIPTS = tcl/tachyon_LINUXAMD64
 
+# VMD's topotools package (doc/topotools.md): Tcl over ::molscope::topo, found through
+# auto_path like the other packages here.
+topotoolsdir = $(tcllibdir)/topotools
+dist_topotools_DATA = tcl/topotools/pkgIndex.tcl tcl/topotools/topotools.tcl
+
 # The page of the live view (display live, doc/live.md).
 livepagedir = $(tcllibdir)/live
 dist_livepage_DATA = tcl/live/index.html

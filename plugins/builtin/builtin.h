@@ -29,6 +29,8 @@ const ms_plugin *ms_plugin_entry_parm(void);
 const ms_plugin *ms_plugin_entry_rst7(void);
 const ms_plugin *ms_plugin_entry_crd(void);
 const ms_plugin *ms_plugin_entry_crdbox(void);
+const ms_plugin *ms_plugin_entry_lammpsdata(void);
+const ms_plugin *ms_plugin_entry_lammpstrj(void);
 #ifdef MS_HAVE_SQLITE3
 const ms_plugin *ms_plugin_entry_dms(void);
 #endif
@@ -49,6 +51,7 @@ static inline int ms_test_add_builtin(ms_registry *r)
                             ms_plugin_entry_parm7(), ms_plugin_entry_parm(),
                             ms_plugin_entry_rst7(), ms_plugin_entry_crd(),
                             ms_plugin_entry_crdbox(),
+                            ms_plugin_entry_lammpsdata(), ms_plugin_entry_lammpstrj(),
 #ifdef MS_HAVE_SQLITE3
                             ms_plugin_entry_dms(),
 #endif

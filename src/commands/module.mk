@@ -8,6 +8,9 @@ src_libmscore_la_SOURCES += \
 	src/commands/tclvec.h src/commands/tclvec.c src/commands/cmd_vector.c \
 	src/commands/cmd_measure.c src/commands/cmd_measure_geom.c src/commands/cmd_ss.c \
 	src/commands/cmd_volmap.c src/commands/cmd_movie.c src/commands/cmd_pbc.c
+# topotools' C half (topo.h)
+src_libmscore_la_SOURCES += \
+	src/commands/topo.h src/commands/cmd_topo.c src/commands/cmd_topo_build.c
 # atomselect and its selection objects (atomsel.h)
 src_libmscore_la_SOURCES += \
 	src/commands/atomsel.h src/commands/atomsel_int.h src/commands/atomsel.c \

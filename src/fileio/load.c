@@ -793,6 +793,7 @@ ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_o
     sink_state st;
     ms_asm_plan *plan = NULL;
     sink_init(&st, m, err);
+    st.sink.options = o->options;
     if (natoms > 0) sink_reserve(&st.sink, (size_t)natoms);
     if (read_structure_into(m, p, h, natoms, o, &st, &plan, err) ||
         take_first_frame(m, &st, o, err) || !(m->name = ms_strdup(base_name(path))) ||
@@ -864,6 +865,7 @@ static int add_frames(const ms_plugin *p, ms_molecule *m, const char *path,
         }
         sink_state st;
         sink_init(&st, tmp, err);
+        st.sink.options = o->options;
         ms_perr perr = {{0}};
         if (p->read_structure(h, &st.sink, &perr) != MS_PLUGIN_OK) {
             ms_error_set(err, "%s", perr.msg[0] ? perr.msg : "read error");

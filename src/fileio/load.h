@@ -21,6 +21,7 @@ typedef struct ms_load_opts {
     const char *assembly; /* build this biological assembly (mmCIF pdbx_struct_assembly id,
                            * PDB REMARK 350 biomolecule number) instead of the asymmetric
                            * unit; NULL = the file's atoms as they are */
+    const char *options;  /* reader options for the plugin (ms_struct_sink.options) */
 } ms_load_opts;
 
 void ms_load_opts_default(ms_load_opts *o);

@@ -248,6 +248,7 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     w.view.get_bond_info = view_get_bond_info;
     w.view.count_terms = view_count_terms;
     w.view.get_term = view_get_term;
+    w.view.options = o->options;
     float *buf = NULL, *vbuf = NULL;   /* the selected atoms' positions, velocities */
     long written = 0;
     ms_ofile *out = NULL;

@@ -12,6 +12,7 @@ typedef struct ms_write_opts {
     const uint32_t *atoms;    /* indices to write, ascending; NULL = all */
     size_t natoms;            /* with atoms != NULL */
     long first, last, step;   /* frames, inclusive; last < 0 = the last frame */
+    const char *options;      /* writer options for the plugin (ms_struct_view.options) */
 } ms_write_opts;
 
 void ms_write_opts_default(ms_write_opts *o);

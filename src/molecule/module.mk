@@ -5,4 +5,5 @@ src_libmscore_la_SOURCES += \
 	src/molecule/elements.h src/molecule/elements.c \
 	src/molecule/analysis.h src/molecule/bonds.c src/molecule/classify.c \
 	src/molecule/molset.h src/molecule/molset.c \
-	src/molecule/serialize.h src/molecule/serialize.c
+	src/molecule/serialize.h src/molecule/serialize.c \
+	src/molecule/combine.h src/molecule/combine.c

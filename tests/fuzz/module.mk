@@ -9,7 +9,7 @@
 #   mkdir -p /tmp/c && tests/fuzz/lf_dcd -max_total_time=60 /tmp/c tests/fuzz/corpus/dcd
 # tests/fuzz-run builds them and runs every one for FUZZ_SECONDS on a copy of its corpus.
 FUZZ_FORMATS = pdb psf dcd xyz gro dx ccp4 cube xtc trr cif pqr mol2 namdbin poscar xdatcar cor \
-	js parm7 rst7 crd crdbox
+	js parm7 rst7 crd crdbox lammpsdata lammpstrj
 if HAVE_SQLITE3
 FUZZ_FORMATS += dms
 endif
