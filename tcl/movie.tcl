@@ -22,7 +22,7 @@ namespace eval ::molscope::movie {
     variable job
     # Render methods that write a scene file rather than an image; Tachyon's is rendered
     # by the tachyon program, the others cannot make movie frames.
-    variable scene_exporters {Tachyon POV3 Wavefront}
+    variable scene_exporters {Tachyon POV3 Wavefront Raster3D RenderMan STL VRML-2 X3D}
 }
 
 proc ::molscope::movie::usage {} {

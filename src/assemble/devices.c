@@ -23,6 +23,11 @@ static const ms_render_device *const devices[] = {
     &ms_render_tachyon_optix,
     &ms_render_pov3,
     &ms_render_wavefront,
+    &ms_render_raster3d,
+    &ms_render_renderman,
+    &ms_render_stl,
+    &ms_render_vrml2,
+    &ms_render_x3d,
 };
 
 size_t ms_render_count(void)

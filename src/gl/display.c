@@ -89,18 +89,16 @@ void ms_gl_display_close(void)
 
 /* ---------------------------------------------------------------- render snapshot */
 
+static int snapshot_image(void *user, ms_image *img, ms_error *err)
+{
+    ms_gl *g = ms_gl_display(err);
+    return !g || ms_gl_render(g, user, img, NULL, err) ? -1 : 0;
+}
+
+/* The format by the file's extension, TGA for others, as every image device picks it. */
 static int snapshot_write(const ms_scene *s, const char *path, ms_error *err)
 {
-    if (ms_image_format_of(path) == MS_IMG_UNKNOWN) {
-        ms_error_set(err, "%s: unknown image type (use .png, .tga, .ppm or .bmp)", path);
-        return -1;
-    }
-    ms_gl *g = ms_gl_display(err);
-    ms_image img;
-    if (!g || ms_gl_render(g, s, &img, NULL, err)) return -1;
-    int rc = ms_image_write(&img, path, err);
-    ms_image_free(&img);
-    return rc;
+    return ms_render_write_image(path, snapshot_image, (void *)s, err);
 }
 
 const ms_render_device ms_gl_snapshot = {

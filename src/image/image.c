@@ -47,12 +47,13 @@ ms_image_format ms_image_format_of(const char *path)
     if (!strcasecmp(dot, ".tga")) return MS_IMG_TGA;
     if (!strcasecmp(dot, ".ppm")) return MS_IMG_PPM;
     if (!strcasecmp(dot, ".bmp")) return MS_IMG_BMP;
+    if (!strcasecmp(dot, ".rgb")) return MS_IMG_SGI;
     return MS_IMG_UNKNOWN;
 }
 
 const char *ms_image_format_name(ms_image_format f)
 {
-    static const char *names[] = {"PNG", "TGA", "PPM", "BMP", "unknown"};
+    static const char *names[] = {"PNG", "TGA", "PPM", "BMP", "SGI", "unknown"};
     return names[f];
 }
 
@@ -65,6 +66,7 @@ int ms_image_write_stream(const ms_image *img, ms_image_format f, void *stdio_fi
     case MS_IMG_TGA: return ms_tga_write(img, fp, err);
     case MS_IMG_PPM: return ms_ppm_write(img, fp, err);
     case MS_IMG_BMP: return ms_bmp_write(img, fp, err);
+    case MS_IMG_SGI: return ms_sgi_write(img, fp, err);
     default: break;
     }
     ms_error_set(err, "unknown image format");
@@ -76,7 +78,7 @@ int ms_image_write(const ms_image *img, const char *path, ms_error *err)
     ms_image_format f = ms_image_format_of(path);
     if (f == MS_IMG_UNKNOWN) {
         ms_error_set(err, "%s: cannot tell the image format from the name (use .png, .tga, "
-                          ".ppm or .bmp)", path);
+                          ".ppm, .bmp or .rgb)", path);
         return -1;
     }
     ms_ofile *out;
@@ -102,6 +104,7 @@ int ms_image_read(const char *path, ms_image *img, ms_error *err)
     if (got >= 8 && !memcmp(magic, "\x89PNG\r\n\x1a\n", 8)) rc = ms_png_read(fp, img, err);
     else if (got >= 2 && magic[0] == 'P' && magic[1] == '6') rc = ms_ppm_read(fp, img, err);
     else if (got >= 2 && magic[0] == 'B' && magic[1] == 'M') rc = ms_bmp_read(fp, img, err);
+    else if (got >= 2 && magic[0] == 0x01 && magic[1] == 0xda) rc = ms_sgi_read(fp, img, err);
     else rc = ms_tga_read(fp, img, err);
     fclose(fp);
     if (rc != 0) ms_error_prefix(err, "%s", path);

@@ -1,6 +1,6 @@
 /* image.h: RGB images and their files. Every image device (snapshot, TachyonInternal, the
  * OpenCL tracer, movies) writes through here: the format follows the file's extension (.png
- * .tga .ppm .bmp, as VMD picks them), PNG is written with libpng's fast settings (compression
+ * .tga .ppm .bmp .rgb, as VMD picks them), PNG is written with libpng's fast settings (compression
  * level 1 and the UP filter: about 6x faster than the defaults at about the same size), and
  * every file is written to a temporary name and renamed when complete, so a failure (a bad
  * path, a full disk) is an error that leaves no partial file. Readers exist for the tests. */
@@ -17,7 +17,7 @@ typedef struct ms_image {
 } ms_image;
 
 typedef enum ms_image_format {
-    MS_IMG_PNG, MS_IMG_TGA, MS_IMG_PPM, MS_IMG_BMP, MS_IMG_UNKNOWN
+    MS_IMG_PNG, MS_IMG_TGA, MS_IMG_PPM, MS_IMG_BMP, MS_IMG_SGI, MS_IMG_UNKNOWN
 } ms_image_format;
 
 /* The largest side accepted (a size beyond it is an error, never an allocation attempt). */
@@ -36,7 +36,8 @@ int ms_image_write(const ms_image *img, const char *path, ms_error *err);
 /* Write in a given format to a stdio stream (movies pipe frames to an encoder). */
 int ms_image_write_stream(const ms_image *img, ms_image_format f, void *stdio_file,
                           ms_error *err);
-/* Read a PNG, TGA (uncompressed or RLE, 24/32 bit), PPM (P6) or BMP (24 bit) file. */
+/* Read a PNG, TGA (uncompressed or RLE, 24/32 bit), PPM (P6), BMP (24 bit) or SGI (8 bit,
+ * verbatim or RLE) file. */
 int ms_image_read(const char *path, ms_image *img, ms_error *err);
 
 #endif

@@ -15,5 +15,7 @@ int ms_ppm_write(const ms_image *img, FILE *fp, ms_error *err);
 int ms_ppm_read(FILE *fp, ms_image *img, ms_error *err);
 int ms_bmp_write(const ms_image *img, FILE *fp, ms_error *err);
 int ms_bmp_read(FILE *fp, ms_image *img, ms_error *err);
+int ms_sgi_write(const ms_image *img, FILE *fp, ms_error *err);
+int ms_sgi_read(FILE *fp, ms_image *img, ms_error *err);
 
 #endif

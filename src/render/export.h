@@ -4,6 +4,8 @@
 #ifndef MS_EXPORT_H
 #define MS_EXPORT_H
 
+#include <stdio.h>
+
 #include "vecmath/vecf.h"
 #include "scene/scene.h"
 
@@ -34,6 +36,31 @@ void ms_export_dashes(const float a[3], const float b[3], ms_seg_cb cb, void *ud
 /* Strokes of a string written from anchor along +x with +y up (screen-aligned in VMD's
  * default view), capital height size * MS_EXPORT_TEXT_HEIGHT. */
 void ms_export_text(const char *s, const float anchor[3], float size, ms_seg_cb cb, void *ud);
+
+/* Every primitive of a scene in world coordinates (walk.c). A solid whose callback is NULL,
+ * and every solid of a list cut by clip planes, is tessellated into triangles; triangles and
+ * segments are cut by the list's planes; lines, points or text with a NULL callback are left
+ * out (text is drawn as segments). item and item_end, when set, open and close each list. */
+typedef struct ms_export_visitor {
+    void (*item)(void *ud, const ms_scene_item *it);
+    void (*item_end)(void *ud, const ms_scene_item *it);
+    void (*sphere)(void *ud, const float c[3], float r, ms_rgba8 col, int res);
+    void (*cylinder)(void *ud, const float a[3], const float b[3], float r, ms_rgba8 col,
+                     int caps, int res);
+    void (*cone)(void *ud, const float base[3], const float apex[3], float rbase, float rapex,
+                 ms_rgba8 col, int res);
+    void (*triangle)(void *ud, const float p[9], const float n[9], const ms_rgba8 c[3]);
+    void (*line)(void *ud, const float a[3], const float b[3], ms_rgba8 col);
+    void (*point)(void *ud, const float c[3], ms_rgba8 col);
+} ms_export_visitor;
+void ms_export_walk(const ms_scene *s, const ms_export_visitor *v, void *ud);
+
+/* Write a scene file: open path through base/safewrite, call body (with user), and put the
+ * file in place when body returned 0 and every write succeeded. 0, or -1 with err set,
+ * nothing left. */
+typedef int (*ms_export_body_fn)(const ms_scene *s, FILE *f, void *user, ms_error *err);
+int ms_export_file(const ms_scene *s, const char *path, ms_export_body_fn body, void *user,
+                   ms_error *err);
 
 /* Number text as printf's "%g" and "%.3f" give it, written faster (numfmt.c). out needs 32
  * bytes; the length is returned. */

@@ -4,8 +4,9 @@
  * through, a device or FIFO is written in place; a failure leaves nothing behind). The
  * devices are listed in one table above them (assemble/devices.c); none registers itself.
  *
- * The file exporters live here too: Tachyon (tachyon.c), POV3 (pov3.c) and Wavefront
- * (wavefront.c), with what they share in export.h. The other devices are snapshot (gl/),
+ * The file exporters live here too: Tachyon (tachyon.c), POV3 (pov3.c), Wavefront
+ * (wavefront.c), Raster3D (r3d.c), RenderMan (rib.c), STL (stl.c), VRML-2 and X3D (vrml.c),
+ * with what they share in export.h (walk.c hands the last five every primitive). The other devices are snapshot (gl/),
  * TachyonInternal (rt/) and the OpenCL tracer (oclrt/). */
 #ifndef MS_RENDER_H
 #define MS_RENDER_H
@@ -31,8 +32,10 @@ typedef struct ms_render_device {
     void (*cmd_for)(int format, int aasamples, char *buf, size_t size);
 } ms_render_device;
 
-/* The file exporters' devices (tachyon.c, pov3.c, wavefront.c). */
+/* The file exporters' devices (tachyon.c, pov3.c, wavefront.c, r3d.c, rib.c, stl.c, vrml.c). */
 extern const ms_render_device ms_render_tachyon, ms_render_pov3, ms_render_wavefront;
+extern const ms_render_device ms_render_raster3d, ms_render_renderman, ms_render_stl;
+extern const ms_render_device ms_render_vrml2, ms_render_x3d;
 
 /* For image devices: write the image make renders to path, in the format its name says (TGA
  * for other names, as VMD writes), through base/safewrite, opened before make runs, so that an

@@ -9,7 +9,7 @@
 extern const ms_rep_method ms_rep_lines, ms_rep_bonds, ms_rep_dynamicbonds, ms_rep_hbonds,
     ms_rep_points, ms_rep_vdw, ms_rep_cpk, ms_rep_licorice, ms_rep_trace, ms_rep_tube,
     ms_rep_newribbons, ms_rep_newcartoon, ms_rep_quicksurf, ms_rep_volumeslice,
-    ms_rep_isosurface, ms_rep_beads, ms_rep_dotted;
+    ms_rep_isosurface, ms_rep_beads, ms_rep_dotted, ms_rep_polyhedra;
 
 static const ms_rep_method *const methods[] = {
     &ms_rep_lines,
@@ -29,13 +29,14 @@ static const ms_rep_method *const methods[] = {
     &ms_rep_isosurface,
     &ms_rep_beads,
     &ms_rep_dotted,
+    &ms_rep_polyhedra,
 };
 
 _Static_assert(MS_COUNTOF(methods) <= MS_REP_MAXMETHODS, "raise MS_REP_MAXMETHODS");
 
 /* VMD's other methods: recognised so that a script using one is told it is missing. */
 static const char *const unavailable[] = {
-    "Ribbons", "Cartoon", "Polyhedra", "PaperChain", "Twister", "MSMS",
+    "Ribbons", "Cartoon", "PaperChain", "Twister", "MSMS",
     "NanoShaper", "Surf", "FieldLines", "Orbital", "Solvent",
     "LatticeCubes"};
 

@@ -7,4 +7,5 @@ src_libmscore_la_SOURCES += \
 	src/rep/lines.c src/rep/bonds.c src/rep/dynbonds.c src/rep/hbonds.c src/rep/points.c \
 	src/rep/vdw.c src/rep/cpk.c src/rep/licorice.c src/rep/trace.c src/rep/tube.c \
 	src/rep/newribbons.c src/rep/newcartoon.c src/rep/quicksurf.c src/rep/beads.c \
-	src/rep/dotted.c src/rep/volumes.c src/rep/isosurface.c src/rep/volumeslice.c
+	src/rep/dotted.c src/rep/polyhedra.c src/rep/volumes.c src/rep/isosurface.c \
+	src/rep/volumeslice.c

@@ -26,6 +26,44 @@ static int count_files(const char *dir, const char *prefix)
     return n;
 }
 
+/* A 3 x 2 RLE SGI file made by hand: red runs, green literals, blue zero; the bottom row
+ * first. Read back top row first; then the same file cut short is an error. */
+static void sgi_rle(void)
+{
+    static const uint8_t rows[6][4] = {
+        {0x03, 10, 0}, {0x03, 20, 0},                      /* red: bottom 10s, top 20s */
+        {0x83, 1, 2, 3}, {0x83, 4, 5, 6},                  /* green: literals */
+        {0x03, 0, 0}, {0x03, 0, 0}};                       /* blue */
+    static const int len[6] = {3, 3, 4, 4, 3, 3};
+    uint8_t f[512 + 48 + 24] = {0x01, 0xda, 1, 1, 0, 3, 0, 3, 0, 2, 0, 3};
+    uint32_t off = 512 + 48;
+    for (int i = 0; i < 6; i++) {
+        for (int k = 0; k < 4; k++) {
+            f[512 + 4 * i + k] = (uint8_t)(off >> (24 - 8 * k));
+            f[512 + 24 + 4 * i + k] = (uint8_t)((uint32_t)len[i] >> (24 - 8 * k));
+        }
+        memcpy(f + off, rows[i], (size_t)len[i]);
+        off += (uint32_t)len[i];
+    }
+    char path[1024];
+    snprintf(path, sizeof path, "%s/img_rle.rgb", out_dir());
+    FILE *fp = fopen(path, "wb");
+    fwrite(f, 1, off, fp);
+    fclose(fp);
+    ms_image back = {0};
+    ms_error err = {{0}};
+    static const uint8_t want[18] = {20, 4, 0, 20, 5, 0, 20, 6, 0, 10, 1, 0, 10, 2, 0, 10, 3, 0};
+    int ok = ms_image_read(path, &back, &err) == 0 && back.width == 3 && back.height == 2 &&
+             !memcmp(back.rgb, want, sizeof want);
+    t_ok(ok, "an RLE SGI file is read (%s)", ok ? "" : err.msg);
+    ms_image_free(&back);
+    fp = fopen(path, "wb");
+    fwrite(f, 1, off - 4, fp);
+    fclose(fp);
+    t_ok(ms_image_read(path, &back, &err) == -1 && strstr(err.msg, "SGI: truncated"),
+         "a truncated SGI file is an error (%s)", err.msg);
+}
+
 int main(void)
 {
     t_suite = "image";
@@ -40,8 +78,8 @@ int main(void)
             p[1] = (uint8_t)(y * 11);
             p[2] = (uint8_t)(x * y);
         }
-    const char *ext[] = {"png", "tga", "ppm", "bmp"};
-    for (int k = 0; k < 4; k++) {
+    const char *ext[] = {"png", "tga", "ppm", "bmp", "rgb"};
+    for (int k = 0; k < 5; k++) {
         char path[1024];
         snprintf(path, sizeof path, "%s/img_rt.%s", out_dir(), ext[k]);
         ms_image back = {0};
@@ -77,5 +115,6 @@ int main(void)
         ms_image_free(&big);
     }
     ms_image_free(&img);
+    sgi_rle();
     return t_done();
 }
