@@ -13,7 +13,8 @@ static void test_devices(void)
     t_suite = "map devices";
     static const char *const names[] = {"snapshot", "Tachyon", "TachyonInternal",
                                         "TachyonLOpenCLInternal", "TachyonLOptiXInternal",
-                                        "POV3", "Wavefront"};
+                                        "POV3", "Wavefront", "Raster3D", "RenderMan", "STL",
+                                        "VRML-2", "X3D"};
     int ok = ms_render_count() == MS_COUNTOF(names);
     for (size_t i = 0; ok && i < MS_COUNTOF(names); i++)
         ok = !strcmp(ms_render_device_at(i)->name, names[i]) && ms_render_device_at(i)->write;
@@ -66,7 +67,7 @@ static void test_app(void)
     ms_app *app = ms_app_new("test_map", ms_command_sets);
     if (!t_ok(app != NULL, "made by ms_app_new")) return;
     int rc = Tcl_Eval(app->interp, "list [molinfo num] [llength [render list]] [display get size]");
-    t_ok(rc == TCL_OK && !strcmp(Tcl_GetStringResult(app->interp), "0 7 {512 512}"),
+    t_ok(rc == TCL_OK && !strcmp(Tcl_GetStringResult(app->interp), "0 12 {512 512}"),
          "its commands answer from its world: %s", Tcl_GetStringResult(app->interp));
     rc = Tcl_Eval(app->interp, "display resize 64 48; display get size");
     t_ok(rc == TCL_OK && app->world.width == 64 && app->world.height == 48,
