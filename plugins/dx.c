@@ -78,7 +78,11 @@ static int read_header(dx_reader *r, ms_perr *err)
             if (strstr(p, "binary") || strstr(p, "data file"))
                 return ms_perr_set(err, "line %ld: binary or external DX data is not supported",
                                    in->line_no);
-            if (header_numbers(p, "items", v, 1) == 1) items = (long)v[0];
+            if (header_numbers(p, "items", v, 1) == 1) {
+                if (!(v[0] >= 0 && v[0] <= 1e15)) /* NaN too; no grid holds more */
+                    return ms_perr_set(err, "line %ld: bad item count %g", in->line_no, v[0]);
+                items = (long)v[0];
+            }
             const char *follows = strstr(p, "data follows");
             if (!follows) return ms_perr_set(err, "line %ld: expected 'data follows'", in->line_no);
             const char *after = follows + strlen("data follows");
