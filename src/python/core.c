@@ -11,6 +11,7 @@
 
 #include "config.h"
 #include "commands/commands.h"
+#include "python/pyint.h"
 #include "python/python.h"
 
 static ms_app *g_app;          /* the application Python works on */
@@ -22,11 +23,16 @@ void ms_python_set_app(ms_app *app)
     g_app = app;
 }
 
+ms_app *ms_py_app(void)
+{
+    if (!g_app)
+        PyErr_SetString(PyExc_RuntimeError, "molscope: no application (call _molscope.start first)");
+    return g_app;
+}
+
 static int need_app(void)
 {
-    if (g_app) return 0;
-    PyErr_SetString(PyExc_RuntimeError, "molscope: no application (call _molscope.start first)");
-    return -1;
+    return ms_py_app() ? 0 : -1;
 }
 
 /* Raise TclError with the interpreter's result (the message a Tcl user sees). */
@@ -177,6 +183,8 @@ static PyMethodDef core_methods[] = {
      "call_list(*words) -> list of str: run one Tcl command; its result as a list"},
     {"split", py_split, METH_VARARGS, "split(text) -> list of str: a Tcl list's elements"},
     {"evaltcl", py_evaltcl, METH_VARARGS, "evaltcl(script) -> str: evaluate Tcl text"},
+    {"frame_buffer", ms_py_frame_buffer, METH_VARARGS,
+     "frame_buffer(molid, frame=-1) -> FrameBuffer: a frame's coordinates, shared"},
     {"start", py_start, METH_VARARGS,
      "start(anchor) -> bool: create the application (a plain python3 only)"},
     {NULL, NULL, 0, NULL}};
@@ -199,6 +207,10 @@ PyMODINIT_FUNC PyInit__molscope(void)
         Py_XDECREF(bases);
     }
     if (!g_tclerror || PyModule_AddObject(m, "TclError", (Py_INCREF(g_tclerror), g_tclerror))) {
+        Py_DECREF(m);
+        return NULL;
+    }
+    if (ms_py_frames_init(m) < 0) {
         Py_DECREF(m);
         return NULL;
     }

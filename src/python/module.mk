@@ -4,17 +4,20 @@
 # _molscope.so (for a plain python3) links it with the core, without libpython: the host
 # python3 provides it. The molscope package (src/python/molscope/*.py) is installed beside
 # the extension in $(pymoddir); in the build tree src/python/ holds both (PYTHONPATH).
-EXTRA_DIST += src/python/python.h src/python/core.c src/python/embed.c $(MS_PYPKG)
+EXTRA_DIST += src/python/python.h src/python/pyint.h src/python/core.c src/python/embed.c \
+	src/python/frames.c $(MS_PYPKG)
 MS_PYPKG = src/python/molscope/__init__.py src/python/molscope/_tcl.py \
 	src/python/molscope/_atomsel.py src/python/molscope/_vmdnames.py \
 	src/python/molscope/molecule.py src/python/molscope/molrep.py \
 	src/python/molscope/display.py src/python/molscope/render.py \
 	src/python/molscope/trans.py src/python/molscope/animate.py \
 	src/python/molscope/color.py src/python/molscope/material.py \
-	src/python/molscope/graphics.py src/python/molscope/label.py
+	src/python/molscope/graphics.py src/python/molscope/label.py \
+	src/python/molscope/vmdnumpy.py
 if HAVE_PYTHON
 noinst_LTLIBRARIES += src/python/libmspython.la
-src_python_libmspython_la_SOURCES = src/python/python.h src/python/core.c src/python/embed.c
+src_python_libmspython_la_SOURCES = src/python/python.h src/python/pyint.h src/python/core.c \
+	src/python/embed.c src/python/frames.c
 src_python_libmspython_la_CFLAGS = $(AM_CFLAGS) $(PYTHON_CFLAGS)
 src_python_libmspython_la_CPPFLAGS = $(AM_CPPFLAGS) -DMS_PYTHON3='"$(PYTHON3)"' \
 	-DMS_PYMODDIR='"$(pymoddir)"'

@@ -26,6 +26,10 @@ if not _molscope.embedded:
 from ._tcl import TclError  # noqa: E402
 from . import molecule, molrep, display, render, trans, animate  # noqa: E402
 from . import color, material, graphics, label  # noqa: E402
+try:
+    from . import vmdnumpy  # noqa: E402  (needs numpy)
+except ImportError:
+    pass
 from ._atomsel import atomsel  # noqa: E402
 
 

@@ -6,14 +6,16 @@ import sys
 
 import molscope
 
-_MODULES = ["molecule", "molrep", "display", "render", "trans", "animate", "color",
+_MODULES = ["molecule", "molrep", "display", "render", "trans", "animate", "color", "vmdnumpy",
             "material", "graphics", "label"]
 
 
 def install(main_globals):
     sys.modules.setdefault("vmd", molscope)
     for name in _MODULES + ["atomsel"]:
-        obj = getattr(molscope, name)
+        obj = getattr(molscope, name, None)
+        if obj is None:     # vmdnumpy without numpy
+            continue
         sys.modules.setdefault("vmd." + name, obj)
         sys.modules.setdefault(name, obj)
         main_globals.setdefault(name, obj)
