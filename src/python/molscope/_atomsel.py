@@ -56,7 +56,9 @@ class atomsel(object):
 
     @property
     def frame(self):
-        return int(call(self._name, "frame"))
+        """The frame it reads (-1: the molecule's current one, whichever it is)."""
+        f = call(self._name, "frame")
+        return -1 if f == "now" else int(f)
 
     @frame.setter
     def frame(self, value):

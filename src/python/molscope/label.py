@@ -36,9 +36,13 @@ def get_values(category, index):
 
 
 def textsize(size=None):
-    return float(call("label", "textsize", *([] if size is None else [float(size)])))
+    """Set the labels' text size unless size is None; the size."""
+    if size is not None:
+        call("label", "textsize", float(size))
+    return float(call("label", "textsize"))
 
 
 def textthickness(thickness=None):
-    return float(call("label", "textthickness", *([] if thickness is None else
-                                                   [float(thickness)])))
+    if thickness is not None:
+        call("label", "textthickness", float(thickness))
+    return float(call("label", "textthickness"))

@@ -1,7 +1,7 @@
 """material: VMD's Python `material` module (the material command)."""
 from ._tcl import call, call_list, floats
 
-_KEYS = ("ambient", "diffuse", "specular", "shininess", "mirror", "opacity", "outline",
+_KEYS = ("ambient", "specular", "diffuse", "shininess", "mirror", "opacity", "outline",
          "outlinewidth", "transmode")
 
 

@@ -34,7 +34,7 @@ def set_center(molid, center):
 
 
 def _matrix(molid, key):
-    return [floats(split(r)) for r in split(split(_get(molid, key))[0])]
+    return [floats(split(r)) for r in split(_get(molid, key))]
 
 
 def get_rotation(molid):
