@@ -25,7 +25,8 @@ PyMODINIT_FUNC PyInit__molscope(void);
 static int g_started;   /* this program started the interpreter (and finalizes it) */
 
 /* The folder holding molscope's Python package: MOLSCOPE_PYTHONPATH, else src/python
- * beside the program in the build tree, else the installed one. */
+ * beside the program in the build tree, else <prefix>/lib/python3.X/dist-packages beside
+ * <prefix>/bin (a relocated install), else the configured one. */
 static void find_pydir(const ms_app *app, char *dir, size_t n)
 {
     const char *env = getenv("MOLSCOPE_PYTHONPATH");
@@ -38,12 +39,16 @@ static void find_pydir(const ms_app *app, char *dir, size_t n)
     snprintf(exe_dir, sizeof exe_dir, "%s", app->exe_path);
     char *slash = strrchr(exe_dir, '/');
     if (slash) *slash = '\0';
-    snprintf(cand, sizeof cand, "%s/python/molscope/__init__.py", exe_dir);
-    if (stat(cand, &sb) == 0 && realpath(cand, real)) {
-        *strrchr(real, '/') = '\0';
-        *strrchr(real, '/') = '\0';
-        snprintf(dir, n, "%s", real);
-        return;
+    const char *rel[] = {"python", "../lib/python" Py_STRINGIFY(PY_MAJOR_VERSION) "."
+                                   Py_STRINGIFY(PY_MINOR_VERSION) "/dist-packages"};
+    for (size_t i = 0; i < sizeof rel / sizeof rel[0]; i++) {
+        snprintf(cand, sizeof cand, "%s/%s/molscope/__init__.py", exe_dir, rel[i]);
+        if (stat(cand, &sb) == 0 && realpath(cand, real)) {
+            *strrchr(real, '/') = '\0';
+            *strrchr(real, '/') = '\0';
+            snprintf(dir, n, "%s", real);
+            return;
+        }
     }
     snprintf(dir, n, "%s", MS_PYMODDIR);
 }
