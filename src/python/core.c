@@ -146,6 +146,28 @@ static PyObject *py_evaltcl(PyObject *self, PyObject *args)
     return r;
 }
 
+/* read_line(prompt): the interactive prompt's input, read from Tcl's standard input
+ * channel (the one the Tcl shell reads, so no line is lost between the two); EOFError at
+ * its end. */
+static PyObject *py_read_line(PyObject *self, PyObject *args)
+{
+    const char *prompt = "";
+    if (need_app() || !PyArg_ParseTuple(args, "|s:read_line", &prompt)) return NULL;
+    PyObject *out = PySys_GetObject("stdout");   /* borrowed */
+    PyObject *r = out && out != Py_None ? PyObject_CallMethod(out, "flush", NULL) : NULL;
+    Py_XDECREF(r);
+    PyErr_Clear();
+    fputs(prompt, stdout);
+    fflush(stdout);
+    Tcl_Channel in = Tcl_GetStdChannel(TCL_STDIN);
+    Tcl_Obj *line = Tcl_NewObj();
+    Tcl_IncrRefCount(line);
+    int n = in ? Tcl_GetsObj(in, line) : -1;
+    PyObject *res = n < 0 ? (PyErr_SetNone(PyExc_EOFError), NULL) : str_of(line);
+    Tcl_DecrRefCount(line);
+    return res;
+}
+
 static void free_owned_app(void)
 {
     if (!g_owned) return;
@@ -185,6 +207,8 @@ static PyMethodDef core_methods[] = {
     {"evaltcl", py_evaltcl, METH_VARARGS, "evaltcl(script) -> str: evaluate Tcl text"},
     {"frame_buffer", ms_py_frame_buffer, METH_VARARGS,
      "frame_buffer(molid, frame=-1) -> FrameBuffer: a frame's coordinates, shared"},
+    {"read_line", py_read_line, METH_VARARGS,
+     "read_line(prompt='') -> str: a line of standard input as Tcl reads it"},
     {"start", py_start, METH_VARARGS,
      "start(anchor) -> bool: create the application (a plain python3 only)"},
     {NULL, NULL, 0, NULL}};

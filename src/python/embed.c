@@ -195,12 +195,19 @@ int ms_python_run_file(ms_app *app, const char *path)
     return run_file(app, app->interp, "-python", path);
 }
 
-/* The interactive prompt on standard input, back to Tcl at its end. */
+/* The interactive prompt on standard input (read as the Tcl shell reads it), back to Tcl
+ * at its end. */
 static int interactive(Tcl_Interp *interp)
 {
     fflush(stdout);
-    PyRun_InteractiveLoop(stdin, "<stdin>");
-    clearerr(stdin);
+    PyObject *main = PyImport_AddModule("__main__");   /* borrowed */
+    PyObject *r = PyRun_String("import code as _code, _molscope as _ms\n"
+                               "_code.interact(banner='', readfunc=_ms.read_line, "
+                               "local=globals(), exitmsg='')\n"
+                               "del _code, _ms\n",
+                               Py_file_input, PyModule_GetDict(main), NULL);
+    if (!r) return python_error(interp);
+    Py_DECREF(r);
     flush_both();
     Tcl_ResetResult(interp);
     return TCL_OK;

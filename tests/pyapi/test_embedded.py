@@ -129,6 +129,15 @@ def test_interactive_prompt_returns_to_tcl():
     os.close(fd)
 
 
+def test_gopython_prompt_reads_piped_input():
+    r = subprocess.run(
+        [EXE, "-dispdev", "text"], input="puts before\ngopython\nx = 6 * 7\n"
+        "for i in range(2):\n    print('loop', i)\n\nprint('x', x)\n",
+        capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert "before" in r.stdout and "loop 1" in r.stdout and "x 42" in r.stdout
+
+
 def test_vmd_style_script_same_under_molscope_and_python3(tmp_path):
     script = os.path.join(HERE, "vmd_style.py")
     r = molscope(["-python", "-e", script])
