@@ -43,9 +43,27 @@ static PyObject *raise_tcl(void)
     return NULL;
 }
 
-/* A Python object as a Tcl word: str as is, anything else as str() makes it. */
+/* A Python object as a Tcl word: str as is, a sequence (list, tuple, numpy array) as a
+ * Tcl list of its items' words, anything else as str() makes it. */
 static Tcl_Obj *tcl_word(PyObject *o)
 {
+    if (!PyUnicode_Check(o) && !PyBytes_Check(o) && PySequence_Check(o)) {
+        PyObject *seq = PySequence_Fast(o, "not a sequence");
+        if (!seq) return NULL;
+        Tcl_Obj *list = Tcl_NewListObj(0, NULL);
+        for (Py_ssize_t i = 0; list && i < PySequence_Fast_GET_SIZE(seq); i++) {
+            Tcl_Obj *w = tcl_word(PySequence_Fast_GET_ITEM(seq, i));
+            if (!w) {
+                Tcl_IncrRefCount(list);   /* a fresh list: this frees it */
+                Tcl_DecrRefCount(list);
+                list = NULL;
+                break;
+            }
+            Tcl_ListObjAppendElement(NULL, list, w);
+        }
+        Py_DECREF(seq);
+        return list;
+    }
     PyObject *s = PyUnicode_Check(o) ? (Py_INCREF(o), o) : PyObject_Str(o);
     if (!s) return NULL;
     Py_ssize_t n;
@@ -174,6 +192,7 @@ static void free_owned_app(void)
     ms_app *app = g_app;
     g_app = NULL;
     g_owned = 0;
+    ms_py_frames_forget();
     ms_app_free(app);
 }
 

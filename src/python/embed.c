@@ -11,6 +11,7 @@
 #include "config.h"
 #include "commands/args.h"
 #include "commands/commands.h"
+#include "python/pyint.h"
 #include "python/python.h"
 
 #include <limits.h>
@@ -233,6 +234,7 @@ static void finish(ClientData cd, Tcl_Interp *interp)
     g_started = 0;
     flush_both();
     Py_FinalizeEx();
+    ms_py_frames_forget();
 }
 
 void ms_python_register(ms_app *app)

@@ -123,6 +123,11 @@ PyObject *ms_py_frame_buffer(PyObject *self, PyObject *args)
     return (PyObject *)b;
 }
 
+void ms_py_frames_forget(void)
+{
+    g_live = NULL;
+}
+
 int ms_py_frames_init(PyObject *module)
 {
     if (PyType_Ready(&frame_buffer_type) < 0) return -1;

@@ -12,5 +12,8 @@ ms_app *ms_py_app(void);
 PyObject *ms_py_frame_buffer(PyObject *self, PyObject *args);
 /* Make the FrameBuffer type ready and add it to the module; 0, or -1 with an exception. */
 int ms_py_frames_init(PyObject *module);
+/* Python has ended: molecules freed from now on free their coordinates themselves (the
+ * buffers Python leaked are not to be touched). */
+void ms_py_frames_forget(void);
 
 #endif

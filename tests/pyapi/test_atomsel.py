@@ -1,6 +1,7 @@
 """test_atomsel.py: molscope.atomsel against atomselect and measure: the same atoms,
 values, centres, RMSDs, fits, bounds, areas, contacts, hydrogen bonds and bonds; moves
 seen from Tcl; errors with Tcl's messages."""
+import numpy as np
 import pytest
 
 from molscope import atomsel, molecule, TclError
@@ -53,6 +54,10 @@ def test_set_one_value_and_per_atom(helix):
         list(range(len(s)))
     s.set("segname", "PYT")
     assert tcl_list("[atomselect %d {name CA}] get segname" % helix) == ["PYT"] * len(s)
+    s.set("user", np.arange(len(s), dtype=np.float32) / 2)
+    assert floats(tcl_list("[atomselect %d {name CA}] get user" % helix))[:3] == [0, 0.5, 1.0]
+    s.set("name", "C{A")      # no quoting problem: the words go over as a list
+    assert s.get("name") == ["C{A"] * len(s)
     with pytest.raises(TclError) as e:
         s.set("beta", [1, 2])
     assert "atomselect" in str(e.value) or "set" in str(e.value)

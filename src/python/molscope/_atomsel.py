@@ -17,7 +17,7 @@ def _matrix_to_tcl(m):
     m = [float(x) for x in m]
     if len(m) != 16:
         raise ValueError("a matrix is 16 numbers, not %d" % len(m))
-    return " ".join("{%s}" % " ".join(repr(m[c * 4 + r]) for c in range(4)) for r in range(4))
+    return [[m[c * 4 + r] for c in range(4)] for r in range(4)]
 
 
 def _matrix_from_tcl(text):
@@ -92,7 +92,7 @@ class atomsel(object):
         """Set a keyword: one value for every atom, or a sequence of one per atom."""
         if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
             value = [value] * len(self)
-        call(self._name, "set", attrib, " ".join("{%s}" % v for v in value))
+        call(self._name, "set", attrib, list(value))
 
     @property
     def bonds(self):
@@ -100,8 +100,7 @@ class atomsel(object):
 
     @bonds.setter
     def bonds(self, lists):
-        call(self._name, "setbonds", " ".join("{%s}" % " ".join(str(int(i)) for i in b)
-                                              for b in lists))
+        call(self._name, "setbonds", [[int(i) for i in b] for b in lists])
 
     def write(self, filetype, filename):
         call(self._name, "write" + filetype, filename)

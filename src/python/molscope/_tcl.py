@@ -1,6 +1,6 @@
 """_tcl.py: the few helpers every module of the molscope package uses to run molscope's
-Tcl commands through _molscope (the words go over as a list, never re-quoted) and to read
-their results as Python values. No module of the package computes what a Tcl command
+Tcl commands through _molscope (the words go over as a list, never re-quoted; a Python
+list or tuple becomes a Tcl list) and to read their results as Python values. No module of the package computes what a Tcl command
 computes: each function is one command, or a few, and their results."""
 import _molscope
 
@@ -32,8 +32,8 @@ def top():
 
 
 def vec(v):
-    """A sequence of numbers as one Tcl list word."""
-    return " ".join(repr(float(x)) for x in v)
+    """A sequence of numbers as one Tcl list word (call makes a list a Tcl list)."""
+    return [float(x) for x in v]
 
 
 def onoff(flag):

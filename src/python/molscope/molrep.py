@@ -4,7 +4,7 @@ from ._tcl import call, call_list, boolean
 
 
 def _get(molid, key, rep):
-    return call_list("molinfo", int(molid), "get", "{%s %d}" % (key, int(rep)))[0]
+    return call_list("molinfo", int(molid), "get", ["%s %d" % (key, int(rep))])[0]
 
 
 def num(molid):

@@ -30,7 +30,7 @@ def get_center(molid):
 
 
 def set_center(molid, center):
-    call("molinfo", int(molid), "set", "center", "{%s}" % vec(center))
+    call("molinfo", int(molid), "set", "center", [vec(center)])
 
 
 def _matrix(molid, key):
