@@ -42,5 +42,8 @@ install-data-hook:
 	@echo "molscope: the Python module is installed in $(DESTDIR)$(pymoddir)"
 	@echo "molscope: python3 finds it there for prefix /usr/local; else set PYTHONPATH=$(pymoddir)"
 CLEANFILES += src/python/_molscope.so
-.PHONY: ms-python-link
+clean-local: clean-local-python
+clean-local-python:
+	-test ! -L $(builddir)/src/python/molscope || rm -f $(builddir)/src/python/molscope
+.PHONY: ms-python-link clean-local-python
 endif
