@@ -156,9 +156,9 @@ static int run_code(Tcl_Interp *interp, PyObject *code, const char *file)
     }
     PyObject *r = PyEval_EvalCode(code, globals, globals);
     Py_DECREF(code);
-    if (file) PyDict_DelItemString(globals, "__file__") == 0 || (PyErr_Clear(), 0);
     int rc = r ? TCL_OK : python_error(interp);
     Py_XDECREF(r);
+    if (file && PyDict_DelItemString(globals, "__file__") != 0) PyErr_Clear();
     flush_both();
     if (rc == TCL_OK) Tcl_ResetResult(interp);
     return rc;
