@@ -16,7 +16,7 @@
  *                        assemble/devices.c: gl/ (snapshot), render/ (Tachyon, POV3,
  *                        Wavefront), rt/ (TachyonInternal), oclrt/ (the OpenCL tracer)
  *   Image                image/ (image.h); movies: movie/
- *   Tcl on top           commands/ (every command, atomselect's included), live/, app/,
+ *   Tcl on top           commands/ (every command, atomselect's included), live/, app/, python/,
  *                        the program in main/
  *
  * The modules, layer by layer (a module includes only its own layer and the layers below):
@@ -69,6 +69,8 @@
  *               argument layer (args.h: subcommand tables, counts, keywords, values,
  *               option lists, one error style)
  *   live/       the live view in a browser: frames rendered at idle, a small web server
+ *   python/     Python scripting: gopython, -python, the _molscope module under VMD's
+ *               Python API (the molscope package), built with --with-python
  *  program
  *   main/       main(): MPI, the command line, VMD's startup order, the shell
  */
@@ -133,5 +135,6 @@
 #include "commands/atomsel.h"
 #include "commands/scenecmds.h"
 #include "live/live.h"
+#include "python/python.h"
 
 #endif

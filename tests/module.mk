@@ -13,7 +13,7 @@ include tests/unit/module.mk
 include tests/tools/module.mk
 include tests/fuzz/module.mk
 
-EXTRA_DIST += tests/run-tests tests/fresh-install tests/tcl tests/shell tests/data tests/python tests/fuzz/corpus \
+EXTRA_DIST += tests/run-tests tests/fresh-install tests/tcl tests/shell tests/data tests/python tests/pyapi tests/fuzz/corpus \
 	tests/sanitize tests/sanitizers tests/fuzz-run
 
 # The test programs are linked in a second step, after `all` has rebuilt the core library

@@ -63,11 +63,18 @@ static void find_plugins(ms_app *app)
 
 ms_app *ms_app_new(const char *argv0, const ms_app_cmdset_fn *commands)
 {
+    char exe[sizeof ((ms_app *)0)->exe_path];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) exe[n] = '\0';
+    else snprintf(exe, sizeof exe, "%s", argv0);
+    return ms_app_new_at(exe, argv0, commands);
+}
+
+ms_app *ms_app_new_at(const char *exe_path, const char *argv0, const ms_app_cmdset_fn *commands)
+{
     ms_app *app = calloc(1, sizeof *app);
     if (!app) return NULL;
-    ssize_t n = readlink("/proc/self/exe", app->exe_path, sizeof app->exe_path - 1);
-    if (n > 0) app->exe_path[n] = '\0';
-    else snprintf(app->exe_path, sizeof app->exe_path, "%s", argv0);
+    snprintf(app->exe_path, sizeof app->exe_path, "%s", exe_path);
     strcpy(app->dispdev, "text");
     ms_molset_init(&app->mols);
     ms_registry_init(&app->plugins);

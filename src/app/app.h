@@ -43,6 +43,10 @@ typedef void (*ms_app_cmdset_fn)(ms_app *app);
  * set of the NULL-terminated table `commands` in order (NULL: none; quit and exit are one
  * of molscope's, commands/cmd_quit.c). NULL on failure (the reason is printed). */
 ms_app *ms_app_new(const char *argv0, const ms_app_cmdset_fn *commands);
+/* The same for a program said to be at exe_path (the Python module, whose process is
+ * python3, names where a molscope program would be): the Tcl library and the plugins are
+ * found from there. */
+ms_app *ms_app_new_at(const char *exe_path, const char *argv0, const ms_app_cmdset_fn *commands);
 /* Free everything ms_app_new made: the interpreter first (what lives on it, such as the live
  * view, stops with it), then the molecules, the world and the plugins. */
 void ms_app_free(ms_app *app);

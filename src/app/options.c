@@ -14,6 +14,7 @@ void ms_options_usage(const char *argv0)
            "  -dispdev text|none|osmesa|egl|opengl|openglpbuffer|win\n"
            "                     display device (text and none need no display)\n"
            "  -e <script>        run a Tcl script after startup\n"
+           "  -python            the -e script is Python (built with Python only)\n"
            "  -eofexit           exit when standard input ends\n"
            "  -args ...          pass every later argument to Tcl's argv\n"
            "  -size <w> <h>      display size in pixels (default 512 512)\n"
@@ -108,8 +109,13 @@ int ms_options_parse(int argc, char **argv, int (*is_type)(void *, const char *)
         } else if (!strcasecmp(opt, "version")) {
             o->version = 1;
         } else if (!strcasecmp(opt, "python")) {
-            fprintf(stderr, "molscope: -python: molscope is scripted in Tcl only\n");
+#ifdef MS_HAVE_PYTHON
+            o->python = 1;
+#else
+            fprintf(stderr, "molscope: -python: this molscope was built without Python "
+                            "(configure --with-python)\n");
             return -1;
+#endif
         } else if (is_type && is_type(ud, opt)) {
             if (need_args(i, 1, argc, a)) return -1;
             forced = opt;

@@ -1,4 +1,4 @@
-/* options.h: molscope's command line, VMD's options: -dispdev, -e, -eofexit, -args, -size,
+/* options.h: molscope's command line, VMD's options: -dispdev, -e, -python, -eofexit, -args, -size,
  * -pos, -startup, -m/-f, -<type> file, -nt, -dist, -height, -h. */
 #ifndef MS_OPTIONS_H
 #define MS_OPTIONS_H
@@ -12,6 +12,7 @@ typedef struct ms_cmdfile {
 typedef struct ms_options {
     const char *dispdev;
     const char *escript;
+    int python;              /* -python: escript is a Python script */
     const char *startup;
     int eofexit;
     int width, height;       /* 0 = default */

@@ -3,7 +3,7 @@
  * VMD's startup order: the Tcl library's init script, the files named on the command line
  * (loaded by rank 0 and broadcast when there are several ranks), the first startup file
  * found, the -e script, then the shell. Scripts and standard input are read as VMD reads
- * them (app/script.c): a failing command is reported and the next one runs; the exit status
+ * them (app/script.c; a -python -e file is Python, python/): a failing command is reported and the next one runs; the exit status
  * is 1 when any failed. Every exit goes through ms_par_exit, so a non-zero status on any
  * rank ends the whole MPI job. */
 #include "config.h"
@@ -14,6 +14,9 @@
 #include "commands/commands.h"
 #include "gl/gl.h"
 #include "parallel/parallel.h"
+#ifdef MS_HAVE_PYTHON
+#include "python/python.h"
+#endif
 
 #include <malloc.h>
 #include <stdint.h>
@@ -95,10 +98,14 @@ static int stage(ms_app *app, int rc, const char *what, int *status)
     return 0;
 }
 
-/* A script file (-e, the startup file), read as VMD reads it (app/script.c). */
-static int run_script(ms_app *app, const char *path, int *status)
+/* A script file (-e, the startup file), read as VMD reads it (app/script.c); with -python
+ * the -e file is Python, run whole (a failure is one failed command). */
+static int run_script(ms_app *app, const char *path, int python, int *status)
 {
     int before = app->failed;
+#ifdef MS_HAVE_PYTHON
+    if (python) return stage(app, ms_python_run_file(app, path), path, status);
+#endif
     int rc = ms_app_play(app, path);
     if (rc != TCL_OK && app->failed != before) {   /* a failure that stops the run */
         *status = 1;
@@ -144,7 +151,7 @@ static int run_startup_file(ms_app *app, const ms_options *o, int *status)
                                                          o->startup));
             return stage(app, TCL_ERROR, "command line", status);
         }
-        return run_script(app, o->startup, status);
+        return run_script(app, o->startup, 0, status);
     }
     const char *names[] = {".molscoperc", ".vmdrc"};
     for (int k = 0; k < 2; k++) {
@@ -153,7 +160,7 @@ static int run_startup_file(ms_app *app, const ms_options *o, int *status)
             if (!dirs[d]) continue;
             snprintf(path, sizeof path, "%s/%s", dirs[d], names[k]);
             if (access(path, R_OK) == 0)
-                return run_script(app, path, status);
+                return run_script(app, path, 0, status);
         }
     }
     return 0;
@@ -184,6 +191,9 @@ int main(int argc, char **argv)
         return ms_par_exit(1);
     }
     Tcl_SetExitProc(exit_proc);
+#ifdef MS_HAVE_PYTHON
+    ms_python_register(app);
+#endif
     ms_options o;
     int status = 0;
     if (ms_options_parse(argc, argv, is_plugin_type, app, &o) != 0) {
@@ -214,7 +224,7 @@ int main(int argc, char **argv)
         goto done;
     }
     if (load_cmdline_files(app, &o, &status) || run_startup_file(app, &o, &status) ||
-        (o.escript && run_script(app, o.escript, &status)))
+        (o.escript && run_script(app, o.escript, o.python, &status)))
         goto done;
     status = ms_shell_run(app);
 done:

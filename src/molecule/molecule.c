@@ -68,15 +68,20 @@ void ms_mol_free(ms_molecule *m)
     free(m);
 }
 
+/* A frame's arrays, unless a keeper (keep_pos) takes its coordinates. */
+static void free_frame(ms_molecule *m, ms_frame *f)
+{
+    if (!(m->keep_pos && f->pos && m->keep_pos(m->keep_pos_ud, f->pos))) free(f->pos);
+    free(f->vel);
+    f->pos = f->vel = NULL;
+}
+
 void ms_mol_free_contents(ms_molecule *m)
 {
     for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) free(*atom_field(&m->atoms, k));
     free_bonds(&m->bonds);
     for (int k = 0; k < MS_TERM_KINDS; k++) ms_terms_clear(&m->terms[k]);
-    for (size_t f = 0; f < m->nframes; f++) {
-        free(m->frames[f].pos);
-        free(m->frames[f].vel);
-    }
+    for (size_t f = 0; f < m->nframes; f++) free_frame(m, &m->frames[f]);
     free(m->frames);
     for (size_t i = 0; i < m->nfiles; i++) {
         free(m->files[i].path);
@@ -175,9 +180,7 @@ ms_frame *ms_mol_add_frame(ms_molecule *m, int with_vel, ms_error *err)
 void ms_mol_truncate_frames(ms_molecule *m, size_t first)
 {
     while (m->nframes > first) {
-        ms_frame *f = &m->frames[--m->nframes];
-        free(f->pos);
-        free(f->vel);
+        free_frame(m, &m->frames[--m->nframes]);
     }
     if (m->frame >= (int)m->nframes) m->frame = (int)m->nframes - 1;
 }
@@ -190,8 +193,7 @@ void ms_mol_delete_frames(ms_molecule *m, size_t first, size_t last, size_t step
     for (size_t r = 0; r < m->nframes; r++) {
         int drop = r >= first && r <= last && (r - first) % step == 0;
         if (drop) {
-            free(m->frames[r].pos);
-            free(m->frames[r].vel);
+            free_frame(m, &m->frames[r]);
         } else {
             m->frames[w++] = m->frames[r];
         }

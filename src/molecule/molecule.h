@@ -119,6 +119,10 @@ typedef struct ms_molecule {
     int32_t *pfrag, *nfrag;   /* computed on first use (ms_mol_polymer_fragments) */
     struct ms_loader *pending;/* frames still to read in the background */
     void *ext[8];             /* per-module attachments (reps, selections...), see molset.h */
+    /* Someone else holding a frame's coordinates (Python's numpy views): asked before a
+     * frame's pos is freed; when it answers 1 it has taken the array and frees it itself. */
+    int (*keep_pos)(void *ud, float *pos);
+    void *keep_pos_ud;
 } ms_molecule;
 
 /* The per-atom arrays of ms_atoms, for code that treats them all alike (growth,

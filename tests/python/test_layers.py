@@ -26,7 +26,7 @@ LAYERS = [
     ("reps", ["rep"]),
     ("devices", ["render", "gl", "rt", "oclrt"]),
     ("assembly", ["assemble"]),
-    ("bindings", ["app", "commands", "live"]),
+    ("bindings", ["app", "commands", "live", "python"]),
     ("program", ["main"]),
 ]
 TCL_FROM = "bindings"          # the first layer that may use Tcl
