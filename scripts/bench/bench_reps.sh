@@ -20,6 +20,7 @@ out=$(BENCH_PDB=$pdb BENCH_SRC=tests/data/1tii.pdb BENCH_REPEAT=$repeat MOLSCOPE
       MOLSCOPE_PLUGINDIR=plugins/.libs MOLSCOPE_NOREADLINE=1 \
       "$molscope" -dispdev text -e scripts/bench/bench_reps.tcl < /dev/null)
 echo "$out" | awk -F'\t' '
+    NF < 3 { next }      # the results -e echoes (VMD does too) are not timing rows
     $1 == "load" { printf "loaded %s in %s s\n", $2, $3; next }
     { t[$1] = $1 == "VDW" ? 0.1 : $1 == "Licorice" ? 0.3 : 0.5
       if (!hdr++) printf "%-11s %11s %26s %26s %8s\n", "method", "primitives", "first build: median/best (CPU)", "rebuild: median/best (CPU)", "target"

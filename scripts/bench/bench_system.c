@@ -98,7 +98,7 @@ typedef struct job {
     const bench_sys *s;
     ms_displaylist *dl;
     size_t s0, c0;            /* first sphere and cylinder of the block */
-    const uint32_t *first;    /* Licorice: first cylinder pair of each atom */
+    const uint32_t *first;    /* Licorice: first bond cylinder of each atom */
 } job;
 
 static void fill_spheres(void *ctx, size_t b, size_t e, int t)
@@ -114,30 +114,29 @@ static void fill_spheres(void *ctx, size_t b, size_t e, int t)
     }
 }
 
-/* Bond k of atom i (i < j) is cylinder pair 2 * (its rank among i's upper bonds + the upper
- * bonds of the atoms before i): the ranks come from a prefix sum. */
+/* Bond k of atom i (i < j) is cylinder (its rank among i's upper bonds + the upper bonds of
+ * the atoms before i): the ranks come from a prefix sum. Each bond is one two-coloured
+ * cylinder, its halves running inward to the midpoint, as Licorice draws it. */
 static void fill_bonds(void *ctx, size_t b, size_t e, int t)
 {
     job *jb = ctx;
     const bench_sys *s = jb->s;
     ms_dl_cylinders *cy = &jb->dl->cylinders;
     for (size_t i = b; i < e; i++) {
-        size_t c = jb->c0 + 2 * (size_t)jb->first[i];
+        size_t c = jb->c0 + (size_t)jb->first[i];
         for (uint32_t k = s->bstart[i]; k < s->bstart[i + 1]; k++) {
             uint32_t j = s->bto[k];
             if (j < i) continue;
-            float mid[3];
-            for (int d = 0; d < 3; d++) mid[d] = 0.5f * (s->pos[3 * i + d] + s->pos[3 * j + d]);
+            for (int d = 0; d < 3; d++)
+                cy->joint[3 * c + d] = 0.5f * (s->pos[3 * i + d] + s->pos[3 * j + d]);
             memcpy(cy->base + 3 * c, s->pos + 3 * i, 12);
-            memcpy(cy->apex + 3 * c, mid, 12);
-            memcpy(cy->base + 3 * c + 3, s->pos + 3 * (size_t)j, 12);
-            memcpy(cy->apex + 3 * c + 3, mid, 12);
-            cy->radius[c] = cy->radius[c + 1] = 0.3f;
+            memcpy(cy->apex + 3 * c, s->pos + 3 * (size_t)j, 12);
+            cy->radius[c] = 0.3f;
             cy->color[c] = s->color[i];
-            cy->color[c + 1] = s->color[j];
-            cy->caps[c] = cy->caps[c + 1] = 0;
-            cy->res[c] = cy->res[c + 1] = 12;
-            c += 2;
+            cy->color2[c] = s->color[j];
+            cy->flags[c] = MS_CYL_BOND | MS_CYL_INWARD;
+            cy->res[c] = 12;
+            c++;
         }
     }
 }
@@ -166,7 +165,7 @@ int bench_licorice_list(const bench_sys *s, ms_displaylist *dl, ms_error *err)
     }
     job j = {s, dl, 0, 0, first};
     long s0 = ms_dl_extend(dl, MS_DL_SPHERES, s->n, err);
-    long c0 = s0 < 0 ? -1 : ms_dl_extend(dl, MS_DL_CYLINDERS, 2 * (size_t)acc, err);
+    long c0 = s0 < 0 ? -1 : ms_dl_extend(dl, MS_DL_CYLINDERS, (size_t)acc, err);
     if (c0 >= 0) {
         j.s0 = (size_t)s0;
         j.c0 = (size_t)c0;
