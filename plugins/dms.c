@@ -344,7 +344,7 @@ static int dms_insert_particles(dms_writer *w, const ms_struct_view *v, const ms
 static int dms_insert_bonds(dms_writer *w, const ms_struct_view *v, ms_perr *err)
 {
     sqlite3_stmt *st;
-    if (sqlite3_prepare_v2(w->db, "INSERT INTO bond VALUES (?,?,1)", -1, &st, NULL) != SQLITE_OK)
+    if (sqlite3_prepare_v2(w->db, "INSERT INTO bond VALUES (?,?,?)", -1, &st, NULL) != SQLITE_OK)
         return dms_error(w->db, "writing the bond table", err);
     int rc = SQLITE_DONE;
     for (size_t i = 0; i < v->natoms && rc == SQLITE_DONE; i++) {
@@ -354,6 +354,10 @@ static int dms_insert_bonds(dms_writer *w, const ms_struct_view *v, ms_perr *err
             if (to[b] <= i) continue;
             sqlite3_bind_int64(st, 1, (sqlite3_int64)i);
             sqlite3_bind_int64(st, 2, (sqlite3_int64)to[b]);
+            float order = 1.0f;
+            const char *type;
+            if (v->get_bond_info) v->get_bond_info(v, i, b, &order, &type);
+            sqlite3_bind_int64(st, 3, (sqlite3_int64)lrintf(order)); /* DMS orders are integers */
             rc = sqlite3_step(st);
             sqlite3_reset(st);
         }

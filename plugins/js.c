@@ -5,7 +5,7 @@
  * The layout is written down in doc/js-format.md. Read: atoms, optional fields, bonds (with
  * orders), frames with cells, either byte order; angles, dihedrals, impropers and
  * cross-terms are skipped. Written: native byte order, 4096-byte blocks, every field, bonds
- * without orders (the writer's view has none). */
+ * with their orders. */
 #include "ms_plugin.h"
 #include "plugin_util.h"
 
@@ -580,7 +580,8 @@ static int js_build_columns(const ms_struct_view *v, js_table **tab, js_columns 
     return MS_PLUGIN_OK;
 }
 
-/* Bonds i < j: the count, all from (1-based), then all to. */
+/* Bonds i < j: the count, all from (1-based), all to, then every order (the view's orders,
+ * when the host gives them). */
 static void js_write_bonds(js_writer *w, const ms_struct_view *v)
 {
     int32_t n = 0;
@@ -590,12 +591,21 @@ static void js_write_bonds(js_writer *w, const ms_struct_view *v)
         for (size_t b = 0; b < k; b++) n += to[b] > i;
     }
     js_put_int(w, n);
-    for (int pass = 0; pass < 2; pass++)
+    for (int pass = 0; pass < 3; pass++)
         for (size_t i = 0; i < v->natoms; i++) {
             const unsigned *to;
             size_t k = v->get_bonds(v, i, &to);
-            for (size_t b = 0; b < k; b++)
-                if (to[b] > i) js_put_int(w, (int32_t)(pass ? to[b] + 1 : i + 1));
+            for (size_t b = 0; b < k; b++) {
+                if (to[b] <= i) continue;
+                if (pass < 2) {
+                    js_put_int(w, (int32_t)(pass ? to[b] + 1 : i + 1));
+                    continue;
+                }
+                float order = 1.0f;
+                const char *type;
+                if (v->get_bond_info) v->get_bond_info(v, i, b, &order, &type);
+                js_put(w, &order, sizeof order);
+            }
         }
 }
 
@@ -613,7 +623,7 @@ static int js_write_structure(void *h, const ms_struct_view *v, ms_perr *err)
         const int32_t head[6] = {JS_MAGIC, JS_ENDIAN, 2, 9, (int32_t)n, 0};
         js_put(w, JS_MAGIC_TEXT, JS_TEXT_LEN);
         js_put(w, head, sizeof head);
-        js_put_int(w, JS_STRUCTURE | JS_BONDS | JS_OCCUPANCY | JS_BFACTOR | JS_MASS | JS_CHARGE |
+        js_put_int(w, JS_STRUCTURE | JS_BONDS | JS_BONDORDERS | JS_OCCUPANCY | JS_BFACTOR | JS_MASS | JS_CHARGE |
                           JS_RADIUS | JS_ATOMICNUMBER | JS_BLOCKIO);
         js_put_int(w, JS_BLOCK);
         for (int f = 0; f < T_N; f++) js_put_int(w, tab[f]->n);
