@@ -25,6 +25,17 @@ class Reporter:
     def skip(self, name, why):
         print("SKIP: %s: %s: %s" % (self.suite, name, why))
 
+    def steps(self, steps):
+        """Run each callable in turn, a RuntimeError or a failed subprocess a failed check
+        ("a step failed") before the next; returns the exit status (1 when any check
+        failed)."""
+        for step in steps:
+            try:
+                step()
+            except (RuntimeError, subprocess.CalledProcessError) as e:
+                self.report(False, "a step failed", str(e))
+        return 1 if self.failures else 0
+
     def imports(self, names, package):
         """Import the modules named (warnings silenced first) and return them in order, or
         print the suite's SKIP line (package: what to install) and return None."""

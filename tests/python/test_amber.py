@@ -202,12 +202,7 @@ def main():
         steps.append(lambda: netcdf(mda, np, exe, p, tmp))
     else:
         R.skip("netcdf", "molscope was built without libnetcdf")
-    for step in steps:
-        try:
-            step()
-        except (RuntimeError, subprocess.CalledProcessError) as e:
-            report(False, "a step failed", str(e))
-    return 1 if R.failures else 0
+    return R.steps(steps)
 
 
 if __name__ == "__main__":

@@ -322,13 +322,9 @@ def main():
              "grid345.cube": os.path.join(corpus, "cube", "grid345.cube")}
     p = lambda f: seeds.get(f, os.path.join(data, f))
     tmp = lambda f: os.path.join(outdir, "formats2_%d_%s" % (os.getpid(), f))
-    for step in (lambda: trajectories(mda, np, exe, p, tmp), lambda: small_formats(mda, np, exe, p, tmp),
-                 lambda: with_gemmi(np, exe, p, tmp), lambda: grids(np, exe, p, tmp)):
-        try:
-            step()
-        except (RuntimeError, subprocess.CalledProcessError) as e:
-            report(False, "a step failed", str(e))
-    return 1 if R.failures else 0
+    return R.steps([lambda: trajectories(mda, np, exe, p, tmp),
+                    lambda: small_formats(mda, np, exe, p, tmp),
+                    lambda: with_gemmi(np, exe, p, tmp), lambda: grids(np, exe, p, tmp)])
 
 
 if __name__ == "__main__":
