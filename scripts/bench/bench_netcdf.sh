@@ -13,11 +13,7 @@
 #
 # usage: scripts/bench/bench_netcdf.sh [builddir]   (NATOMS, NFRAMES, REPEAT override)
 set -eu
-src=$(cd "$(dirname "$0")/../.." && pwd)
-build=$(cd "${1:-$src}" && pwd)
-out="$src/bench-out"
-mkdir -p "$out"
-natoms=${NATOMS:-1000000}
+. "$(dirname "$0")/lib.sh" "$@"
 nframes=${NFRAMES:-100}
 repeat=${REPEAT:-3}
 nc="$out/amber_${natoms}_${nframes}.nc"

@@ -18,14 +18,10 @@
 #
 # usage: scripts/bench/bench_pbc.sh [builddir]   (NATOMS, NFRAMES override)
 set -eu
-src=$(cd "$(dirname "$0")/../.." && pwd)
-build=$(cd "${1:-$src}" && pwd)
-out="$src/bench-out"
-mkdir -p "$out"
-natoms=${NATOMS:-1000000}
+. "$(dirname "$0")/lib.sh" "$@"
 nframes=${NFRAMES:-100}
 pdb="$out/pbc_${natoms}.pdb"
-[ -f "$pdb" ] || python3 "$src/scripts/bench/replicate.py" "$src/tests/data/1tii.pdb" "$natoms" "$pdb"
+bench_replicate "$pdb"
 
 cat > "$out/bench_pbc.tcl" <<TCL
 proc cpu {} {

@@ -9,16 +9,12 @@
 #
 # usage: scripts/bench/bench_xtc_write.sh [builddir]   (NATOMS, NFRAMES, REPEAT override)
 set -eu
-src=$(cd "$(dirname "$0")/../.." && pwd)
-build=$(cd "${1:-$src}" && pwd)
-out="$src/bench-out"
-mkdir -p "$out"
-natoms=${NATOMS:-1000000}
+. "$(dirname "$0")/lib.sh" "$@"
 nframes=${NFRAMES:-10}
 repeat=${REPEAT:-3}
 pdb="$out/xtc_${natoms}.pdb"
 xtc="$out/xtcw_${natoms}_${nframes}.xtc"
-[ -f "$pdb" ] || python3 "$src/scripts/bench/replicate.py" "$src/tests/data/1tii.pdb" "$natoms" "$pdb"
+bench_replicate "$pdb"
 if [ ! -f "$xtc" ]; then
     /usr/bin/python3 - "$pdb" "$xtc" "$nframes" <<'PY'
 import sys, warnings

@@ -26,6 +26,16 @@ int ms_cmd_error(Tcl_Interp *interp, const char *fmt, ...)
     return TCL_ERROR;
 }
 
+Tcl_Obj *ms_args_joined(int objc, Tcl_Obj *const objv[], int from)
+{
+    Tcl_Obj *s = Tcl_NewObj();
+    for (int i = from; i < objc; i++) {
+        if (i > from) Tcl_AppendToObj(s, " ", 1);
+        Tcl_AppendObjToObj(s, objv[i]);
+    }
+    return s;
+}
+
 /* "<where>: " or "" */
 static Tcl_Obj *prefixed(const char *where)
 {

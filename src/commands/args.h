@@ -88,6 +88,10 @@ typedef struct ms_subcmd {
 /* Set an error message and return TCL_ERROR. */
 int ms_cmd_error(Tcl_Interp *interp, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* The words objv[from..] joined with spaces, as VMD's combine_arguments (a Tcl_Obj with
+ * refcount 0). */
+Tcl_Obj *ms_args_joined(int objc, Tcl_Obj *const objv[], int from);
+
 /* "<command> <subcommand>" of the handler running now ("" outside any). */
 const char *ms_args_where(void);
 

@@ -41,17 +41,6 @@ static const ms_render_device *get_device(Tcl_Interp *interp, Tcl_Obj *o, const 
     return find_device(interp, o, cmd, 0);
 }
 
-/* Words from objv[from] on joined with spaces (a Tcl_Obj with refcount 0). */
-static Tcl_Obj *joined(int objc, Tcl_Obj *const objv[], int from)
-{
-    Tcl_Obj *s = Tcl_NewObj();
-    for (int i = from; i < objc; i++) {
-        if (i > from) Tcl_AppendToObj(s, " ", 1);
-        Tcl_AppendObjToObj(s, objv[i]);
-    }
-    return s;
-}
-
 static ms_render_setting *setting(ms_app *app, Tcl_Interp *interp, const ms_render_device *d)
 {
     ms_render_setting *s = ms_render_setting_of(app->world.renderers, d);
@@ -85,7 +74,7 @@ static int r_options(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
         Tcl_SetObjResult(interp, Tcl_NewStringObj(s->cmd, -1));
         return TCL_OK;
     }
-    Tcl_Obj *cmd = joined(objc, objv, 3);
+    Tcl_Obj *cmd = ms_args_joined(objc, objv, 3);
     Tcl_IncrRefCount(cmd);
     int rc = ms_render_set_cmd(s, Tcl_GetString(cmd));
     Tcl_DecrRefCount(cmd);
@@ -147,7 +136,7 @@ static int r_render(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
 {
     const ms_render_device *d = find_device(interp, objv[1], "render", 1);
     if (!d) return TCL_ERROR;
-    Tcl_Obj *cmd = joined(objc, objv, 3);
+    Tcl_Obj *cmd = ms_args_joined(objc, objv, 3);
     Tcl_IncrRefCount(cmd);
     ms_error err = {{0}};
     int rc = ms_render(&app->world, d, Tcl_GetString(objv[2]), Tcl_GetString(cmd), &err);

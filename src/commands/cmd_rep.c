@@ -34,17 +34,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The words objv[from..] joined with spaces, as VMD's combine_arguments (refcount 0). */
-static Tcl_Obj *joined(int objc, Tcl_Obj *const objv[], int from)
-{
-    Tcl_Obj *s = Tcl_NewObj();
-    for (int i = from; i < objc; i++) {
-        if (i > from) Tcl_AppendToObj(s, " ", 1);
-        Tcl_AppendObjToObj(s, objv[i]);
-    }
-    return s;
-}
-
 /* A rep id as VMD reads one: the leading integer of the word, 0 when there is none
  * (`mol modstyle top 0 ...` has "top" where a rep id goes). */
 static long rep_number(Tcl_Obj *w)
@@ -123,7 +112,7 @@ static int m_current(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
         Tcl_SetObjResult(interp, Tcl_NewStringObj(ms_rep_text(app->world.reps, NULL, what), -1));
         return TCL_OK;
     }
-    Tcl_Obj *text = joined(objc, objv, 2);
+    Tcl_Obj *text = ms_args_joined(objc, objv, 2);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
     int rc = ms_rep_set_current(app->world.reps, what, Tcl_GetString(text), &err);
@@ -203,7 +192,7 @@ static int m_modify(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const ob
     int skip;
     ms_rep *r = lenient_target(app, interp, objv, cmd, &m, NULL, &skip);
     if (!r) return skip ? TCL_OK : TCL_ERROR;
-    Tcl_Obj *text = joined(objc, objv, 4);
+    Tcl_Obj *text = ms_args_joined(objc, objv, 4);
     Tcl_IncrRefCount(text);
     ms_error err = {{0}};
     int rc = ms_rep_modify(app->world.reps, m, r, what, Tcl_GetString(text), &err);
@@ -239,7 +228,7 @@ static int m_drawframes(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *cons
         Tcl_SetObjResult(interp, Tcl_NewStringObj(r->frames, -1));
         return TCL_OK;
     }
-    Tcl_Obj *spec = joined(objc, objv, 4);
+    Tcl_Obj *spec = ms_args_joined(objc, objv, 4);
     Tcl_IncrRefCount(spec);
     ms_error err = {{0}};
     int rc = ms_rep_set_frames(r, Tcl_GetString(spec), &err);

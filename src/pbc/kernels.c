@@ -114,18 +114,6 @@ KINLINE int shift_block(double *restrict b, const double *restrict ref, const do
     return moved != 0;
 }
 
-MS_PBC_CLONES
-void ms_pbc_wrap_run(float *p, size_t n, const ms_pbc_cell *c, const double origin[3])
-{
-    kcell k = kcell_of(c);
-    block b;
-    for (size_t s = 0; s < n; s += BLOCK) {
-        size_t m = n - s < BLOCK ? n - s : BLOCK;
-        ahead(p + 3 * s);
-        load(p + 3 * s, m, b);
-        if (shift_block(b, NULL, origin, 0, &k)) store(p + 3 * s, m, b);
-    }
-}
 
 /* The brick Ax x By x Cz: z first (moving by C), then y (by B), then x (by A). */
 KINLINE int brick_block(double *restrict b, const double o[3], const kcell *restrict k)
@@ -146,8 +134,11 @@ KINLINE int brick_block(double *restrict b, const double o[3], const kcell *rest
     return moved != 0;
 }
 
-MS_PBC_CLONES
-void ms_pbc_wrap_run_brick(float *p, size_t n, const ms_pbc_cell *c, const double origin[3])
+/* The wrap kernels' loop: each block of p moved into the cell at origin (by brick_block
+ * when brick, else by shift_block) and stored back when an atom moved. Inlined into each
+ * caller, where brick is a constant. */
+KINLINE void wrap_blocks(float *p, size_t n, const ms_pbc_cell *c, const double origin[3],
+                         int brick)
 {
     kcell k = kcell_of(c);
     block b;
@@ -155,8 +146,21 @@ void ms_pbc_wrap_run_brick(float *p, size_t n, const ms_pbc_cell *c, const doubl
         size_t m = n - s < BLOCK ? n - s : BLOCK;
         ahead(p + 3 * s);
         load(p + 3 * s, m, b);
-        if (brick_block(b, origin, &k)) store(p + 3 * s, m, b);
+        if (brick ? brick_block(b, origin, &k) : shift_block(b, NULL, origin, 0, &k))
+            store(p + 3 * s, m, b);
     }
+}
+
+MS_PBC_CLONES
+void ms_pbc_wrap_run(float *p, size_t n, const ms_pbc_cell *c, const double origin[3])
+{
+    wrap_blocks(p, n, c, origin, 0);
+}
+
+MS_PBC_CLONES
+void ms_pbc_wrap_run_brick(float *p, size_t n, const ms_pbc_cell *c, const double origin[3])
+{
+    wrap_blocks(p, n, c, origin, 1);
 }
 
 MS_PBC_CLONES

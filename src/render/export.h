@@ -27,6 +27,10 @@ void ms_tess_cone(const float base[3], const float apex[3], float rb, float ra, 
 void ms_export_clip_tri(const ms_scene_item *it, const float p[9], const float n[9],
                         ms_tri_cb cb, void *ud);
 
+/* Triangle t of a mesh moved by the 4x4 transform m (walk.c): its corners in p, their
+ * normals (dequantized) in n. */
+void ms_export_mesh_tri(const ms_dl_mesh *ms, size_t t, const float *m, float p[9], float n[9]);
+
 /* Segments. */
 typedef void (*ms_seg_cb)(void *ud, const float a[3], const float b[3]);
 /* VMD's dashed line: dashes of MS_EXPORT_DASH with gaps of the same length. */

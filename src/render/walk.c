@@ -79,19 +79,25 @@ static void mesh_tri(void *ud, const float p[9], const float n[9])
     w->v->triangle(w->ud, p, n, w->tri_colors);
 }
 
+void ms_export_mesh_tri(const ms_dl_mesh *ms, size_t t, const float *m, float p[9], float n[9])
+{
+    const uint32_t *v = ms->tri + 3 * t;
+    for (int k = 0; k < 3; k++) {
+        float q[3];
+        ms_mat4_point(m, ms->xyz + 3 * v[k], p + 3 * k);
+        for (int j = 0; j < 3; j++) q[j] = ms_normal_dequantize(ms->normal[3 * v[k] + j]);
+        ms_mat4_normal(m, q, n + 3 * k);
+    }
+}
+
 static void mesh(walker *w, const ms_displaylist *dl, const float *m)
 {
     const ms_dl_mesh *ms = &dl->mesh;
     for (size_t t = 0; t < ms->ntris; t++) {
         const uint32_t *v = ms->tri + 3 * t;
         float p[9], n[9];
-        for (int k = 0; k < 3; k++) {
-            float q[3];
-            ms_mat4_point(m, ms->xyz + 3 * v[k], p + 3 * k);
-            for (int j = 0; j < 3; j++) q[j] = ms_normal_dequantize(ms->normal[3 * v[k] + j]);
-            ms_mat4_normal(m, q, n + 3 * k);
-            w->tri_colors[k] = ms->color[v[k]];
-        }
+        ms_export_mesh_tri(ms, t, m, p, n);
+        for (int k = 0; k < 3; k++) w->tri_colors[k] = ms->color[v[k]];
         ms_export_clip_tri(w->it, p, n, mesh_tri, w);
     }
 }

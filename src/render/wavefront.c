@@ -185,15 +185,9 @@ static void clipped_mesh(obj *o, const ms_displaylist *dl)
     const ms_dl_mesh *ms = &dl->mesh;
     const float *m = o->it->xform;
     for (size_t t = 0; t < ms->ntris; t++) {
-        const uint32_t *v = ms->tri + 3 * t;
         float p[9], n[9];
-        for (int k = 0; k < 3; k++) {
-            float q[3];
-            ms_mat4_point(m, ms->xyz + 3 * v[k], p + 3 * k);
-            for (int j = 0; j < 3; j++) q[j] = ms_normal_dequantize(ms->normal[3 * v[k] + j]);
-            ms_mat4_normal(m, q, n + 3 * k);
-        }
-        use(o, average(ms->color, v), dl->lit);
+        ms_export_mesh_tri(ms, t, m, p, n);
+        use(o, average(ms->color, ms->tri + 3 * t), dl->lit);
         tri(o, p, n);
     }
 }

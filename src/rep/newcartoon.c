@@ -51,22 +51,16 @@ static void chains(void *ctxp, size_t begin, size_t end, int thread)
     }
 }
 
+static void fill(const ms_rep_build *b, const ms_rep_backbone *bb, float *cp, float *perp,
+                 float *w, float *h)
+{
+    chain_job j = {b, bb, cp, perp, w, h};
+    ms_parallel_for(bb->nchains, 16, chains, &j);
+}
+
 static int build(const ms_rep_build *b, ms_displaylist *dl, ms_error *err)
 {
-    ms_rep_backbone bb;
-    memset(&bb, 0, sizeof bb);
-    if (ms_rep_backbone_build(b->m, &bb, err)) return -1;
-    int rc = -1;
-    float *geo = ms_rep_scratch_get(b->scratch, MS_SCR_PATH, (bb.n + 1) * 8 * sizeof(float), err);
-    if (!geo) goto done;
-    chain_job j = {b, &bb, geo, geo + 3 * bb.n, geo + 6 * bb.n, geo + 7 * bb.n};
-    ms_parallel_for(bb.nchains, 16, chains, &j);
-    ms_rep_ribbon rib = {&bb, j.cp, j.perp, j.w, j.h, b->p[3] != 0, ms_rep_res(b->p[1]),
-                         ms_rep_ribbon_divs(b->p[1])};
-    rc = ms_rep_ribbon_build(b, &rib, dl, err);
-done:
-    ms_rep_backbone_free(&bb);
-    return rc;
+    return ms_rep_ribbon_method(b, fill, dl, err);
 }
 
 const ms_rep_method ms_rep_newcartoon = {

@@ -182,6 +182,13 @@ void ms_rep_chain_perps(const ms_rep_build *b, const ms_rep_backbone *bb,
                         const ms_rep_chain *ch, float *perp);
 /* Sections per residue for a VMD resolution: about a third of VMD's res + 2, even, >= 2. */
 int ms_rep_ribbon_divs(float res);
+/* The build of NewRibbons and NewCartoon (parameters p[1] resolution, p[3] spline): the
+ * backbone, scratch for the ribbon's cp, perp (3 floats per residue), w and h (1 float),
+ * filled by fill, then ms_rep_ribbon_build into dl. */
+typedef void (*ms_rep_ribbon_fill)(const ms_rep_build *b, const ms_rep_backbone *bb,
+                                   float *cp, float *perp, float *w, float *h);
+int ms_rep_ribbon_method(const ms_rep_build *b, ms_rep_ribbon_fill fill, ms_displaylist *dl,
+                         ms_error *err);
 
 /* ---------------------------------------------------------------- per-rep cache */
 

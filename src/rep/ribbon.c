@@ -282,3 +282,22 @@ int ms_rep_ribbon_build(const ms_rep_build *b, const ms_rep_ribbon *r, ms_displa
     ms_parallel_for(bb->n, 256, fill_pieces, &j);
     return 0;
 }
+
+int ms_rep_ribbon_method(const ms_rep_build *b, ms_rep_ribbon_fill fill, ms_displaylist *dl,
+                         ms_error *err)
+{
+    ms_rep_backbone bb;
+    memset(&bb, 0, sizeof bb);
+    if (ms_rep_backbone_build(b->m, &bb, err)) return -1;
+    int rc = -1;
+    float *geo = ms_rep_scratch_get(b->scratch, MS_SCR_PATH, (bb.n + 1) * 8 * sizeof(float), err);
+    if (!geo) goto done;
+    float *cp = geo, *perp = geo + 3 * bb.n, *w = geo + 6 * bb.n, *h = geo + 7 * bb.n;
+    fill(b, &bb, cp, perp, w, h);
+    ms_rep_ribbon rib = {&bb, cp, perp, w, h, b->p[3] != 0, ms_rep_res(b->p[1]),
+                         ms_rep_ribbon_divs(b->p[1])};
+    rc = ms_rep_ribbon_build(b, &rib, dl, err);
+done:
+    ms_rep_backbone_free(&bb);
+    return rc;
+}

@@ -1,6 +1,11 @@
 """mstest.py: what the cross-check scripts share: PASS/FAIL/SKIP lines as tests/run-tests
-counts them, and the output of tests/tools/msdump (the molecule as molscope loads it)."""
+counts them, the start of their main() (the optional modules, the directories
+tests/run-tests names, tests/tools/msdump built) and the output of tests/tools/msdump (the
+molecule as molscope loads it)."""
+import importlib
+import os
 import subprocess
+import warnings
 
 
 class Reporter:
@@ -19,6 +24,47 @@ class Reporter:
 
     def skip(self, name, why):
         print("SKIP: %s: %s: %s" % (self.suite, name, why))
+
+    def steps(self, steps):
+        """Run each callable in turn, a RuntimeError or a failed subprocess a failed check
+        ("a step failed") before the next; returns the exit status (1 when any check
+        failed)."""
+        for step in steps:
+            try:
+                step()
+            except (RuntimeError, subprocess.CalledProcessError) as e:
+                self.report(False, "a step failed", str(e))
+        return 1 if self.failures else 0
+
+    def imports(self, names, package):
+        """Import the modules named (warnings silenced first) and return them in order, or
+        print the suite's SKIP line (package: what to install) and return None."""
+        try:
+            warnings.simplefilter("ignore")
+            return [importlib.import_module(n) for n in names]
+        except ImportError:
+            print("SKIP: %s: %s is not installed" % (self.suite, package))
+            return None
+
+    def msdump_exe(self, builddir):
+        """The path of tests/tools/msdump in builddir, or None after the suite's FAIL line
+        when it is not built."""
+        exe = os.path.join(builddir, "tests", "tools", "msdump")
+        if not os.access(exe, os.X_OK):
+            print("FAIL: %s: %s is not built (make check-build)" % (self.suite, exe))
+            return None
+        return exe
+
+
+def dirs():
+    """srcdir, builddir, the test data and the output directory, as tests/run-tests names
+    them (MS_SRCDIR, MS_BUILDDIR, MS_TEST_DATA, MS_TEST_OUT); without it this source tree,
+    built in place, and /tmp."""
+    srcdir = os.environ.get("MS_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+    builddir = os.environ.get("MS_BUILDDIR", srcdir)
+    data = os.environ.get("MS_TEST_DATA", os.path.join(srcdir, "tests", "data"))
+    outdir = os.environ.get("MS_TEST_OUT", "/tmp")
+    return srcdir, builddir, data, outdir
 
 
 def msdump(exe, files):

@@ -17,7 +17,6 @@ The NetCDF checks SKIP when molscope was built without libnetcdf."""
 import os
 import subprocess
 import sys
-import warnings
 
 import mstest
 
@@ -185,21 +184,13 @@ def netcdf(mda, np, exe, p, tmp):
 
 
 def main():
-    try:
-        warnings.simplefilter("ignore")
-        import numpy as np
-        import MDAnalysis as mda
-        import parmed  # noqa: F401
-    except ImportError:
-        print("SKIP: %s: python3-mdanalysis or python3-parmed is not installed" % R.suite)
+    mods = R.imports(["numpy", "MDAnalysis", "parmed"], "python3-mdanalysis or python3-parmed")
+    if mods is None:
         return 0
-    srcdir = os.environ.get("MS_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
-    builddir = os.environ.get("MS_BUILDDIR", srcdir)
-    data = os.environ.get("MS_TEST_DATA", os.path.join(srcdir, "tests", "data"))
-    outdir = os.environ.get("MS_TEST_OUT", "/tmp")
-    exe = os.path.join(builddir, "tests", "tools", "msdump")
-    if not os.access(exe, os.X_OK):
-        print("FAIL: %s: %s is not built (make check-build)" % (R.suite, exe))
+    np, mda = mods[:2]
+    _, builddir, data, outdir = mstest.dirs()
+    exe = R.msdump_exe(builddir)
+    if exe is None:
         return 1
     p = lambda f: os.path.join(data, f)
     tmp = lambda f: os.path.join(outdir, "amber_%d_%s" % (os.getpid(), f))
@@ -211,12 +202,7 @@ def main():
         steps.append(lambda: netcdf(mda, np, exe, p, tmp))
     else:
         R.skip("netcdf", "molscope was built without libnetcdf")
-    for step in steps:
-        try:
-            step()
-        except (RuntimeError, subprocess.CalledProcessError) as e:
-            report(False, "a step failed", str(e))
-    return 1 if R.failures else 0
+    return R.steps(steps)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,6 @@ import os
 import shutil
 import subprocess
 import sys
-import warnings
 
 import mstest
 
@@ -310,33 +309,22 @@ def grids(np, exe, p, tmp):
 
 
 def main():
-    try:
-        warnings.simplefilter("ignore")
-        import numpy as np
-        import MDAnalysis as mda
-    except ImportError:
-        print("SKIP: %s: python3-mdanalysis is not installed" % R.suite)
+    mods = R.imports(["numpy", "MDAnalysis"], "python3-mdanalysis")
+    if mods is None:
         return 0
-    srcdir = os.environ.get("MS_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
-    builddir = os.environ.get("MS_BUILDDIR", srcdir)
-    data = os.environ.get("MS_TEST_DATA", os.path.join(srcdir, "tests", "data"))
-    outdir = os.environ.get("MS_TEST_OUT", "/tmp")
-    exe = os.path.join(builddir, "tests", "tools", "msdump")
-    if not os.access(exe, os.X_OK):
-        print("FAIL: %s: %s is not built (make check-build)" % (R.suite, exe))
+    np, mda = mods
+    srcdir, builddir, data, outdir = mstest.dirs()
+    exe = R.msdump_exe(builddir)
+    if exe is None:
         return 1
     corpus = os.path.join(srcdir, "tests", "fuzz", "corpus")
     seeds = {"small03_1.mol2": os.path.join(corpus, "mol2", "small03_1.mol2"),
              "grid345.cube": os.path.join(corpus, "cube", "grid345.cube")}
     p = lambda f: seeds.get(f, os.path.join(data, f))
     tmp = lambda f: os.path.join(outdir, "formats2_%d_%s" % (os.getpid(), f))
-    for step in (lambda: trajectories(mda, np, exe, p, tmp), lambda: small_formats(mda, np, exe, p, tmp),
-                 lambda: with_gemmi(np, exe, p, tmp), lambda: grids(np, exe, p, tmp)):
-        try:
-            step()
-        except (RuntimeError, subprocess.CalledProcessError) as e:
-            report(False, "a step failed", str(e))
-    return 1 if R.failures else 0
+    return R.steps([lambda: trajectories(mda, np, exe, p, tmp),
+                    lambda: small_formats(mda, np, exe, p, tmp),
+                    lambda: with_gemmi(np, exe, p, tmp), lambda: grids(np, exe, p, tmp)])
 
 
 if __name__ == "__main__":

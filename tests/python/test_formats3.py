@@ -12,7 +12,6 @@ Prints PASS:/FAIL:/SKIP: lines; SKIP when a peer is missing."""
 import os
 import subprocess
 import sys
-import warnings
 
 import mstest
 
@@ -234,16 +233,11 @@ def charmm_dms(np, mda, p, tmp):
 
 
 def main():
-    try:
-        warnings.simplefilter("ignore")
-        import numpy as np
-        import MDAnalysis as mda
-    except ImportError:
-        print("SKIP: %s: python3-mdanalysis is not installed" % R.suite)
+    mods = R.imports(["numpy", "MDAnalysis"], "python3-mdanalysis")
+    if mods is None:
         return 0
-    srcdir = os.environ.get("MS_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
-    data = os.environ.get("MS_TEST_DATA", os.path.join(srcdir, "tests", "data"))
-    outdir = os.environ.get("MS_TEST_OUT", "/tmp")
+    np, mda = mods
+    _, _, data, outdir = mstest.dirs()
     if not os.access(os.environ.get("MOLSCOPE", ""), os.X_OK):
         print("FAIL: %s: $MOLSCOPE is not a program (run through tests/run-tests)" % R.suite)
         return 1

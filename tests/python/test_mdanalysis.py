@@ -9,7 +9,6 @@ MDAnalysis is not installed."""
 import os
 import subprocess
 import sys
-import warnings
 
 import mstest
 
@@ -67,18 +66,13 @@ def compare(name, ours, u, skip_frames=0, segids=False, cells=True, names=True):
 
 
 def main():
-    try:
-        warnings.simplefilter("ignore")
-        import MDAnalysis as mda
-    except ImportError:
-        print("SKIP: %s: python3-mdanalysis is not installed" % R.suite)
+    mods = R.imports(["MDAnalysis"], "python3-mdanalysis")
+    if mods is None:
         return 0
-    srcdir = os.environ.get("MS_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
-    builddir = os.environ.get("MS_BUILDDIR", srcdir)
-    data = os.environ.get("MS_TEST_DATA", os.path.join(srcdir, "tests", "data"))
-    exe = os.path.join(builddir, "tests", "tools", "msdump")
-    if not os.access(exe, os.X_OK):
-        print("FAIL: %s: %s is not built (make check-build)" % (R.suite, exe))
+    mda, = mods
+    _, builddir, data, _ = mstest.dirs()
+    exe = R.msdump_exe(builddir)
+    if exe is None:
         return 1
     p = lambda f: os.path.join(data, f)
     cases = [

@@ -10,3 +10,12 @@ expect_eq() { if [ "$2" = "$3" ]; then pass "$1"; else fail "$1" "got [$2], expe
 expect_match() { case "$2" in $3) pass "$1";; *) fail "$1" "got [$2], expected to match [$3]";; esac; }
 MOLSCOPE=${MOLSCOPE:-molscope}
 scratch=$(mktemp -d "${MS_TEST_OUT:-/tmp}/sh.XXXXXX")
+# mpi_job_setup: the start of the tests that run molscope under mpirun: into $scratch with
+# its own HOME, Open MPI allowed as root and to oversubscribe, M the text-mode molscope.
+mpi_job_setup() {
+    cd "$scratch"
+    export HOME="$scratch/home"; mkdir -p "$HOME"
+    export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+    export OMPI_MCA_rmaps_base_oversubscribe=1
+    M="$MOLSCOPE -dispdev text"
+}

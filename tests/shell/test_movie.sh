@@ -8,11 +8,7 @@
 # one rank ends the job with its message; no ffmpeg: frames and a clear message.
 . "$(dirname "$0")/lib.sh"
 D=$MS_TEST_DATA
-cd "$scratch"
-export HOME="$scratch/home"; mkdir -p "$HOME"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-M="$MOLSCOPE -dispdev text"
+mpi_job_setup
 PY=/usr/bin/python3
 have_pil=0; $PY -c 'import PIL, numpy' 2>/dev/null && have_pil=1
 have_ff=0; command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null && have_ff=1

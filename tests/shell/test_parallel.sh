@@ -5,11 +5,7 @@
 # run where the file does not exist, so they can only have it from rank 0).
 . "$(dirname "$0")/lib.sh"
 D=$MS_TEST_DATA
-cd "$scratch"
-export HOME="$scratch/home"; mkdir -p "$HOME"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-M="$MOLSCOPE -dispdev text"
+mpi_job_setup
 if ! command -v mpirun >/dev/null; then skip "mpi" "no mpirun"; exit 0; fi
 # mpi NP ARGS...: mpirun with a limit, so a hang fails instead of stopping the suite (its
 # ranks write through a terminal: drop the carriage returns).

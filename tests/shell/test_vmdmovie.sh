@@ -5,11 +5,7 @@
 # and-rerun MovieMaker job renders only the missing frames (resume), and a rotation movie
 # under 2 ranks equals the one-process `movie make -type rotation`.
 . "$(dirname "$0")/lib.sh"
-cd "$scratch"
-export HOME="$scratch/home"; mkdir -p "$HOME"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-M="$MOLSCOPE -dispdev text"
+mpi_job_setup
 PY=/usr/bin/python3
 echo 'if {[catch {render snapshot probe.png} msg]} { puts "NOGL $msg" }' > probe.tcl
 if $M -e probe.tcl </dev/null 2>&1 | grep -q NOGL; then

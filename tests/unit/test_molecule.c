@@ -13,17 +13,7 @@
 
 #include "builtin/builtin.h"
 
-static ms_registry reg;
-
-static ms_molecule *load(const char *name, ms_error *err)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", t_data(), name);
-    ms_load_opts o;
-    ms_load_opts_default(&o);
-    o.waitfor = -1;
-    return ms_load_new(&reg, path, &o, err);
-}
+#include "ms_testload.h"
 
 /* Brute-force distance bonds with the same rule, as an independent reference. */
 static size_t brute_bonds(const ms_molecule *m, const float *p)
@@ -53,7 +43,7 @@ static void test_1tii(void)
 {
     t_suite = "molecule";
     ms_error err = {{0}};
-    ms_molecule *m = load("1tii.pdb", &err);
+    ms_molecule *m = load_err("1tii.pdb", &err);
     if (!t_ok(m != NULL, "load 1tii.pdb (%s)", err.msg)) return;
     t_ok(m->atoms.n == 5684, "1tii has 5684 atoms (%zu)", m->atoms.n);
     t_ok(m->nresidues == 927, "927 residues (%zu)", m->nresidues);
@@ -97,7 +87,7 @@ static void test_il2(void)
 {
     t_suite = "molecule";
     ms_error err = {{0}};
-    ms_molecule *m = load("il2.pdb", &err);
+    ms_molecule *m = load_err("il2.pdb", &err);
     if (!t_ok(m != NULL, "load il2.pdb (%s)", err.msg)) return;
     size_t hyd = 0, prot = 0;
     for (size_t i = 0; i < m->atoms.n; i++) {
@@ -119,7 +109,7 @@ static void test_nucleic(void)
 {
     t_suite = "molecule";
     ms_error err = {{0}};
-    ms_molecule *m = load("names.pdb", &err);
+    ms_molecule *m = load_err("names.pdb", &err);
     if (!t_ok(m != NULL, "load names.pdb (%s)", err.msg)) return;
     size_t nuc = 0, nbb = 0;
     for (size_t i = 0; i < m->atoms.n; i++) {

@@ -14,20 +14,6 @@
 
 #include "ms_testload.h"
 
-/* Number of atoms a selection picks, or -1 on error (the error is reported). */
-static long count(ms_molecule *m, const char *text)
-{
-    ms_bitset b;
-    ms_error err = {{0}};
-    if (ms_sel_select(m, -1, text, &b, &err)) {
-        printf("  (%s: %s)\n", text, err.msg);
-        return -1;
-    }
-    long n = (long)ms_bitset_count(&b);
-    ms_bitset_free(&b);
-    return n;
-}
-
 static void expect(ms_molecule *m, const char *text, long want)
 {
     long got = count(m, text);

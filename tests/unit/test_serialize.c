@@ -13,17 +13,7 @@
 
 #include "builtin/builtin.h"
 
-static ms_registry reg;
-
-static ms_molecule *load(const char *name, ms_error *err)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", t_data(), name);
-    ms_load_opts o;
-    ms_load_opts_default(&o);
-    o.waitfor = -1;
-    return ms_load_new(&reg, path, &o, err);
-}
+#include "ms_testload.h"
 
 /* ---------------------------------------------------------------- comparison */
 
@@ -110,7 +100,7 @@ static const char *difference(ms_molecule *a, ms_molecule *b)
  * polymer fragments, bond orders and types, a view. */
 static ms_molecule *rich_1tii(ms_error *err)
 {
-    ms_molecule *m = load("1tii.pdb", err);
+    ms_molecule *m = load_err("1tii.pdb", err);
     if (!m) return NULL;
     size_t n = m->atoms.n, nb = m->bonds.start[n];
     for (int k = 1; k <= 2; k++) {
@@ -216,7 +206,7 @@ static void test_blocks(void)
     const char *d = difference(m, c);
     t_ok(d == NULL, "block by block gives the same molecule (%s differs)", d ? d : "nothing");
     /* Frames of another size are refused and leave the molecule unchanged. */
-    ms_molecule *small = load("pept.pdb", &err);
+    ms_molecule *small = load_err("pept.pdb", &err);
     if (small && ms_molser_pack_frames(small, 0, 1, &out, &err) == 0) {
         size_t before = c->nframes;
         t_ok(ms_molser_unpack_frames(c, out.head, out.head_len, &in, &err) == -1 &&
@@ -261,7 +251,7 @@ static void test_damage(void)
 {
     t_suite = "serialize";
     ms_error err = {{0}};
-    ms_molecule *m = load("pept.pdb", &err);
+    ms_molecule *m = load_err("pept.pdb", &err);
     if (!t_ok(m != NULL, "load pept.pdb (%s)", err.msg)) return;
     void *buf;
     size_t len;

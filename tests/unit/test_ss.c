@@ -204,19 +204,6 @@ static void test_no_protein(const char *file)
 
 /* ---------------------------------------------------------------- on demand */
 
-static long count(ms_molecule *m, const char *text)
-{
-    ms_bitset b;
-    ms_error err = {{0}};
-    if (ms_sel_select(m, -1, text, &b, &err)) {
-        printf("  (%s: %s)\n", text, err.msg);
-        return -1;
-    }
-    long n = (long)ms_bitset_count(&b);
-    ms_bitset_free(&b);
-    return n;
-}
-
 /* pept.pdb has no HELIX/SHEET records: the first selection of a structure word computes
  * its structure (mkdssp: strands 2-5 and 8-12, turn 6-7). */
 static void test_selection_computes(void)

@@ -16,7 +16,6 @@ gro: MDAnalysis writes 16 atoms with velocities and a triclinic box; the first 6
 Run from this folder: /usr/bin/python3 make_seeds.py
 """
 import os
-import warnings
 
 import numpy as np
 import parmed
@@ -24,17 +23,7 @@ import parmed.formats.psf
 import MDAnalysis as mda
 
 import make_dcd_variants as v
-
-warnings.simplefilter("ignore")
-HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.dirname(HERE)
-CORPUS = os.path.join(os.path.dirname(DATA), "fuzz", "corpus")
-
-
-def out(fmt, name):
-    d = os.path.join(CORPUS, fmt)
-    os.makedirs(d, exist_ok=True)
-    return os.path.join(d, name)
+from seedpaths import DATA, out
 
 
 def head_lines(src, dst, n):

@@ -19,20 +19,10 @@ Run from this folder: /usr/bin/python3 make_seeds2.py
 import gzip
 import os
 import struct
-import warnings
 
 import MDAnalysis as mda
 
-warnings.simplefilter("ignore")
-HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.dirname(HERE)
-CORPUS = os.path.join(os.path.dirname(DATA), "fuzz", "corpus")
-
-
-def out(fmt, name):
-    d = os.path.join(CORPUS, fmt)
-    os.makedirs(d, exist_ok=True)
-    return os.path.join(d, name)
+from seedpaths import DATA, out
 
 
 def gromacs():
