@@ -11,5 +11,5 @@ mkdir -p "$out"
 natoms=${NATOMS:-1000000}
 
 bench_replicate() {
-    [ -f "$1" ] || python3 "$src/scripts/bench/replicate.py" "$src/tests/data/1tii.pdb" "$natoms" "$1"
+    [ -f "$1" ] || /usr/bin/python3 "$src/scripts/bench/replicate.py" "$src/tests/data/1tii.pdb" "$natoms" "$1"
 }
