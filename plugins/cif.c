@@ -129,7 +129,7 @@ static int add_atom(cif_reader *r, size_t row, ms_struct_sink *sink, ms_perr *er
     const char *seq = val(r, row, C_ASEQ);
     if (!seq) seq = val(r, row, C_LSEQ);
     double v;
-    if (seq && (!num(seq, &v) || fabs(v) > 2e9))
+    if (seq && (!num(seq, &v) || !(fabs(v) <= 2e9)))
         return ms_perr_set(err, "atom_site row %zu: bad residue number '%.32s'", row + 1, seq);
     a.resid = seq ? (int)v : 0;
     const char *alt = val(r, row, C_ALT), *ins = val(r, row, C_INS), *g = val(r, row, C_GROUP);

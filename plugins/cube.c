@@ -59,6 +59,9 @@ static int read_grid_header(cube_reader *r, ms_perr *err)
         return ms_perr_set(err, "line %ld: bad atom count", in->line_no);
     r->natoms = labs((long)v[0]);
     r->has_mo = v[0] < 0;
+    /* Checked as a double first: a cast of an out-of-range value is undefined. */
+    if (nv == 5 && !(v[4] >= 1 && v[4] <= 4096 && v[4] == floor(v[4])))
+        return ms_perr_set(err, "line %ld: bad number of values per point %g", in->line_no, v[4]);
     r->nsets = nv == 5 ? (long)v[4] : 1;
     if (r->nsets < 1 || r->nsets > 4096)
         return ms_perr_set(err, "line %ld: bad number of values per point", in->line_no);

@@ -60,8 +60,8 @@ static int read_header(dx_reader *r, ms_perr *err)
         if (*p == '#' || *p == '\0') continue;
         double v[3];
         if (!strncmp(p, "object", 6) && strstr(p, "gridpositions")) {
-            if (header_numbers(p, "counts", v, 3) != 3 || v[0] < 1 || v[1] < 1 || v[2] < 1 ||
-                v[0] > 1e9 || v[1] > 1e9 || v[2] > 1e9)
+            if (header_numbers(p, "counts", v, 3) != 3 || !(v[0] >= 1 && v[0] <= 1e9) ||
+                !(v[1] >= 1 && v[1] <= 1e9) || !(v[2] >= 1 && v[2] <= 1e9)) /* NaN too */
                 return ms_perr_set(err, "line %ld: bad gridpositions counts", in->line_no);
             for (int d = 0; d < 3; d++) r->meta.n[d] = (long)v[d];
             have_counts = 1;

@@ -171,7 +171,7 @@ static int read_header(dump_reader *r, dump_frame *f, ms_perr *err)
             if (!need_line(r, "UNITS", err)) return MS_PLUGIN_ERROR;
         } else if (!strncmp(item, "NUMBER OF ATOMS", 15)) {
             if (header_numbers(r, "NUMBER OF ATOMS", v, 1, err)) return MS_PLUGIN_ERROR;
-            if (!(v[0] >= 1 && v[0] <= 2e9 && v[0] == (double)(long)v[0]))
+            if (!ms_whole_in(v[0], 1, 2e9))
                 return ms_perr_set(err, "line %ld: bad atom count", r->in.line_no);
             f->natoms = (long)v[0], have_n = 1;
         } else if (!strncmp(item, "BOX BOUNDS", 10)) {
@@ -239,7 +239,7 @@ static int atom_position(dump_reader *r, const dump_frame *f, char **tok, size_t
 {
     double v, s[3], n[3] = {0, 0, 0}, out[3];
     if (num_col(r, f, tok, len, C_ID, &v, err)) return MS_PLUGIN_ERROR;
-    if (v != (double)(long)v) return ms_perr_set(err, "line %ld: bad id", r->in.line_no);
+    if (!ms_whole_in(v, -9e15, 9e15)) return ms_perr_set(err, "line %ld: bad id", r->in.line_no);
     *id = (long)v;
     int c0 = coord_kinds[f->coord].col;
     for (int d = 0; d < 3; d++)
@@ -348,6 +348,8 @@ static int first_numbers(dump_reader *r, const dump_frame *f, first_frame *ff, l
     double v;
     if (f->col[C_MOL] >= 0) {
         if (num_col(r, f, tok, len, C_MOL, &v, err)) return MS_PLUGIN_ERROR;
+        if (!ms_whole_in(v, -2e9, 2e9))
+            return ms_perr_set(err, "line %ld: bad molecule id %g", r->in.line_no, v);
         ff->mol[k] = (long)v;
     }
     static const int cols[3] = {C_Q, C_MASS, C_RADIUS};

@@ -226,6 +226,11 @@ int ms_parse_float(const char *s, size_t n, float *v)
     return 1;
 }
 
+int ms_whole_in(double v, double lo, double hi)
+{
+    return v >= lo && v <= hi && v == floor(v);
+}
+
 int ms_parse_long(const char *s, size_t n, long *v)
 {
     size_t i = 0;

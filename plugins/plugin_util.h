@@ -79,6 +79,10 @@ int ms_parse_float(const char *s, size_t n, float *v);
 int ms_parse_double(const char *s, size_t n, double *v);
 int ms_parse_long(const char *s, size_t n, long *v);
 
+/* 1 when v is a whole number in [lo, hi] (never NaN): check before casting a parsed double
+ * to an integer type, since casting an out-of-range value is undefined. */
+int ms_whole_in(double v, double lo, double hi);
+
 /* Hybrid-36 (the PDB convention for serials > 99999 and resids > 9999): decode a field of
  * `width` characters (blanks trimmed). Returns 1 ok, 0 blank, -1 invalid. */
 int ms_hy36_decode(const char *s, size_t width, long *v);
