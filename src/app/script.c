@@ -10,7 +10,8 @@
  * would wait for ever in the next collective call of the others.
  *
  * The command log (`logfile`) is written here too: every command read this way is recorded
- * as typed, before it runs. */
+ * as typed, before it runs, straight into the file (base/safewrite's log: no buffer, no
+ * temporary file), so a script that dies halfway leaves the log of what it ran. */
 #include "config.h"
 #include "app/app.h"
 #include "base/safewrite.h"
@@ -48,7 +49,7 @@ int ms_app_log_close(ms_app *app, ms_error *err)
 int ms_app_log_open(ms_app *app, const char *path, ms_error *err)
 {
     ms_ofile *o = NULL;
-    if (path && !(o = ms_ofile_open(path, err))) return -1;
+    if (path && !(o = ms_ofile_open_log(path, err))) return -1;
     if (ms_app_log_close(app, err)) {
         ms_ofile_abort(o);
         return -1;

@@ -352,8 +352,20 @@ static int open_in_place(ms_ofile *o, const char *name, int kind, ms_error *err)
     return 0;
 }
 
+/* A log's regular file or missing name: truncated or created where it is. */
+static int open_log_file(ms_ofile *o, const char *name, ms_error *err)
+{
+    int fd = open(name, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_NOCTTY | O_CLOEXEC, 0666);
+    if (fd < 0) {
+        ms_error_set(err, "%s: cannot write: %s", o->path, strerror(errno));
+        return -1;
+    }
+    o->fd = fd;
+    return 0;
+}
+
 /* One attempt: 0 opened, 1 the name changed under us (try again), -1 failed. */
-static int open_once(ms_ofile *o, ms_error *err)
+static int open_once(ms_ofile *o, int log, ms_error *err)
 {
     char *final;
     int kind, rc;
@@ -363,7 +375,8 @@ static int open_once(ms_ofile *o, ms_error *err)
         ms_error_set(err, "%s: cannot write: %s", o->path, strerror(EISDIR));
         rc = -1;
     } else if (kind == OF_MISSING || kind == OF_REGULAR) {
-        rc = open_replace(o, final, kind == OF_REGULAR ? &st : NULL, err);
+        rc = log ? open_log_file(o, final, err)
+                 : open_replace(o, final, kind == OF_REGULAR ? &st : NULL, err);
     } else {
         rc = open_in_place(o, final, kind, err);
     }
@@ -394,7 +407,7 @@ static void ofile_free(ms_ofile *o)
     free(o);
 }
 
-ms_ofile *ms_ofile_open(const char *path, ms_error *err)
+static ms_ofile *open_output(const char *path, int log, ms_error *err)
 {
     if (!path || !*path) {
         ms_error_set(err, "an empty file name");
@@ -408,7 +421,7 @@ ms_ofile *ms_ofile_open(const char *path, ms_error *err)
     }
     o->fd = -1;
     int rc = 1;
-    for (int tries = 0; rc == 1 && tries < 3; tries++) rc = open_once(o, err);
+    for (int tries = 0; rc == 1 && tries < 3; tries++) rc = open_once(o, log, err);
     if (rc == 0) {
         snprintf(o->fd_name, sizeof o->fd_name, "/dev/fd/%d", o->fd);
         return o;
@@ -419,6 +432,16 @@ ms_ofile *ms_ofile_open(const char *path, ms_error *err)
     if (o->tmp) unlink(o->tmp);
     ofile_free(o);
     return NULL;
+}
+
+ms_ofile *ms_ofile_open(const char *path, ms_error *err)
+{
+    return open_output(path, 0, err);
+}
+
+ms_ofile *ms_ofile_open_log(const char *path, ms_error *err)
+{
+    return open_output(path, 1, err);
 }
 
 /* ---------------------------------------------------------------- writing */

@@ -36,6 +36,13 @@ typedef struct ms_ofile ms_ofile;
  * for its reader, as a shell's redirection does. */
 ms_ofile *ms_ofile_open(const char *path, ms_error *err);
 
+/* A log: a file that must hold what was written at every moment, so that a process that
+ * dies leaves it (the command log). The name is followed through its symlinks as above; a
+ * regular file or a missing name is truncated or created in place (never through a symlink
+ * planted at the final name), a device or FIFO written in place. Each ms_ofile_write goes
+ * straight to the file; commit closes it, abort closes it and keeps what was written. */
+ms_ofile *ms_ofile_open_log(const char *path, ms_error *err);
+
 /* The descriptor to write to (the temporary file, or the output itself). */
 int ms_ofile_fd(const ms_ofile *o);
 /* A buffered stream over the descriptor, made on the first call (libpng and fprintf

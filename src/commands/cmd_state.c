@@ -1,8 +1,10 @@
 /* cmd_state.c: `save_state <file>`: the session as a VMD state script, laid out as VMD's
  * save_state writes it, so that VMD or molscope (`molscope -e file`, `play`, `source`)
  * rebuilds it: the materials, the display settings and lights, every molecule with its
- * files, its reps (every setting, the six clip planes of each included), its name and view
- * matrices, the top molecule, the colours and colour scale, and the labels. */
+ * files, its reps (every setting, the six clip planes of each included), its user graphics
+ * (`graphics top ...`, as `graphics info` describes each item), its name and view matrices,
+ * the top molecule, the colours and colour scale (the three colours of every blended
+ * method included), the display size, and the labels. */
 #include "config.h"
 #include "assemble/view.h"
 #include "base/safewrite.h"
@@ -50,10 +52,12 @@ static const char *onoff(int v)
     return v ? "on" : "off";
 }
 
-static void display(FILE *f, const ms_view *v)
+static void display(FILE *f, const ms_world *w)
 {
+    const ms_view *v = w->view;
     const ms_scene_settings *s = &v->settings;
     fputs("# Display settings\n", f);
+    fprintf(f, "display resize %d %d\n", w->width, w->height);
     fprintf(f, "display eyesep       %f\ndisplay focallength  %f\n", s->cam.eyesep, s->cam.focal_length);
     fprintf(f, "display height       %f\ndisplay distance     %f\n", s->cam.height, s->cam.distance);
     fprintf(f, "display projection   %s\n", ms_projection_name(s->cam.projection));
@@ -68,8 +72,9 @@ static void display(FILE *f, const ms_view *v)
             s->cam.dof_fnumber, s->cam.dof_focaldist);
     fprintf(f, "display backgroundgradient %s\n", onoff(s->bg_gradient));
     fprintf(f, "display rendermode %s\n", v->rendermode);
-    fprintf(f, "axes location %s\nstage location %s\n", ms_axes_loc_name(v->axes),
-            ms_stage_loc_name(v->stage));
+    fprintf(f, "display antialias %s\ndisplay culling %s\n", onoff(v->antialias), onoff(v->culling));
+    fprintf(f, "axes location %s\nstage location %s\nstage panels %d\nstage size %f\n",
+            ms_axes_loc_name(v->axes), ms_stage_loc_name(v->stage), v->stage_panels, v->stage_size);
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
         fprintf(f, "light %d %s\nlight %d pos ", i, onoff(s->lights[i].on), i);
         vec3(f, s->lights[i].pos);
@@ -110,6 +115,28 @@ static void rep(FILE *f, ms_rep_state *reps, const ms_rep *r, size_t i)
     if (!r->shown) fprintf(f, "mol showrep top %zu 0\n", i);
 }
 
+/* The molecule's user graphics as `graphics top` commands, in order (places kept for
+ * `replace` are left out). */
+static void graphics(FILE *f, ms_world *w, const ms_molecule *m)
+{
+    const ms_ugraphics *g = w->ugraphics_slot >= 0 ? m->ext[w->ugraphics_slot] : NULL;
+    char buf[1024];
+    for (size_t i = 0; g && i < g->n; i++) {
+        const ms_ug_item *it = &g->items[i];
+        if (it->kind == MS_UG_NONE) continue;
+        if (it->kind == MS_UG_TEXT) {   /* the text as one Tcl word, whatever it holds */
+            fputs("graphics top text ", f);
+            vec3(f, it->data);
+            fputc(' ', f);
+            word(f, it->text ? it->text : "");
+            fprintf(f, " size %f thickness %f\n", it->size, it->thickness);
+            continue;
+        }
+        ms_ugraphics_info(g, (long)i, w->materials, buf, sizeof buf);
+        fprintf(f, "graphics top %s\n", buf);
+    }
+}
+
 static void matrix(FILE *f, const float m[16])
 {
     fputc('{', f);
@@ -130,6 +157,7 @@ static void molecule(FILE *f, ms_app *app, const ms_molecule *m)
     if (!m->nfiles) fputs("mol new\n", f);
     fputs("mol delrep 0 top\n", f);
     for (size_t i = 0; i < ms_rep_count(reps, m); i++) rep(f, reps, ms_rep_get(reps, m, (long)i), i);
+    graphics(f, &app->world, m);
     fputs("mol rename top ", f);
     word(f, m->name ? m->name : "");
     float c[16], s[16], g[16];
@@ -149,6 +177,12 @@ static void molecule(FILE *f, ms_app *app, const ms_molecule *m)
 static void colors(FILE *f, const ms_colors *c)
 {
     fputs("proc vmdrestoremycolors {} {\n", f);
+    for (int k = 0; k < MS_COLOR_SCALE_METHODS; k++) {
+        if (c->methods[k].map) continue;   /* a perceptual table: not three colours */
+        fprintf(f, "  color scale colors %s", c->methods[k].name);
+        for (int i = 0; i < 3; i++) fputc(' ', f), vec3(f, c->methods[k].rgb[i]);
+        fputc('\n', f);
+    }
     fprintf(f, "  color scale method %s\n  color scale midpoint %f\n  color scale min %f\n"
                "  color scale max %f\n", c->methods[c->method].name, c->scale_mid,
             c->scale_min, c->scale_max);
@@ -187,7 +221,7 @@ static void state(FILE *f, ms_app *app)
     fprintf(f, "#!/usr/local/bin/vmd\n# VMD script written by save_state (molscope %s)\n"
                "set viewplist {}\nset fixedlist {}\narray set molid_of {}\n", PACKAGE_VERSION);
     materials(f, w->materials);
-    display(f, w->view);
+    display(f, w);
     const ms_molecule *top = ms_molset_top(w->mols);
     for (size_t i = 0; i < w->mols->n; i++) {
         molecule(f, app, w->mols->mols[i]);
