@@ -1,6 +1,7 @@
 # movie.tcl: the `movie` command, molscope's movie maker in the spirit of VMD's MovieMaker:
 # trajectory, rotation, rock and user-defined frames, any render method, frames named
-# <basename>.%05d.png, an MP4 encoded as the frames complete, and the same script in one
+# <basename>.%05d.png (or .rgb, SGI, as VMD's movie maker writes them with -format rgb), an
+# MP4 encoded as the frames complete, and the same script in one
 # process or under mpirun. doc/movies.md is the user's guide.
 #
 #   movie make ?-option value ...?   make a movie; returns a dict of what was done and the
@@ -29,7 +30,7 @@ proc ::molscope::movie::usage {} {
     return "movie make ?-basename path? ?-video file.mp4? ?-type trajectory|rotation|rock|user\
             (or a list of them)? ?-frames N? ?-first F? ?-last L? ?-axis x|y|z? ?-angle deg?\
             ?-proc command? ?-renderer method? ?-size W H? ?-fps F? ?-codec C? ?-crf Q? ?-preset P?\
-            ?-bitrate B? ?-keepframes 0|1?\
+            ?-bitrate B? ?-keepframes 0|1? ?-format png|rgb?\
             ?-progress auto|on|off?"
 }
 
@@ -56,7 +57,8 @@ proc ::molscope::movie::int_option {name value min} {
 proc ::molscope::movie::parse {arglist} {
     set o [dict create -basename "" -video "" -type "" -frames "" -first 0 -last end \
                -axis y -angle "" -proc "" -renderer snapshot -size "" -fps 30 -crf 18 \
-               -preset veryfast -keepframes 1 -progress auto -codec h264 -bitrate 8000000]
+               -preset veryfast -keepframes 1 -progress auto -codec h264 -bitrate 8000000 \
+               -format png]
     for {set i 0} {$i < [llength $arglist]} {incr i} {
         set k [lindex $arglist $i]
         if {![dict exists $o $k]} {
@@ -210,8 +212,10 @@ proc ::molscope::movie::frame {i tmp} {
     if {$r eq "Tachyon"} {
         set dat $tmp.dat
         render Tachyon $dat
+        # tachyon's names: PNG, and RGB for SGI's format
+        set fmt [expr {[string tolower [file extension $tmp]] eq ".rgb" ? "RGB" : "PNG"}]
         set rc [catch {exec [tachyon_program] -aasamples [render aasamples Tachyon] \
-                           -format PNG -o $tmp $dat >/dev/null 2>@1} msg]
+                           -format $fmt -o $tmp $dat >/dev/null 2>@1} msg]
         file delete $dat
         if {$rc || ![file exists $tmp]} { error "tachyon wrote no image: $msg" }
     } else {
@@ -258,6 +262,10 @@ proc ::molscope::movie::make {args} {
                got '$preset'"
     }
     lassign [check_codec $o $fps] codec bitrate
+    set format [string tolower [dict get $o -format]]
+    if {$format ni {png rgb}} {
+        error "movie make: -format: unknown frame format '[dict get $o -format]': must be png or rgb"
+    }
     set progress [dict get [dict create auto -1 on 1 off 0] \
                       [string tolower [dict get $o -progress]]]
 
@@ -271,7 +279,7 @@ proc ::molscope::movie::make {args} {
     display resize $w $h
     set rc [catch {run ::molscope::movie::frame -basename $base -frames $n -width $w \
                        -height $h -video $video -fps $fps -crf $crf -preset $preset -keepframes $keep \
-                       -codec $codec -bitrate $bitrate \
+                       -codec $codec -bitrate $bitrate -format $format \
                        -progress $progress -started [started] \
                        -scriptdone $::molscope::movie::library_loaded} result opts]
     display resize {*}$saved_size
@@ -280,7 +288,7 @@ proc ::molscope::movie::make {args} {
         if {$m in [molinfo list] && $f >= 0} { molinfo $m set frame $f }
     }
     if {$rc} { return -options $opts $result }
-    if {$progress != 0 && [parallel_rank] == 0} { summary $result $w $h $renderer $base }
+    if {$progress != 0 && [parallel_rank] == 0} { summary $result $w $h $renderer $base.*.$format }
     return $result
 }
 
@@ -291,11 +299,11 @@ proc ::molscope::movie::parallel_rank {} {
 
 # Rank 0's account of a finished movie: what was made and the phase times of the paper's
 # Table 3 (script loading, state loading, geometry and rendering, total).
-proc ::molscope::movie::summary {r w h renderer base} {
+proc ::molscope::movie::summary {r w h renderer frames} {
     dict with r {
         set out "movie: $frames frames of ${w}x$h with $renderer on $ranks\
                  rank[expr {$ranks > 1 ? "s" : ""}]: $rendered rendered, $reused reused;"
-        if {$video ne ""} { append out " video $video" } else { append out " frames $base.*.png" }
+        if {$video ne ""} { append out " video $video" } else { append out " frames $frames" }
         puts stderr $out
         if {$note ne ""} { puts stderr "movie: $note" }
         puts stderr [format "movie: phases (rank 0 / slowest rank): script loading %.2f / %.2f s,\

@@ -2,15 +2,16 @@
  * ::molscope::movie namespace. The user's command is `movie`, defined in Tcl.
  *
  *   ::molscope::movie::run <framecmd> -basename B -frames N -width W -height H
- *       ?-video V -codec h264|mpeg1|mpeg2|mpeg4|gif -fps F -crf Q -preset P -bitrate B
+ *       ?-format png|rgb -video V -codec h264|mpeg1|mpeg2|mpeg4|gif -fps F -crf Q -preset P -bitrate B
  *       -keepframes 0|1 -progress -1|0|1 -started T -scriptdone T?
  *       Collective (every rank): makes the movie with ms_movie_run, calling
  *       `{*}framecmd <frame> <file>` to render each missing frame into <file>. Returns a
  *       dict: frames rendered reused ranks video note script script_max state state_max
  *       render encode_tail busy_max busy_sum total (seconds).
- *   ::molscope::movie::frameok <file> <W> <H>   1 when file is a complete W x H PNG
+ *   ::molscope::movie::frameok <file> <W> <H>   1 when file is a complete W x H PNG (an
+ *       SGI image when its name ends in .rgb)
  *   ::molscope::movie::convert <from> <to>      an image file written again in the format
- *       of to's extension (.png .tga .ppm .bmp), through base/safewrite
+ *       of to's extension (.png .tga .ppm .bmp .rgb), through base/safewrite
  *   ::molscope::movie::pose ?<pose>?            every molecule's transform and the axes'
  *       rotation as a list, or set them from one (molecules not in it keep theirs): a
  *       movie sets each frame's view absolutely from the same starting pose
@@ -57,10 +58,13 @@ typedef struct run_args {
     ms_movie_opts o;
     int progress;
     int codec;
+    int format;
 } run_args;
 
 /* The codecs, in the order of ms_movie_codec. */
 static const char *const codecs[] = {"h264", "mpeg1", "mpeg2", "mpeg4", "gif", NULL};
+/* The frame formats, in the order of ms_movie_frames. */
+static const char *const frame_formats[] = {"png", "rgb", NULL};
 
 #define ROFF(f) offsetof(run_args, f)
 #define COUNT(max) 0, max, MS_OPT_MIN | MS_OPT_MAX, NULL
@@ -74,6 +78,7 @@ static const ms_opt run_options[] = {
     {"-crf", MS_OPT_INT, ROFF(o.crf), COUNT(51)},
     {"-preset", MS_OPT_STRING, ROFF(o.preset), 0, 0, 0, NULL},
     {"-codec", MS_OPT_ENUM, ROFF(codec), 0, 0, 0, codecs},
+    {"-format", MS_OPT_ENUM, ROFF(format), 0, 0, 0, frame_formats},
     {"-bitrate", MS_OPT_LONG, ROFF(o.bitrate), 1000, 1000000000L, MS_OPT_MIN | MS_OPT_MAX, NULL},
     {"-keepframes", MS_OPT_INT, ROFF(o.keep_frames), COUNT(1)},
     {"-progress", MS_OPT_INT, ROFF(progress), 0, 0, 0, NULL},
@@ -84,7 +89,7 @@ static const ms_opt run_options[] = {
 /* Parse the options of run into o; video and basename point into objv. */
 static int run_opts(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], ms_movie_opts *o)
 {
-    run_args a = {*o, -1, MS_CODEC_H264};
+    run_args a = {*o, -1, MS_CODEC_H264, MS_FRAMES_PNG};
     a.o.nframes = -1;
     a.o.crf = 18;
     a.o.keep_frames = 1;
@@ -95,6 +100,7 @@ static int run_opts(Tcl_Interp *interp, int objc, Tcl_Obj *const objv[], ms_movi
     if (o->preset && !ms_movie_preset_ok(o->preset))
         return ms_cmd_error(interp, "movie: -preset: unknown x264 preset '%s'", o->preset);
     o->codec = (ms_movie_codec)a.codec;
+    o->frame_format = (ms_movie_frames)a.format;
     o->progress = a.progress < 0 ? -1 : a.progress > 0;
     return TCL_OK;
 }

@@ -1,9 +1,10 @@
-/* frames.c: a movie's frame files: their names, the check that a file is a whole PNG of the
- * movie's size that decodes (every row, every checksum), the list of frames still to render, and the clean-up of what a killed job
- * left behind. */
+/* frames.c: a movie's frame files: their names, the check that a file is a whole PNG or SGI
+ * image of the movie's size that decodes (every row, every checksum), the list of frames
+ * still to render, and the clean-up of what a killed job left behind. */
 #include "config.h"
 #include "movie/movie.h"
 #include "base/safewrite.h"
+#include "image/image.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -17,11 +18,16 @@
 #include <time.h>
 #include <unistd.h>
 
-char *ms_movie_frame_path(const char *basename, long i)
+const char *ms_movie_frame_ext(ms_movie_frames format)
+{
+    return format == MS_FRAMES_RGB ? ".rgb" : ".png";
+}
+
+char *ms_movie_frame_path(const char *basename, ms_movie_frames format, long i)
 {
     size_t n = strlen(basename) + 48;
     char *p = malloc(n);
-    if (p) snprintf(p, n, "%s.%05ld.png", basename, i);
+    if (p) snprintf(p, n, "%s.%05ld%s", basename, i, ms_movie_frame_ext(format));
     return p;
 }
 
@@ -91,8 +97,42 @@ done:
     return ok;
 }
 
+#define SGI_HEADER 512
+
+/* An SGI frame: VMD's header (magic 474, one byte a channel, three dimensions, three or
+ * four channels) of width x height, exactly the pixels' length when stored verbatim, and
+ * every row of every channel decodes. */
+static int sgi_frame_ok(const char *path, int width, int height)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char h[SGI_HEADER];
+    struct stat sb;
+    int ok = f && fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) &&
+             fread(h, 1, sizeof h, f) == sizeof h;
+    if (f) fclose(f);
+    unsigned dim = ok ? (unsigned)h[4] << 8 | h[5] : 0, w = ok ? (unsigned)h[6] << 8 | h[7] : 0,
+             ht = ok ? (unsigned)h[8] << 8 | h[9] : 0, nch = ok ? (unsigned)h[10] << 8 | h[11] : 0;
+    ok = ok && h[0] == 0x01 && h[1] == 0xda && h[2] <= 1 && h[3] == 1 && dim == 3 &&
+         (nch == 3 || nch == 4) && w == (unsigned)width && ht == (unsigned)height;
+    if (ok && h[2] == 0)
+        ok = (long long)sb.st_size == SGI_HEADER + (long long)w * ht * nch;
+    ms_image img = {0};
+    ms_error err = {{0}};
+    ok = ok && ms_image_read(path, &img, &err) == 0;
+    ms_image_free(&img);
+    return ok;
+}
+
+/* The extension of path is .rgb (any case). */
+static int is_rgb_name(const char *path)
+{
+    size_t n = strlen(path);
+    return n >= 4 && !strcasecmp(path + n - 4, ".rgb");
+}
+
 int ms_movie_frame_ok(const char *path, int width, int height)
 {
+    if (is_rgb_name(path)) return sgi_frame_ok(path, width, height);
     FILE *f = fopen(path, "rb");
     if (!f) return 0;
     struct stat sb;
@@ -122,22 +162,27 @@ static int split_base(const char *basename, char **dir, char **prefix)
     return -1;
 }
 
-/* Is name a leftover of frame "<prefix><digits>.png": a temporary file of it (or of a
- * renderer writing that one), or the "<prefix><digits>.part.png..." of earlier versions? */
-static int is_stale(const char *name, const void *prefix_arg)
+/* The frames' file-name prefix "<tail>." and extension ".png", for is_stale. */
+typedef struct frame_names {
+    const char *prefix, *ext;
+} frame_names;
+
+/* Is name a leftover of frame "<prefix><digits><ext>": a temporary file of it (or of a
+ * renderer writing that one), or the "<prefix><digits>.part<ext>..." of earlier versions? */
+static int is_stale(const char *name, const void *names_arg)
 {
-    const char *prefix = prefix_arg;
-    size_t n = strlen(prefix);
-    if (strncmp(name, prefix, n) != 0) return 0;
+    const frame_names *fn = names_arg;
+    size_t n = strlen(fn->prefix), e = strlen(fn->ext);
+    if (strncmp(name, fn->prefix, n) != 0) return 0;
     const char *p = name + n;
     if (*p < '0' || *p > '9') return 0;
     while (*p >= '0' && *p <= '9') p++;
-    if (!strncmp(p, ".part.png", 9)) return 1;
+    if (!strncmp(p, ".part", 5) && !strncmp(p + 5, fn->ext, e)) return 1;
     size_t stem = (size_t)(p - name);
-    char *frame = malloc(stem + 5);
+    char *frame = malloc(stem + e + 1);
     if (!frame) return 0;
     memcpy(frame, name, stem);
-    memcpy(frame + stem, ".png", 5);
+    memcpy(frame + stem, fn->ext, e + 1);
     int yes = ms_ofile_is_temp(name, frame);
     free(frame);
     return yes;
@@ -176,11 +221,12 @@ static long remove_matching(const char *dir, int (*match)(const char *, const vo
     return removed;
 }
 
-long ms_movie_remove_stale(const char *basename)
+long ms_movie_remove_stale(const char *basename, ms_movie_frames format)
 {
     char *dir, *prefix;
     if (split_base(basename, &dir, &prefix)) return 0;
-    long removed = remove_matching(dir, is_stale, prefix);
+    frame_names fn = {prefix, ms_movie_frame_ext(format)};
+    long removed = remove_matching(dir, is_stale, &fn);
     free(dir);
     free(prefix);
     return removed;
@@ -196,14 +242,14 @@ long ms_movie_remove_stale_video(const char *video)
     return removed;
 }
 
-int ms_movie_scan(const char *basename, long n, int width, int height, long **missing,
-                  long *nmissing, ms_error *err)
+int ms_movie_scan(const char *basename, ms_movie_frames format, long n, int width, int height,
+                  long **missing, long *nmissing, ms_error *err)
 {
     *missing = NULL;
     *nmissing = 0;
     size_t cap = 0;
     for (long i = 0; i < n; i++) {
-        char *p = ms_movie_frame_path(basename, i);
+        char *p = ms_movie_frame_path(basename, format, i);
         int ok = p && ms_movie_frame_ok(p, width, height);
         free(p);
         if (!p || (!ok && ms_grow((void **)missing, &cap, (size_t)*nmissing + 1,

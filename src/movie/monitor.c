@@ -16,6 +16,7 @@
 
 struct ms_movie_monitor {
     char *basename;
+    ms_movie_frames format;
     long nframes, todo, reused;
     int width, height;
     int progress;            /* 0 off, 1 a line per wake-up, 2 every 5 %, 3 in place */
@@ -37,7 +38,7 @@ struct ms_movie_monitor {
  * it to the encoder. */
 static int feed(ms_movie_monitor *m, long i, ms_error *err)
 {
-    char *path = ms_movie_frame_path(m->basename, i);
+    char *path = ms_movie_frame_path(m->basename, m->format, i);
     if (!path) {
         ms_error_set(err, "out of memory");
         return -1;
@@ -131,6 +132,7 @@ ms_movie_monitor *ms_movie_monitor_start(const ms_movie_opts *o, const uint8_t *
         return NULL;
     }
     memcpy(m->done, done, (size_t)o->nframes);
+    m->format = o->frame_format;
     m->nframes = o->nframes;
     m->todo = todo;
     m->reused = o->nframes - todo;

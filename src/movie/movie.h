@@ -2,12 +2,12 @@
  * (tcl/movie.tcl, the `movie` command) sets the scene for each frame and renders it; this
  * module does the rest:
  *
- *   frames     frame i is <basename>.%05d.png; it is rendered to a temporary file that
- *              base/safewrite makes beside it and renamed once it is checked to be a complete
- *              PNG of the movie's size, so a file under a final name is always a whole frame
- *              (frames.c, run.c)
+ *   frames     frame i is <basename>.%05d.png, or .rgb (SGI, VMD's movie maker's frames);
+ *              it is rendered to a temporary file that base/safewrite makes beside it and
+ *              renamed once it is checked to be a complete image of the movie's size, so a
+ *              file under a final name is always a whole frame (frames.c, run.c)
  *   resuming   before rendering, rank 0 lists the frames that are missing or not a complete
- *              PNG of the right size that decodes, removes the temporary files a killed job
+ *              image of the right size that decodes, removes the temporary files a killed job
  *              left, and only those frames are rendered (frames.c, run.c)
  *   the loop   the missing frames are handed out dynamically by rank 0 (ms_par_for_observed)
  *              and rank 0 learns as each one completes, on any rank (run.c)
@@ -34,25 +34,35 @@
 
 /* ---- frame files (frames.c) ---- */
 
-/* The file of frame i: <basename>.%05d.png. malloc'd; NULL when memory runs out. */
-char *ms_movie_frame_path(const char *basename, long i);
-/* Whether path is a complete PNG of width x height: the signature, an IHDR of that size,
- * then chunks whose lengths lead exactly to an IEND chunk at the end of the file (a
- * truncated or overlong file fails), and it decodes: libpng reads every row and the chunks
- * after them, a CRC error in any chunk failing it (a damaged byte of pixel data). 1 yes,
- * 0 no. */
+/* The image format of the frames. */
+typedef enum ms_movie_frames {
+    MS_FRAMES_PNG,     /* .png: the default */
+    MS_FRAMES_RGB      /* .rgb: SGI, as VMD's movie maker writes them */
+} ms_movie_frames;
+
+/* The extension of a frame format (".png", ".rgb"). */
+const char *ms_movie_frame_ext(ms_movie_frames format);
+/* The file of frame i: <basename>.%05d<ext>. malloc'd; NULL when memory runs out. */
+char *ms_movie_frame_path(const char *basename, ms_movie_frames format, long i);
+/* Whether path is a complete image of width x height in the format its extension names.
+ * A PNG (any name but .rgb): the signature, an IHDR of that size, then chunks whose lengths
+ * lead exactly to an IEND chunk at the end of the file (a truncated or overlong file
+ * fails), and it decodes: libpng reads every row and the chunks after them, a CRC error in
+ * any chunk failing it (a damaged byte of pixel data). An .rgb: an SGI header of that size
+ * with three or four channels of one byte, a verbatim file exactly as long as its pixels,
+ * and every row decodes (run-length encoded files included). 1 yes, 0 no. */
 int ms_movie_frame_ok(const char *path, int width, int height);
 /* Remove what a killed job left in the frames' folder: the temporary files of frames
- * <basename>.<digits>.png (ms_ofile_is_temp; those of a renderer writing one included) and
- * the <basename>.<digits>.part.png* of earlier versions. Returns how many were removed. */
-long ms_movie_remove_stale(const char *basename);
+ * <basename>.<digits><ext> (ms_ofile_is_temp; those of a renderer writing one included) and
+ * the <basename>.<digits>.part<ext>* of earlier versions. Returns how many were removed. */
+long ms_movie_remove_stale(const char *basename, ms_movie_frames format);
 /* Remove what a killed encoder left beside the video: its temporary files, and the
  * <stem>.part<ext> of earlier versions. Returns how many were removed. */
 long ms_movie_remove_stale_video(const char *video);
 /* The frames among 0..n-1 that are missing or not ms_movie_frame_ok: malloc'd ascending
  * list in *missing (NULL when none), their count in *nmissing. 0, or -1 on no memory. */
-int ms_movie_scan(const char *basename, long n, int width, int height, long **missing,
-                  long *nmissing, ms_error *err);
+int ms_movie_scan(const char *basename, ms_movie_frames format, long n, int width, int height,
+                  long **missing, long *nmissing, ms_error *err);
 /* Check that files can be created in the folder of path (creating the folder when it does
  * not exist): 0, or -1 with err naming the folder and the reason. */
 int ms_movie_check_dir(const char *path, ms_error *err);
@@ -88,7 +98,8 @@ typedef enum ms_movie_codec {
 } ms_movie_codec;
 
 typedef struct ms_movie_opts {
-    const char *basename;      /* frames are <basename>.%05d.png */
+    const char *basename;      /* frames are <basename>.%05d<ext of frame_format> */
+    ms_movie_frames frame_format;
     long nframes;              /* frames 0 .. nframes-1 */
     int width, height;
     const char *video;         /* NULL or "": frames only */
@@ -113,7 +124,8 @@ typedef struct ms_movie_opts {
 ms_movie_encoder *ms_movie_encoder_start(const char *ffmpeg, const struct ms_movie_opts *o,
                                          ms_error *err);
 
-/* Render frame `frame` to the file tmp (a PNG of the movie's size); 0, or -1 with err. */
+/* Render frame `frame` to the file tmp (an image of the movie's size in the format of tmp's
+ * extension, the frames' format); 0, or -1 with err. */
 typedef int (*ms_movie_frame_fn)(void *ctx, long frame, const char *tmp, ms_error *err);
 
 typedef struct ms_movie_stats {

@@ -42,9 +42,9 @@ static int plan_rank0(const ms_movie_opts *o, plan *p, ms_error *err)
     int video = o->video && *o->video;
     if (ms_movie_check_dir(o->basename, err) || (video && ms_movie_check_dir(o->video, err)))
         return -1;
-    ms_movie_remove_stale(o->basename);
+    ms_movie_remove_stale(o->basename, o->frame_format);
     if (video) ms_movie_remove_stale_video(o->video);
-    if (ms_movie_scan(o->basename, o->nframes, o->width, o->height, &p->missing,
+    if (ms_movie_scan(o->basename, o->frame_format, o->nframes, o->width, o->height, &p->missing,
                       &p->nmissing, err))
         return -1;
     if (!video) return 0;
@@ -116,7 +116,7 @@ typedef struct loop_ctx {
  * be a file), check it, and put it in place. */
 static int render_frame(loop_ctx *c, long frame, ms_error *err)
 {
-    char *fin = ms_movie_frame_path(c->o->basename, frame);
+    char *fin = ms_movie_frame_path(c->o->basename, c->o->frame_format, frame);
     ms_ofile *out = fin ? ms_ofile_open(fin, err) : NULL;
     const char *tmp = out ? ms_ofile_temp_name(out) : NULL;
     int ok = 0;
@@ -127,8 +127,9 @@ static int render_frame(loop_ctx *c, long frame, ms_error *err)
     else if (tmp && c->fn(c->fn_ctx, frame, tmp, err) == 0) {
         ok = ms_movie_frame_ok(tmp, c->o->width, c->o->height);
         if (!ok)
-            ms_error_set(err, "the renderer wrote no complete %dx%d PNG to %s", c->o->width,
-                         c->o->height, tmp);
+            ms_error_set(err, "the renderer wrote no complete %dx%d %s image to %s",
+                         c->o->width, c->o->height,
+                         c->o->frame_format == MS_FRAMES_RGB ? "SGI" : "PNG", tmp);
     }
     int rc = out ? ms_ofile_finish(out, ok, err) : -1;
     free(fin);
@@ -213,7 +214,7 @@ static int gather(const rank_rec *mine, summary *sum, ms_movie_stats *st, ms_err
 static void remove_frames(const ms_movie_opts *o)
 {
     for (long i = 0; i < o->nframes; i++) {
-        char *p = ms_movie_frame_path(o->basename, i);
+        char *p = ms_movie_frame_path(o->basename, o->frame_format, i);
         if (p) unlink(p);
         free(p);
     }

@@ -25,7 +25,8 @@ namespace eval ::MovieMaker {
     # how
     variable framerate 24
     variable renderer snapshot    ;# snapshot libtachyon tachyon, a `render list` name, dryrun
-    variable imgformat tga        ;# VMD's intermediate image format: molscope's frames are PNG
+    variable imgformat tga        ;# VMD's intermediate image format: rgb makes SGI frames
+                                  ;# (basename.%05d.rgb), any other PNG ones
     variable movieformat ppmtompeg
     variable bitrate 8000000
     variable presmooth 0
@@ -60,7 +61,7 @@ namespace eval ::MovieMaker {
         videomachavi {mpeg4 .avi}  sgiavi {mpeg4 .avi}  h264 {h264 .mp4}
         quicktime {h264 .mov}   sgiqt {h264 .mov}    imgif {gif .gif}
         pngframes {frames .png} targaframes {frames .tga} ppmframes {frames .ppm}
-        bmpframes {frames .bmp}
+        bmpframes {frames .bmp}  rgbframes {frames .rgb}
     }
 }
 
@@ -223,14 +224,21 @@ proc ::MovieMaker::dryrun {type n} {
     return [dict create frames $n rendered 0 video ""]
 }
 
-# Frames written again in the format of ext (targaframes ...), by rank 0.
-proc ::MovieMaker::convert_frames {base n ext} {
+# Frames (of the engine's format, from) written again in the format of ext (targaframes
+# ...), by rank 0.
+proc ::MovieMaker::convert_frames {base n from ext} {
     if {[::molscope::movie::parallel_rank] != 0} return
     for {set i 0} {$i < $n} {incr i} {
-        set png [format "%s.%05d.png" $base $i]
-        ::molscope::movie::convert $png [file rootname $png]$ext
-        if {$::MovieMaker::cleanfiles} { file delete $png }
+        set frame [format "%s.%05d.%s" $base $i $from]
+        ::molscope::movie::convert $frame [file rootname $frame]$ext
+        if {$::MovieMaker::cleanfiles} { file delete $frame }
     }
+}
+
+# The engine's frame format: rgb (SGI) when imgformat or the frames asked for say so.
+proc ::MovieMaker::frame_format {codec ext} {
+    if {$codec eq "frames"} { return [expr {$ext eq ".rgb" ? "rgb" : "png"}] }
+    expr {[string tolower $::MovieMaker::imgformat] eq "rgb" ? "rgb" : "png"}
 }
 
 # ---------------------------------------------------------------- buildmovie
@@ -261,13 +269,14 @@ proc ::MovieMaker::buildmovie {} {
     }
     warn_unsupported
     set base [file join $::MovieMaker::workdir $::MovieMaker::basename]
+    set fmt [frame_format $codec $ext]
     lappend opts -basename $base -renderer $method -size [frame_size] \
-        -fps [number framerate 1] -bitrate [number bitrate 1000 1]
+        -fps [number framerate 1] -bitrate [number bitrate 1000 1] -format $fmt
     if {$codec ne "frames"} {
         lappend opts -video $base$ext -codec $codec -keepframes [expr {!$::MovieMaker::cleanfiles}]
     }
     set r [movie make {*}$opts]
-    if {$codec eq "frames" && $ext ne ".png"} { convert_frames $base $n $ext }
+    if {$codec eq "frames" && $ext ne ".$fmt"} { convert_frames $base $n $fmt $ext }
     set ::MovieMaker::statusfrac $n
     set ::MovieMaker::statusmsg Completed
     return $r
