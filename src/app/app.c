@@ -76,6 +76,9 @@ ms_app *ms_app_new_at(const char *exe_path, const char *argv0, const ms_app_cmds
     if (!app) return NULL;
     snprintf(app->exe_path, sizeof app->exe_path, "%s", exe_path);
     strcpy(app->dispdev, "text");
+    strcpy(app->spaceball_mode, "normal");   /* VMD's Spaceball defaults */
+    app->spaceball_sensitivity = 1.0;
+    app->spaceball_null = 16;
     ms_molset_init(&app->mols);
     ms_registry_init(&app->plugins);
     find_tcllib(app);

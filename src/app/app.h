@@ -32,6 +32,8 @@ typedef struct ms_app {
     int con_loglevel;          /* vmdcon -loglevel: 0 all, 1 info, 2 warn, 3 err, 5 none */
     Tcl_Obj *user_keys;        /* user add key: a dict key -> command (NULL: none yet) */
     Tcl_Obj *menus;            /* menu states: a dict name -> {on x y} (NULL: defaults) */
+    char spaceball_mode[16];   /* spaceball mode|sensitivity|nullregion, as set */
+    double spaceball_sensitivity, spaceball_null;
 } ms_app;
 
 /* A set of Tcl commands to create on the application's interpreter (commands/commands.h

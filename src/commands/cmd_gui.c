@@ -12,13 +12,28 @@
  *   user add key <key> <command>      a keyboard shortcut, kept (there is no keyboard)
  *   user add menu|subitem ...         accepted
  *   user list keys                    {key command} pairs, in the order added
- *   user print keys                   the same, printed */
+ *   user print keys                   the same, printed
+ *   spaceball mode ?normal|maxaxis|scale|animate|tracker|user?;  spaceball sensitivity ?<s>?;
+ *   spaceball nullregion ?<n>?        the Spaceball's settings, checked and kept (there is no
+ *                                     Spaceball to move the scene); without a value, the
+ *                                     value kept (molscope's)
+ *   help ?<topic>?                    VMD opens its documentation in a web browser; with no
+ *                                     display molscope prints where its command reference
+ *                                     is (and VMD's user guide's address) and returns that file
+ *   tkcon ..., videostream ...        errors saying why: the Tk console and the video
+ *                                     stream need VMD's window, which molscope never opens */
 #include "config.h"
 #include "app/app.h"
 #include "commands/args.h"
 #include "commands/commands.h"
 
+#include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define VMD_GUIDE_URL "https://www.ks.uiuc.edu/Research/vmd/current/ug/"
 
 /* The menus VMD's interface has, all hidden at the start. */
 static const char *const builtin_menus[] = {"main", "files", "graphics", "labels", "render",
@@ -146,6 +161,84 @@ static int accept(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
     return TCL_OK;
 }
 
+/* ---------------------------------------------------------------- spaceball */
+
+static int spaceball_mode(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const char *const modes[] = {"normal", "maxaxis", "scale", "animate", "tracker",
+                                        "user", NULL};
+    int k;
+    if (objc == 2) {
+        Tcl_SetObjResult(interp, Tcl_NewStringObj(app->spaceball_mode, -1));
+        return TCL_OK;
+    }
+    if (ms_arg_choice(interp, objv[2], modes, "spaceball mode", &k)) return TCL_ERROR;
+    snprintf(app->spaceball_mode, sizeof app->spaceball_mode, "%s", modes[k]);
+    return TCL_OK;
+}
+
+static int spaceball_value(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    double v;
+    int sens = ms_word_eq(Tcl_GetString(objv[1]), "sensitivity");
+    if (objc == 2) {
+        Tcl_SetObjResult(interp, Tcl_NewDoubleObj(sens ? app->spaceball_sensitivity
+                                                       : app->spaceball_null));
+        return TCL_OK;
+    }
+    if (ms_arg_double_range(interp, objv[2], sens ? "sensitivity" : "null region", 0,
+                            sens ? 1e6 : 1e9, &v))
+        return TCL_ERROR;
+    if (sens) app->spaceball_sensitivity = v;
+    else app->spaceball_null = v;
+    return TCL_OK;
+}
+
+/* ---------------------------------------------------------------- help, tkcon, videostream */
+
+/* molscope's command reference: installed beside the program, in the source tree of a
+ * build, or in the configured documentation folder; NULL when none is there. */
+static const char *commands_doc(const ms_app *app, char *buf, size_t size)
+{
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", app->exe_path);
+    char *slash = strrchr(dir, '/');
+    if (slash) *slash = '\0';
+    const char *rel[] = {"%s/../share/doc/molscope/commands.md", "%s/../doc/commands.md"};
+    char cand[4200];
+    for (size_t i = 0; i < MS_COUNTOF(rel); i++) {
+        snprintf(cand, sizeof cand, rel[i], slash ? dir : ".");
+        if (access(cand, R_OK) == 0 && size >= PATH_MAX && realpath(cand, buf)) return buf;
+    }
+    snprintf(buf, size, "%s/commands.md", MS_DOCDIR);
+    return access(buf, R_OK) == 0 ? buf : NULL;
+}
+
+static int cmd_help(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    char buf[4200];
+    const char *doc = commands_doc(app, buf, sizeof buf);
+    printf("Info) help: there is no web browser without a display; molscope's command "
+           "reference is %s", doc ? doc : "doc/commands.md of its sources (not installed)");
+    if (objc > 1) printf(" (look for %s there)", Tcl_GetString(objv[1]));
+    printf("\nInfo) VMD's user guide: %s\n", VMD_GUIDE_URL);
+    fflush(stdout);
+    Tcl_SetObjResult(interp, Tcl_NewStringObj(doc ? doc : VMD_GUIDE_URL, -1));
+    return TCL_OK;
+}
+
+static int no_window(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    (void)app, (void)objc;
+    int tk = ms_word_eq(Tcl_GetString(objv[0]), "tkcon");
+    return ms_cmd_error(interp, "%s: %s needs VMD's graphical window, and molscope runs "
+                        "without one (as vmd -dispdev text)%s", Tcl_GetString(objv[0]),
+                        tk ? "the Tk console" : "remote video streaming",
+                        tk ? ": commands are read from standard input" :
+                             ": make frames or videos with render and movie make, or watch "
+                             "the scene with display live");
+}
+
 /* ---------------------------------------------------------------- user */
 
 static Tcl_Obj *user_keys(ms_app *app)
@@ -222,6 +315,16 @@ void ms_cmd_gui_register(ms_app *app)
                                            {"list", user_keys_cmd, 1, 1, "keys"},
                                            {"print", user_keys_cmd, 1, 1, "keys"},
                                            {NULL, NULL, 0, 0, NULL}};
+    static const ms_subcmd spaceball_table[] = {
+        {"mode", spaceball_mode, 0, 1, "?normal|maxaxis|scale|animate|tracker|user?"},
+        {"sensitivity", spaceball_value, 0, 1, "?<value>?"},
+        {"nullregion", spaceball_value, 0, 1, "?<value>?"},
+        {NULL, NULL, 0, 0, NULL}};
+    static const ms_subcmd singles[] = {{"help", cmd_help, 0, 1, "?<topic>?"},
+                                        {"tkcon", no_window, 0, MS_ARGS_ANY, "?<args>?"},
+                                        {"videostream", no_window, 0, MS_ARGS_ANY, "?<args>?"}};
+    for (size_t i = 0; i < MS_COUNTOF(singles); i++) ms_cmd_create(app, &singles[i]);
+    ms_cmdset_create(app, "spaceball", spaceball_table);
     ms_cmdset_create(app, "menu", menu_table);
     ms_cmdset_fallback(app, "menu", &menu_fallback);
     ms_cmdset_create(app, "mouse", mouse_table);

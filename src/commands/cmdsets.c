@@ -13,6 +13,8 @@ const ms_app_cmdset_fn ms_command_sets[] = {
     ms_cmd_quit_register,
     ms_cmd_batch_register,
     ms_cmd_gui_register,
+    ms_cmd_plugin_register,
+    ms_cmd_timestep_register,
     ms_cmd_mol_register,
     ms_cmd_ss_register,
     ms_cmd_molinfo_register,

@@ -47,6 +47,10 @@ int ms_cmd_molspec(ms_app *app, Tcl_Interp *interp, const char *spec, const char
 extern const ms_app_cmdset_fn ms_command_sets[];
 /* quit and exit (cmd_quit.c) */
 void ms_cmd_quit_register(ms_app *app);
+/* plugin (cmd_plugin.c) */
+void ms_cmd_plugin_register(ms_app *app);
+/* gettimestep, rawtimestep (cmd_timestep.c) */
+void ms_cmd_timestep_register(ms_app *app);
 /* play, logfile, vmdcon, sleep, wait (cmd_batch.c) */
 void ms_cmd_batch_register(ms_app *app);
 /* menu, mouse, tool, user: the interface's commands as VMD answers them with no display

@@ -71,6 +71,34 @@ static void note_searched(ms_registry *r, const char *dir)
     r->searched = s;
 }
 
+int ms_registry_load_file(ms_registry *r, const char *path, ms_error *err)
+{
+    void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+        ms_error_set(err, "%s", dlerror());
+        return -1;
+    }
+    ms_plugin_entry_fn entry;
+    *(void **)&entry = dlsym(h, MS_PLUGIN_ENTRY_NAME);
+    void *copy = NULL;
+    const ms_plugin *p = ms_registry_upgrade(entry ? entry() : NULL, &copy);
+    if (!p || !p->name) {
+        ms_error_set(err, "not a molscope plugin of ABI %d to %d", MS_PLUGIN_ABI_MIN,
+                     MS_PLUGIN_ABI);
+        free(copy);
+        dlclose(h);
+        return -1;
+    }
+    int added = ms_registry_add(r, p, h, path);
+    if (added <= 0) {
+        free(copy);
+        dlclose(h);
+        return 0;
+    }
+    r->copies[r->n - 1] = copy;
+    return 1;
+}
+
 int ms_registry_load_dir(ms_registry *r, const char *dir)
 {
     DIR *d = opendir(dir);
@@ -83,30 +111,10 @@ int ms_registry_load_dir(ms_registry *r, const char *dir)
         if (len < 4 || strcmp(e->d_name + len - 3, ".so") != 0) continue;
         char path[PATH_MAX];
         if (snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path) continue;
-        void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-        if (!h) {
-            fprintf(stderr, "molscope: plugin %s: %s\n", path, dlerror());
-            continue;
-        }
-        ms_plugin_entry_fn entry;
-        *(void **)&entry = dlsym(h, MS_PLUGIN_ENTRY_NAME);
-        void *copy = NULL;
-        const ms_plugin *p = ms_registry_upgrade(entry ? entry() : NULL, &copy);
-        if (!p || !p->name) {
-            fprintf(stderr, "molscope: plugin %s: not a molscope plugin of ABI %d to %d\n",
-                    path, MS_PLUGIN_ABI_MIN, MS_PLUGIN_ABI);
-            free(copy);
-            dlclose(h);
-            continue;
-        }
-        int added = ms_registry_add(r, p, h, path);
-        if (added <= 0) {
-            free(copy);
-            dlclose(h);
-        } else {
-            r->copies[r->n - 1] = copy;
-            loaded++;
-        }
+        ms_error err = {{0}};
+        int rc = ms_registry_load_file(r, path, &err);
+        if (rc < 0) fprintf(stderr, "molscope: plugin %s: %s\n", path, err.msg);
+        else loaded += rc;
     }
     closedir(d);
     return loaded;

@@ -26,6 +26,10 @@ int ms_registry_add(ms_registry *r, const ms_plugin *p, void *handle, const char
  * p itself when current, else a malloc'd zero-padded copy of its shorter struct (*copy is
  * set to it, for the caller to free). NULL for an ABI the host does not know. */
 const ms_plugin *ms_registry_upgrade(const ms_plugin *p, void **copy);
+/* Load the plugin of one shared object: 1 added, 0 when a plugin of its name is known
+ * already (the first one found wins), -1 with err (dlopen's reason, which names the file,
+ * or "not a molscope plugin ..."). */
+int ms_registry_load_file(ms_registry *r, const char *path, ms_error *err);
 /* Load every *.so of a directory. Returns the number loaded; bad files are skipped with a
  * line on stderr naming them. */
 int ms_registry_load_dir(ms_registry *r, const char *dir);
