@@ -38,8 +38,8 @@ ms_ofile *ms_ofile_open(const char *path, ms_error *err);
 
 /* A log: a file that must hold what was written at every moment, so that a process that
  * dies leaves it (the command log). The name is followed through its symlinks as above; a
- * regular file or a missing name is truncated or created in place (never through a symlink
- * planted at the final name), a device or FIFO written in place. Each ms_ofile_write goes
+ * regular file or a missing name is truncated or created in place (O_NOFOLLOW: never
+ * through a symlink planted there meanwhile), a device or FIFO written in place. Each ms_ofile_write goes
  * straight to the file; commit closes it, abort closes it and keeps what was written. */
 ms_ofile *ms_ofile_open_log(const char *path, ms_error *err);
 
