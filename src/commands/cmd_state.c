@@ -132,6 +132,12 @@ static void graphics(FILE *f, ms_world *w, const ms_molecule *m)
             fprintf(f, " size %f thickness %f\n", it->size, it->thickness);
             continue;
         }
+        if (it->kind == MS_UG_MATERIAL) {   /* by name, as VMD's command takes it */
+            fputs("graphics top material ", f);
+            word(f, ms_material_by_id(w->materials, it->iv[0])->name);
+            fputc('\n', f);
+            continue;
+        }
         ms_ugraphics_info(g, (long)i, w->materials, buf, sizeof buf);
         fprintf(f, "graphics top %s\n", buf);
     }
