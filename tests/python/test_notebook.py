@@ -1,0 +1,103 @@
+"""test_notebook.py: executes doc/analysis.ipynb headlessly (Debian's python3-nbclient and
+python3-ipykernel, the python3 kernel) on molscope's build-tree module, and checks what a
+reader sees: every cell ran, the inline render (molscope.render) is a PNG of the size asked
+that shows the molecule (a fair share of pixels differs from the background), the RMSD plot
+is an image, and the live view cell shows an iframe on a tokened loopback URL. Skipped with
+the reason when Python was not built or the notebook packages are missing, never under
+CI=true."""
+import io
+import os
+import re
+import sys
+import base64
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mstest import Reporter, dirs  # noqa: E402
+
+R = Reporter("notebook")
+NEEDED = [("nbclient", "python3-nbclient"), ("nbformat", "python3-nbformat"),
+          ("ipykernel", "python3-ipykernel"), ("matplotlib", "python3-matplotlib"),
+          ("PIL", "python3-pil"), ("numpy", "python3-numpy")]
+
+
+def missing():
+    """Why the notebook cannot run here, or None."""
+    import importlib
+    srcdir, builddir, _, _ = dirs()
+    if not os.path.exists(os.path.join(builddir, "src", "python", "_molscope.so")):
+        return "molscope was configured without Python (--without-python or no libpython3-dev)"
+    for mod, pkg in NEEDED:
+        try:
+            importlib.import_module(mod)
+        except ImportError:
+            return "%s is not installed (scripts/bootstrap --test)" % pkg
+    return None
+
+
+def images(nb, mime="image/png"):
+    """The decoded images of every output of every code cell, in order."""
+    return [base64.b64decode(o["data"][mime]) for c in nb.cells if c.cell_type == "code"
+            for o in c.get("outputs", []) if mime in o.get("data", {})]
+
+
+def htmls(nb):
+    return [o["data"]["text/html"] for c in nb.cells if c.cell_type == "code"
+            for o in c.get("outputs", []) if "text/html" in o.get("data", {})]
+
+
+def shows_molecule(png, size):
+    from PIL import Image
+    import numpy
+    with Image.open(io.BytesIO(png)) as im:
+        a = numpy.asarray(im.convert("RGB"))
+    if (a.shape[1], a.shape[0]) != size:
+        return "size %dx%d, not %dx%d" % (a.shape[1], a.shape[0], size[0], size[1])
+    share = (a != a[0, 0]).any(axis=2).mean()
+    return None if share > 0.03 else "%.1f%% of the pixels differ from the background" % (100 * share)
+
+
+def run(path):
+    import nbclient
+    import nbformat
+    srcdir, builddir, data, _ = dirs()
+    os.environ["PYTHONPATH"] = os.pathsep.join(
+        [os.path.join(builddir, "src", "python"), os.environ.get("PYTHONPATH", "")])
+    os.environ["MS_TEST_DATA"] = os.path.abspath(data)
+    nb = nbformat.read(path, as_version=4)
+    client = nbclient.NotebookClient(nb, timeout=300, kernel_name="python3",
+                                     resources={"metadata": {"path": os.path.dirname(path)}})
+    try:
+        client.execute()
+    except Exception as e:                 # a cell failed: its error is the message
+        R.report(False, "every cell runs", str(e).strip().splitlines()[-1][:300])
+        return nb
+    R.report(True, "every cell runs")
+    return nb
+
+
+def main():
+    why = missing()
+    if why:
+        if os.environ.get("CI") == "true":
+            R.report(False, "analysis.ipynb", "cannot run under CI: " + why)
+            return 1
+        R.skip("analysis.ipynb", why)
+        return 0
+    srcdir = dirs()[0]
+    nb = run(os.path.join(srcdir, "doc", "analysis.ipynb"))
+    pngs = images(nb)
+    R.report(len(pngs) == 2, "two image outputs (the render, the RMSD plot)", "%d" % len(pngs))
+    if pngs:
+        bad = shows_molecule(pngs[0], (360, 270))
+        R.report(bad is None, "the inline render shows the molecule", bad or "")
+    if len(pngs) > 1:
+        R.report(len(pngs[1]) > 2000 and pngs[1].startswith(b"\x89PNG"), "the RMSD plot is an image")
+    frames = [h for h in htmls(nb) if h.startswith("<iframe")]
+    ok = len(frames) == 1 and re.search(r'src="http://127\.0\.0\.1:\d+/\?token=[0-9a-f]{32}"',
+                                        frames[0])
+    R.report(bool(ok), "the live view is an iframe on its tokened loopback URL", str(frames)[:200])
+    return 1 if R.failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
