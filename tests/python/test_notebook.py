@@ -3,8 +3,8 @@ python3-ipykernel, the python3 kernel) on molscope's build-tree module, and chec
 reader sees: every cell ran, the inline render (molscope.render) is a PNG of the size asked
 that shows the molecule (a fair share of pixels differs from the background), the RMSD plot
 is an image, and the live view cell shows an iframe on a tokened loopback URL. Skipped with
-the reason when Python was not built or the notebook packages are missing, never under
-CI=true."""
+the reason when Python was not built (a Tcl-only build) or, except under CI=true, when the
+notebook packages are missing."""
 import io
 import os
 import re
@@ -21,11 +21,8 @@ NEEDED = [("nbclient", "python3-nbclient"), ("nbformat", "python3-nbformat"),
 
 
 def missing():
-    """Why the notebook cannot run here, or None."""
+    """The notebook packages missing here, or None."""
     import importlib
-    srcdir, builddir, _, _ = dirs()
-    if not os.path.exists(os.path.join(builddir, "src", "python", "_molscope.so")):
-        return "molscope was configured without Python (--without-python or no libpython3-dev)"
     for mod, pkg in NEEDED:
         try:
             importlib.import_module(mod)
@@ -76,6 +73,10 @@ def run(path):
 
 
 def main():
+    if not os.path.exists(os.path.join(dirs()[1], "src", "python", "_molscope.so")):
+        R.skip("analysis.ipynb", "molscope was configured without Python (--without-python "
+               "or no libpython3-dev)")
+        return 0
     why = missing()
     if why:
         if os.environ.get("CI") == "true":
