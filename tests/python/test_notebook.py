@@ -2,9 +2,10 @@
 python3-ipykernel, the python3 kernel) on molscope's build-tree module, and checks what a
 reader sees: every cell ran, the inline render (molscope.render) is a PNG of the size asked
 that shows the molecule (a fair share of pixels differs from the background), the RMSD plot
-is an image, and the live view cell shows an iframe on a tokened loopback URL. Skipped with
-the reason when Python was not built (a Tcl-only build) or, except under CI=true, when the
-notebook packages are missing."""
+is an image, the live view cell shows an iframe on a tokened loopback URL, and (a cell the
+test inserts) the kernel's event loop answers a GET of that URL with 200, and 403 without
+the token. Skipped with the reason when Python was not built (a Tcl-only build) or, except
+under CI=true, when the notebook packages are missing."""
 import io
 import os
 import re
@@ -53,6 +54,27 @@ def shows_molecule(png, size):
     return None if share > 0.03 else "%.1f%% of the pixels differ from the background" % (100 * share)
 
 
+# Inserted after the live view's cell (not part of the example): while the kernel awaits,
+# its event loop serves the page, as it does for a browser while the notebook is idle.
+PROBE = """import asyncio, urllib.error, urllib.request
+def _status(url):
+    try:
+        return urllib.request.urlopen(url, timeout=20).status
+    except urllib.error.HTTPError as e:
+        return e.code
+_loop = asyncio.get_running_loop()
+print("live page", await _loop.run_in_executor(None, _status, view.url),
+      await _loop.run_in_executor(None, _status, view.url.split("?")[0]))"""
+
+
+def with_probe(nb):
+    """The notebook with PROBE after the cell that starts the live view; its index."""
+    import nbformat
+    i = next(k for k, c in enumerate(nb.cells) if c.cell_type == "code" and "molscope.live()" in c.source) + 1
+    nb.cells.insert(i, nbformat.v4.new_code_cell(PROBE))
+    return i
+
+
 def run(path):
     import nbclient
     import nbformat
@@ -61,6 +83,7 @@ def run(path):
         [os.path.join(builddir, "src", "python"), os.environ.get("PYTHONPATH", "")])
     os.environ["MS_TEST_DATA"] = os.path.abspath(data)
     nb = nbformat.read(path, as_version=4)
+    nb.probe = with_probe(nb)
     client = nbclient.NotebookClient(nb, timeout=300, kernel_name="python3",
                                      resources={"metadata": {"path": os.path.dirname(path)}})
     try:
@@ -97,6 +120,9 @@ def main():
     ok = len(frames) == 1 and re.search(r'src="http://127\.0\.0\.1:\d+/\?token=[0-9a-f]{32}"',
                                         frames[0])
     R.report(bool(ok), "the live view is an iframe on its tokened loopback URL", str(frames)[:200])
+    said = "".join(o.get("text", "") for o in nb.cells[nb.probe].get("outputs", []))
+    R.report("live page 200 403" in said,
+             "the kernel serves the live page (200 with the token, 403 without)", said[:200])
     return 1 if R.failures else 0
 
 
