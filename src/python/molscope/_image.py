@@ -2,6 +2,8 @@
 memory by one of molscope's image devices (the same C code as the `render` command, through
 _molscope.render_image) as an Image: its pixels as a numpy RGBA array, its PNG bytes, and
 _repr_png_ so that Jupyter shows it inline."""
+import os
+
 import _molscope
 
 from ._tcl import call, split, TclError
@@ -38,7 +40,7 @@ class Image:
         return "<molscope.Image %dx%d, %d bytes of PNG>" % (self.width, self.height, len(self.png))
 
 
-def _size_words(size):
+def _size(size):
     try:
         w, h = (int(x) for x in size)
     except (TypeError, ValueError):
@@ -70,15 +72,16 @@ def render(path=None, method="TachyonInternal", size=None, aasamples=None, aosam
     A failure raises TclError with molscope's message."""
     if not isinstance(method, str):
         raise TypeError("render: method must be a string")
-    w_h = _size_words(size) if size is not None else None
+    w_h = _size(size) if size is not None else None
     resize = _Setting(lambda: [int(x) for x in split(call("display", "get", "size"))],
                       lambda v: call("display", "resize", v[0], v[1]), w_h)
     aa = _Setting(lambda: int(call("render", "aasamples", method)),
                   lambda v: call("render", "aasamples", method, int(v)), aasamples)
     ao = _Setting(lambda: int(call("render", "aosamples", method)),
                   lambda v: call("render", "aosamples", method, int(v)), aosamples)
+    target = None if path is None else os.fspath(path)
     with resize, aa, ao:
-        width, height, rgb, png = _molscope.render_image(method, None if path is None else str(path))
+        width, height, rgb, png = _molscope.render_image(method, target)
     return Image(width, height, rgb, png)
 
 
