@@ -6,6 +6,6 @@ dist_doc_DATA += doc/SECURITY.md doc/pbctools.md doc/exectool.md
 dist_doc_DATA += doc/vmdmovie.md doc/viewchangerender.md
 dist_doc_DATA += doc/js-format.md
 dist_doc_DATA += doc/topotools.md
-dist_doc_DATA += doc/python.md
+dist_doc_DATA += doc/python.md doc/analysis.ipynb
 # The manual page, molscope(1): `man molscope` after `make install`.
 dist_man_MANS = doc/molscope.1

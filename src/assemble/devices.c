@@ -172,18 +172,40 @@ char *ms_render_expand_cmd(const char *cmd, const char *path, int w, int h)
     return out;
 }
 
-int ms_render(ms_world *w, const ms_render_device *dev, const char *path, const char *post_cmd,
-              ms_error *err)
+/* The world's scene with the device's sample counts. */
+static int device_scene(ms_world *w, const ms_render_device *dev, ms_scene *scene,
+                        ms_error *err)
 {
     ms_render_setting *set = ms_render_setting_of(w->renderers, dev);
     if (!set) {
         ms_error_set(err, "out of memory");
         return -1;
     }
+    if (ms_world_build_scene(w, scene, err)) return -1;
+    scene->aa_samples = set->aasamples;
+    scene->ao_samples = set->aosamples;
+    return 0;
+}
+
+int ms_render_image(ms_world *w, const ms_render_device *dev, ms_image *img, ms_error *err)
+{
+    if (!dev->image) {
+        ms_error_set(err, "%s writes a scene file, not an image (render it to a file)",
+                     dev->name);
+        return -1;
+    }
     ms_scene scene;
-    if (ms_world_build_scene(w, &scene, err)) return -1;
-    scene.aa_samples = set->aasamples;
-    scene.ao_samples = set->aosamples;
+    if (device_scene(w, dev, &scene, err)) return -1;
+    int rc = dev->image(&scene, img, err);
+    ms_scene_free(&scene);
+    return rc;
+}
+
+int ms_render(ms_world *w, const ms_render_device *dev, const char *path, const char *post_cmd,
+              ms_error *err)
+{
+    ms_scene scene;
+    if (device_scene(w, dev, &scene, err)) return -1;
     int rc = dev->write(&scene, path, err);
     ms_scene_free(&scene);
     if (rc || !post_cmd || !*post_cmd) return rc;

@@ -53,6 +53,9 @@ int ms_render_set_format(ms_render_setting *set, const char *name);
 /* Render the world's scene with a device to a file, then run post_cmd (may be NULL). */
 int ms_render(ms_world *w, const ms_render_device *dev, const char *path, const char *post_cmd,
               ms_error *err);
+/* Render the world's scene with an image device into img, in memory (the image `render`
+ * would write; the caller frees it). 0, or -1 with err set (a file exporter, a failure). */
+int ms_render_image(ms_world *w, const ms_render_device *dev, ms_image *img, ms_error *err);
 /* The post-render command with %s, %w, %h replaced (malloc'd; NULL on no memory). */
 char *ms_render_expand_cmd(const char *cmd, const char *path, int w, int h);
 

@@ -95,6 +95,11 @@ static int snapshot_image(void *user, ms_image *img, ms_error *err)
     return !g || ms_gl_render(g, user, img, NULL, err) ? -1 : 0;
 }
 
+static int snapshot_scene_image(const ms_scene *s, ms_image *img, ms_error *err)
+{
+    return snapshot_image((void *)s, img, err);
+}
+
 /* The format by the file's extension, TGA for others, as every image device picks it. */
 static int snapshot_write(const ms_scene *s, const char *path, ms_error *err)
 {
@@ -109,4 +114,5 @@ const ms_render_device ms_gl_snapshot = {
     .aasamples = 0,
     .aosamples = 0,
     .write = snapshot_write,
+    .image = snapshot_scene_image,
 };

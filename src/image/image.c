@@ -90,6 +90,29 @@ int ms_image_write(const ms_image *img, const char *path, ms_error *err)
     return ms_ofile_finish(out, ok, err);
 }
 
+int ms_image_png_mem(const ms_image *img, unsigned char **buf, size_t *len, ms_error *err)
+{
+    char *mem = NULL;
+    size_t n = 0;
+    FILE *fp = open_memstream(&mem, &n);
+    if (!fp) {
+        ms_error_set(err, "out of memory for the image");
+        return -1;
+    }
+    int rc = ms_image_write_stream(img, MS_IMG_PNG, fp, err);
+    if (fclose(fp) != 0 && rc == 0) {
+        ms_error_set(err, "out of memory for the image");
+        rc = -1;
+    }
+    if (rc) {
+        free(mem);
+        return -1;
+    }
+    *buf = (unsigned char *)mem;
+    *len = n;
+    return 0;
+}
+
 int ms_image_read(const char *path, ms_image *img, ms_error *err)
 {
     FILE *fp = fopen(path, "rb");

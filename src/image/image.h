@@ -7,6 +7,7 @@
 #ifndef MS_IMAGE_H
 #define MS_IMAGE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "base/base.h"
@@ -36,6 +37,9 @@ int ms_image_write(const ms_image *img, const char *path, ms_error *err);
 /* Write in a given format to a stdio stream (movies pipe frames to an encoder). */
 int ms_image_write_stream(const ms_image *img, ms_image_format f, void *stdio_file,
                           ms_error *err);
+/* Encode as PNG (libpng's fast settings) in memory: *buf (malloc'd, the caller frees it) of
+ * *len bytes. 0, or -1 with err set and nothing allocated. */
+int ms_image_png_mem(const ms_image *img, unsigned char **buf, size_t *len, ms_error *err);
 /* Read a PNG, TGA (uncompressed or RLE, 24/32 bit), PPM (P6), BMP (24 bit) or SGI (8 bit,
  * verbatim or RLE) file. */
 int ms_image_read(const char *path, ms_image *img, ms_error *err);

@@ -24,24 +24,11 @@
 /* The image as PNG (fast settings) in place of the current one. */
 static int publish(ms_live_frames *f, const ms_image *img, int passes, ms_error *err)
 {
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *mem = open_memstream(&buf, &len);
-    if (!mem) {
-        ms_error_set(err, "out of memory for the image");
-        return -1;
-    }
-    int rc = ms_image_write_stream(img, MS_IMG_PNG, mem, err);
-    if (fclose(mem) != 0 && rc == 0) {
-        ms_error_set(err, "out of memory for the image");
-        rc = -1;
-    }
-    if (rc) {
-        free(buf);
-        return -1;
-    }
+    unsigned char *buf;
+    size_t len;
+    if (ms_image_png_mem(img, &buf, &len, err)) return -1;
     free(f->png);
-    f->png = (unsigned char *)buf;
+    f->png = buf;
     f->png_len = len;
     f->passes = passes;
     f->serial++;

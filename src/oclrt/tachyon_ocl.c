@@ -69,11 +69,16 @@ int ms_oclrt_write(const ms_scene *s, const ms_rt_options *o, const char *path, 
 static int write_ocl(const ms_scene *s, const char *path, ms_error *err)
 {
     ms_rt_options o;
-    ms_rt_options_default(&o);
-    o.aasamples = s->aa_samples;
-    o.aosamples = s->ao_samples;
-    if (ms_rt_options_from_env(&o, err)) return -1;
+    if (ms_rt_options_for_scene(s, &o, err)) return -1;
     return ms_oclrt_write(s, &o, path, NULL, NULL, err);
+}
+
+static int image_ocl(const ms_scene *s, ms_image *img, ms_error *err)
+{
+    ms_rt_options o;
+    if (ms_rt_options_for_scene(s, &o, err)) return -1;
+    ocl_job j = {s, &o, NULL, NULL};
+    return render_job(&j, img, err);
 }
 
 const ms_render_device ms_render_tachyon_ocl = {
@@ -81,11 +86,13 @@ const ms_render_device ms_render_tachyon_ocl = {
     .description = "Tachyon-style ray tracer built in, on OpenCL (GPU or PoCL): images .png .tga .ppm .bmp",
     .default_cmd = "display %s",
     .has_aa = 1, .aasamples = 12, .aosamples = 12,
-    .write = write_ocl};
+    .write = write_ocl,
+    .image = image_ocl};
 
 const ms_render_device ms_render_tachyon_optix = {
     .name = "TachyonLOptiXInternal",
     .description = "VMD's name for its GPU ray tracer: molscope's TachyonLOpenCLInternal",
     .default_cmd = "display %s",
     .has_aa = 1, .aasamples = 12, .aosamples = 12,
-    .write = write_ocl};
+    .write = write_ocl,
+    .image = image_ocl};

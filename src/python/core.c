@@ -228,6 +228,10 @@ static PyMethodDef core_methods[] = {
      "frame_buffer(molid, frame=-1) -> FrameBuffer: a frame's coordinates, shared"},
     {"read_line", py_read_line, METH_VARARGS,
      "read_line(prompt='') -> str: a line of standard input as Tcl reads it"},
+    {"render_image", ms_py_render_image, METH_VARARGS,
+     "render_image(method, path=None) -> (width, height, rgb, png): render in memory"},
+    {"pump", ms_py_pump, METH_VARARGS,
+     "pump(seconds=0): run Tcl's event loop (the live view's server) for that long"},
     {"start", py_start, METH_VARARGS,
      "start(anchor) -> bool: create the application (a plain python3 only)"},
     {NULL, NULL, 0, NULL}};

@@ -5,7 +5,7 @@
 # python3 provides it. The molscope package (src/python/molscope/*.py) is installed beside
 # the extension in $(pymoddir); in the build tree src/python/ holds both (PYTHONPATH).
 EXTRA_DIST += src/python/python.h src/python/pyint.h src/python/core.c src/python/embed.c \
-	src/python/frames.c $(MS_PYPKG)
+	src/python/frames.c src/python/notebook.c $(MS_PYPKG)
 MS_PYPKG = src/python/molscope/__init__.py src/python/molscope/_tcl.py \
 	src/python/molscope/_atomsel.py src/python/molscope/_vmdnames.py \
 	src/python/molscope/molecule.py src/python/molscope/molrep.py \
@@ -13,11 +13,13 @@ MS_PYPKG = src/python/molscope/__init__.py src/python/molscope/_tcl.py \
 	src/python/molscope/trans.py src/python/molscope/animate.py \
 	src/python/molscope/color.py src/python/molscope/material.py \
 	src/python/molscope/graphics.py src/python/molscope/label.py \
-	src/python/molscope/vmdnumpy.py
+	src/python/molscope/vmdnumpy.py src/python/molscope/measure.py \
+	src/python/molscope/topology.py src/python/molscope/selection.py \
+	src/python/molscope/axes.py src/python/molscope/_image.py src/python/molscope/_live.py
 if HAVE_PYTHON
 noinst_LTLIBRARIES += src/python/libmspython.la
 src_python_libmspython_la_SOURCES = src/python/python.h src/python/pyint.h src/python/core.c \
-	src/python/embed.c src/python/frames.c
+	src/python/embed.c src/python/frames.c src/python/notebook.c
 src_python_libmspython_la_CFLAGS = $(AM_CFLAGS) $(PYTHON_CFLAGS)
 src_python_libmspython_la_CPPFLAGS = $(AM_CPPFLAGS) -DMS_PYTHON3='"$(PYTHON3)"' \
 	-DMS_PYMODDIR='"$(pymoddir)"'

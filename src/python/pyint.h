@@ -16,4 +16,11 @@ int ms_py_frames_init(PyObject *module);
  * buffers Python leaked are not to be touched). */
 void ms_py_frames_forget(void);
 
+/* render_image(method, path=None) -> (width, height, rgb, png): the scene rendered in memory
+ * by an image device, optionally written to path as `render` writes it (notebook.c). */
+PyObject *ms_py_render_image(PyObject *self, PyObject *args);
+/* pump(seconds=0): run Tcl's events (the live server's) for that long, letting other
+ * Python threads run meanwhile (notebook.c). */
+PyObject *ms_py_pump(PyObject *self, PyObject *args);
+
 #endif

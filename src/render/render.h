@@ -25,6 +25,9 @@ typedef struct ms_render_device {
     int aasamples, aosamples;      /* defaults */
     /* Write the scene to path; 0, or -1 with err set and no file left behind. */
     int (*write)(const ms_scene *s, const char *path, ms_error *err);
+    /* Image devices only (NULL for the file exporters): render the scene into img in memory,
+     * as write would before encoding; 0, or -1 with err set and img left empty. */
+    int (*image)(const ms_scene *s, ms_image *img, ms_error *err);
     /* Image formats of the post-render command (NULL-terminated; NULL: none), the default
      * one, and the command a format and a sample count give (NULL: the command is fixed). */
     const char *const *formats;

@@ -53,6 +53,14 @@ int ms_rt_options_from_env(ms_rt_options *o, ms_error *err)
     return 0;
 }
 
+int ms_rt_options_for_scene(const ms_scene *s, ms_rt_options *o, ms_error *err)
+{
+    ms_rt_options_default(o);
+    o->aasamples = s->aa_samples;
+    o->aosamples = s->ao_samples;
+    return ms_rt_options_from_env(o, err);
+}
+
 uint64_t ms_rt_stats_rays(const ms_rt_stats *st)
 {
     uint64_t n = 0;

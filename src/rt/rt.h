@@ -55,6 +55,9 @@ void ms_rt_options_default(ms_rt_options *o);
  * MOLSCOPE_RT_DEPTH (unset or empty: none, none, MS_RT_MAX_DEPTH), and progress lines when
  * stderr is a terminal. 0, or -1 with err set when a value is not a positive number. */
 int ms_rt_options_from_env(ms_rt_options *o, ms_error *err);
+/* The options of the built-in devices for a scene: the defaults, the scene's sample counts
+ * (`render aasamples|aosamples`), then the environment's limits as above. */
+int ms_rt_options_for_scene(const ms_scene *s, ms_rt_options *o, ms_error *err);
 /* Whether this build can trace (Embree was found at configure time). */
 int ms_rt_available(void);
 /* The rays of all kinds in st. */

@@ -10,11 +10,15 @@
 static int write_internal(const ms_scene *s, const char *path, ms_error *err)
 {
     ms_rt_options o;
-    ms_rt_options_default(&o);
-    o.aasamples = s->aa_samples;
-    o.aosamples = s->ao_samples;
-    if (ms_rt_options_from_env(&o, err)) return -1;
+    if (ms_rt_options_for_scene(s, &o, err)) return -1;
     return ms_rt_write(s, &o, path, NULL, err);
+}
+
+static int image_internal(const ms_scene *s, ms_image *img, ms_error *err)
+{
+    ms_rt_options o;
+    if (ms_rt_options_for_scene(s, &o, err)) return -1;
+    return ms_rt_render(s, &o, img, NULL, err);
 }
 
 const ms_render_device ms_render_tachyon_internal = {
@@ -22,4 +26,5 @@ const ms_render_device ms_render_tachyon_internal = {
     .description = "Tachyon-style ray tracer built in (Embree): images .png .tga .ppm .bmp",
     .default_cmd = "display %s",
     .has_aa = 1, .aasamples = 12, .aosamples = 12,
-    .write = write_internal};
+    .write = write_internal,
+    .image = image_internal};

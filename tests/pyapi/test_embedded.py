@@ -155,3 +155,19 @@ def test_vmd_style_script_same_under_molscope_and_python3(tmp_path):
     assert lines[1].startswith("frame 0 before 0.000 rmsd 0.000")
     assert len(lines) == 15 and lines[-1] == "left []"
     assert float(lines[5].split()[3]) > 1.0     # frame 4 before the fit
+
+
+def test_new_modules_under_vmd_names(tmp_path):
+    """measure, topology, selection and axes import as VMD's names inside molscope, and
+    render there is both VMD's module and molscope.render."""
+    r = tcl_script(tmp_path, """
+mol new %s/tiny.pdb
+gopython -command "from vmd import measure, topology, selection, axes; import measure as m2; print('same', measure is m2, axes is vmd.axes)"
+gopython -command "print('bond %%.3f' %% measure.bond(0, 1, 0)\\[0\\])"
+gopython -command "img = render(size=(20, 10)); print('image', img.width, img.height, render.listall()\\[0\\])"
+puts "tcl bond [format %%.3f [measure bond {0 1} molid 0]]"
+""" % DATA)
+    assert r.returncode == 0, r.stderr
+    assert "same True True" in r.stdout and "image 20 10 snapshot" in r.stdout
+    py = r.stdout.split("bond ")[1].split()[0]
+    assert "tcl bond " + py in r.stdout

@@ -31,6 +31,9 @@ try:
 except ImportError:
     pass
 from ._atomsel import atomsel  # noqa: E402
+from . import measure, topology, selection, axes  # noqa: E402
+from ._image import Image  # noqa: E402
+from ._live import live, LiveView  # noqa: E402
 
 
 def evaltcl(script):
@@ -40,4 +43,5 @@ def evaltcl(script):
 
 
 __all__ = ["molecule", "atomsel", "molrep", "display", "render", "trans", "animate",
-           "color", "material", "graphics", "label", "evaltcl", "TclError"]
+           "color", "material", "graphics", "label", "measure", "topology", "selection",
+           "axes", "evaltcl", "TclError", "Image", "live", "LiveView"]

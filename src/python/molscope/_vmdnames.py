@@ -7,7 +7,7 @@ import sys
 import molscope
 
 _MODULES = ["molecule", "molrep", "display", "render", "trans", "animate", "color", "vmdnumpy",
-            "material", "graphics", "label"]
+            "material", "graphics", "label", "measure", "topology", "selection", "axes"]
 
 
 def install(main_globals):
