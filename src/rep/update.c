@@ -290,6 +290,15 @@ int ms_rep_build_frames(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error 
 
 const ms_displaylist *ms_rep_list(const ms_rep *r) { return &r->cache->dl; }
 
+size_t ms_rep_cache_bytes(const ms_rep *r)
+{
+    const ms_rep_cache *c = r->cache;
+    size_t bytes = (c->on.nbits + 63) / 64 * sizeof(uint64_t) + c->idxcap * sizeof(uint32_t) +
+                   c->colcap * sizeof(uint16_t) + c->poscap * sizeof(float);
+    for (int k = 0; k < MS_REP_NSCRATCH; k++) bytes += c->scratch.cap[k];
+    return bytes;
+}
+
 const uint32_t *ms_rep_atoms(const ms_rep *r, size_t *n)
 {
     *n = r->cache->sel_valid ? r->cache->nsel : 0;

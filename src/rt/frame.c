@@ -65,7 +65,7 @@ int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
 {
     size_t npix = (size_t)s->width * (size_t)s->height;
     size_t need = npix * (3 * sizeof(float) + sizeof(uint32_t) + 3);
-    size_t avail = o->memory ? o->memory : rt_mem_available();
+    size_t avail = o->memory ? o->memory : ms_mem_available();
     if (avail && need > avail / 10 * 9) {
         ms_error_set(err, "a %dx%d image needs %.2f GB for its buffers, more than the %.2f GB of "
                      "memory available", s->width, s->height, (double)need / 1e9, (double)avail / 1e9);
@@ -158,6 +158,11 @@ static void frame_free(frame *f)
     free(f->rays);
 }
 
+/* The last render's memory (ms_rt_last_memory); renders run one at a time. */
+static ms_rt_memory last_memory;
+
+void ms_rt_last_memory(ms_rt_memory *out) { *out = last_memory; }
+
 static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options *o, ms_image *img,
                        ms_rt_stats *st, ms_error *err)
 {
@@ -165,6 +170,10 @@ static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options
     rt_shader sh;
     rt_shader_init(&sh, s, w, o->aosamples);
     if (frame_init(&f, s, &sh, o, err)) return -1;
+    size_t npix = (size_t)s->width * (size_t)s->height;
+    last_memory.world = w->owned_bytes;
+    last_memory.frame = npix * (3 * sizeof(float) + sizeof(uint32_t));
+    last_memory.image = 3 * npix;
     int rc = ms_image_alloc(img, s->width, s->height, err);
     if (rc == 0) {
         run_passes(&f, o, st);
@@ -183,6 +192,8 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     memset(img, 0, sizeof *img);
     if (rt_check_options(s, o, err) || rt_plan_memory(s, o, err)) return -1;
     rt_world w;
+    size_t held0 = rt_device_held();
+    rt_device_peak_reset();
     double t0 = ms_now(), c0 = cpu_now();
     int passes = o->max_passes > 0 && o->max_passes < o->aasamples + 1 ? o->max_passes : o->aasamples + 1;
     int rc = rt_world_build(&w, s, (double)s->width * (double)s->height * passes, err);
@@ -190,6 +201,7 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     st->build_cpu_s = cpu_now() - c0;
     if (rc == 0) {
         rc = trace_frame(s, &w, o, img, st, err);
+        last_memory.embree = rt_device_peak() - held0;
         rt_world_free(&w);
     }
     rt_device_set_budget(0);

@@ -30,6 +30,7 @@ void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err)
         return NULL;
     }
     w->owned[w->nowned++] = p;
+    w->owned_bytes += (n ? n : 1) * elsize;
     return p;
 }
 
