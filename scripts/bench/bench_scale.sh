@@ -34,5 +34,5 @@ awk '
 /^ATOMS/ {n = $2}
 /^STAGE/ {printf "RESULT scale: %-10s %7.2f s wall %7.2f s cpu   VmHWM %6.0f MB (%4.0f B/atom)\n", $2, $3, $4, $5/1e6, $5/n}
 /^MEM/ && $2 != "rss" && $2 != "peak" {printf "RESULT scale:   %-13s %8.1f MB %7.1f B/atom\n", $2, $3/1e6, $3/n; sum += $3}
-/^TOTAL/ {printf "RESULT scale: %d atoms: %.1f s wall, %.1f s cpu, peak %.0f MB = %.0f B/atom (the structures' sum %.0f B/atom, peaks of freed ones included); 64M at this rate: %.1f GB\n", n, $2, $3+$4, $5*1024/1e6, $5*1024/n, sum/n, $5*1024/n*64e6/1e9}
+/^TOTAL/ {printf "RESULT scale: %d atoms: %.1f s wall, %.1f s cpu, peak %.0f MB = %.0f B/atom (sum of the structures %.0f B/atom, peaks of freed ones included); 64M at this rate: %.1f GB\n", n, $2, $3+$4, $5*1024/1e6, $5*1024/n, sum/n, $5*1024/n*64e6/1e9}
 ' $log
