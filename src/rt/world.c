@@ -210,6 +210,21 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
     return 0;
 }
 
+/* Mesh triangles of the group of src[first]. */
+static size_t group_triangles(const source *src, size_t n, size_t first)
+{
+    size_t tris = 0;
+    for (size_t i = first; i < n && src[i].group == src[first].group; i++) tris += src[i].dl->mesh.ntris;
+    return tris;
+}
+
+/* From this many triangles in a group its Embree scenes are built compact (Triangle4i
+ * leaves that index the list's own vertices instead of copying them, and smaller nodes): on
+ * the scale benchmark's 1M-atom QuickSurf (2.9M triangles) Embree's peak went from 342 to
+ * 147 MB, the trace time unchanged within the noise, the image identical. (A low-quality,
+ * Morton-code build of the same scene peaked at 248 MB.) */
+#define COMPACT_TRIS ((size_t)1 << 20)
+
 /* The Embree scene of a group's opaque or transparent geometries, placed by the group's
  * transform as the next instance (masked, so that shadow rays can skip the transparent ones
  * until the opaque ones have let them through). */
@@ -225,6 +240,7 @@ static int add_instance(rt_world *w, const source *src, size_t n, size_t first, 
     /* the transparent part is walked only by rays the opaque part let through: a quick build
      * traced as fast there (measured on a 1M-triangle surface: 0.3 s of CPU saved) */
     rtcSetSceneBuildQuality(sub, trans ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
+    if (group_triangles(src, n, first) >= COMPACT_TRIS) rtcSetSceneFlags(sub, RTC_SCENE_FLAG_COMPACT);
     /* cylinders first: they may take the spheres on their ends */
     static const rt_kind order[RT_NKINDS] = {RT_CYLINDER, RT_SPHERE, RT_CONE, RT_RING, RT_MESH};
     for (size_t i = first; i < n; i++) {
