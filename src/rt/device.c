@@ -96,7 +96,9 @@ int rt_device_check(RTCDevice dev, const char *what, ms_error *err)
     enum RTCError code = rtcGetDeviceError(dev);
     if (code == RTC_ERROR_NONE && !atomic_load(&denied)) return 0;
     if (code == RTC_ERROR_OUT_OF_MEMORY || atomic_load(&denied))
-        ms_error_set(err, "%s: the scene is too large for the memory available", what);
+        ms_error_set(err, "%s: the scene is too large for the memory available (%.2f GB "
+                     "allowed): a coarser QuickSurf grid spacing, fewer atoms drawn or a smaller "
+                     "image would fit", what, (double)MS_MAX(atomic_load(&budget), 0) / 1e9);
     else
         ms_error_set(err, "%s: %s", what, last_error[0] ? last_error : "Embree failed");
     atomic_store(&denied, 0);

@@ -68,10 +68,22 @@ int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
     size_t avail = o->memory ? o->memory : ms_mem_available();
     if (avail && need > avail / 10 * 9) {
         ms_error_set(err, "a %dx%d image needs %.2f GB for its buffers, more than the %.2f GB of "
-                     "memory available", s->width, s->height, (double)need / 1e9, (double)avail / 1e9);
+                     "memory available: a smaller image (display resize) would fit", s->width,
+                     s->height, (double)need / 1e9, (double)avail / 1e9);
         return -1;
     }
-    rt_device_set_budget(avail ? avail / 10 * 9 - need : 0);
+    size_t room = avail ? avail / 10 * 9 - need : 0, ntris, nother;
+    size_t est = rt_world_estimate(s, &ntris, &nother);
+    if (avail && est > room) {
+        ms_error_set(err, "the scene is too large: the ray tracer's acceleration structures "
+                     "need at least %.2f GB for "
+                     "%zu triangles and %zu other primitives, more than the %.2f GB of memory "
+                     "available beside the %dx%d image's buffers: a coarser QuickSurf grid "
+                     "spacing, fewer atoms drawn or a smaller image would fit",
+                     (double)est / 1e9, ntris, nother, (double)room / 1e9, s->width, s->height);
+        return -1;
+    }
+    rt_device_set_budget(room);
     return 0;
 }
 

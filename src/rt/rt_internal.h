@@ -106,6 +106,9 @@ typedef struct rt_world {
  * times passes; 0: unknown, as for a session, which may trace many passes). 0, or -1 with err
  * set and w freed. */
 int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err);
+/* A lower bound of the bytes Embree will hold for s (its triangles, and its other
+ * primitives), to refuse a scene that cannot fit before building it. */
+size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother);
 /* The matrices of an item from a 4x4 row-major transform; -1 when singular. */
 int rt_item_matrices(rt_item *ri, const float x[16]);
 void rt_world_free(rt_world *w);

@@ -46,7 +46,8 @@ int ms_qsurf_mesh_fits(ms_qsurf_extract *mc, size_t nv, size_t nt, ms_error *err
     mc->over_budget = 1;
     ms_error_set(err, "the mesh needs %.1f MB (%zu vertices and %zu triangles so far), more "
                  "than the %.1f MB the memory budget of %.1f MB leaves it beside the density "
-                 "slabs (MOLSCOPE_QUICKSURF_MEMLIMIT)", bytes / 1048576, nv, nt,
+                 "slabs (MOLSCOPE_QUICKSURF_MEMLIMIT or the memory available; a coarser grid "
+                 "spacing makes a smaller mesh)", bytes / 1048576, nv, nt,
                  (double)mc->mesh_room / 1048576, (double)mc->budget / 1048576);
     return -1;
 }
