@@ -100,12 +100,6 @@ int ms_word_eq(const char *word, const char *name)
     return strncasecmp(word, name, 15) == 0;
 }
 
-size_t ms_peak_rss(void)
-{
-    struct rusage ru;
-    if (getrusage(RUSAGE_SELF, &ru) != 0) return 0;
-    return (size_t)ru.ru_maxrss * 1024u;
-}
 
 /* A "Name: N kB" line of a /proc file, in bytes; 0 when absent. */
 static size_t proc_kb(const char *path, const char *name)
@@ -124,6 +118,14 @@ static size_t proc_kb(const char *path, const char *name)
 }
 
 size_t ms_rss(void) { return proc_kb("/proc/self/status", "VmRSS"); }
+
+size_t ms_peak_rss(void)
+{
+    size_t hwm = proc_kb("/proc/self/status", "VmHWM");
+    struct rusage ru;
+    if (hwm || getrusage(RUSAGE_SELF, &ru) != 0) return hwm;
+    return (size_t)ru.ru_maxrss * 1024u;
+}
 
 /* A number from the first line of a file; 0 when absent or not a number ("max"). */
 static size_t file_number(const char *path)

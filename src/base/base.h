@@ -43,7 +43,7 @@ int ms_env_flag(const char *name);
  * characters as VMD does: "newcartoon" matches "NewCartoon". */
 int ms_word_eq(const char *word, const char *name);
 
-/* Resident-set peak of this process in bytes (from getrusage). */
+/* Resident-set peak of this process in bytes (VmHWM of /proc/self/status, else getrusage). */
 size_t ms_peak_rss(void);
 /* Resident set of this process now, in bytes (VmRSS of /proc/self/status); 0 when unknown. */
 size_t ms_rss(void);
