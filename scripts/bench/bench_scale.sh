@@ -8,6 +8,7 @@
 # structure (::molscope::memory). The render traces PASSES passes (default 1: one camera
 # sample a pixel with its shadow and 12 occlusion rays; the memory does not depend on it).
 #   scripts/bench/bench_scale.sh [natoms]          (default 1,000,000)
+# MOLSCOPE=path runs another build's binary (its log and image tagged with TAG).
 # Above 4M atoms run it under a memory cap (prlimit --as=...) on a shared machine.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -15,7 +16,7 @@ N=${1:-1000000}
 out=bench-out; mkdir -p $out
 pdb=$out/1tii_${N}.pdb; js=$out/1tii_${N}.js
 export MOLSCOPE_TCLLIB=$PWD/tcl MOLSCOPE_PLUGINDIR=$PWD/plugins/.libs
-MS=./src/molscope
+MS=${MOLSCOPE:-./src/molscope}     # MOLSCOPE=another/build/src/molscope: that build's figures
 
 if [ ! -f $js ]; then
     [ -f $pdb ] || /usr/bin/python3 scripts/bench/replicate.py tests/data/1tii.pdb $N $pdb
@@ -25,14 +26,14 @@ if [ ! -f $js ]; then
     rm -f $pdb
 fi
 
-log=$out/scale_${N}.log
+log=$out/scale_${N}${TAG:-}.log
 echo "== molscope scale: $js ($(nproc) cores; load: $(cut -d' ' -f1-3 /proc/loadavg))"
 MOLSCOPE_RT_PASSES=${PASSES:-1} /usr/bin/time -f "TOTAL %e %U %S %M" \
-    $MS -dispdev text -e scripts/bench/bench_scale.tcl -args $js $out/scale_${N}.png \
+    $MS -dispdev text -e scripts/bench/bench_scale.tcl -args $js $out/scale_${N}${TAG:-}.png \
     </dev/null >$log 2>&1 || { cat $log; exit 1; }
 awk '
 /^ATOMS/ {n = $2}
 /^STAGE/ {printf "RESULT scale: %-10s %7.2f s wall %7.2f s cpu   VmHWM %6.0f MB (%4.0f B/atom)\n", $2, $3, $4, $5/1e6, $5/n}
 /^MEM/ && $2 != "rss" && $2 != "peak" {printf "RESULT scale:   %-13s %8.1f MB %7.1f B/atom\n", $2, $3/1e6, $3/n; sum += $3}
-/^TOTAL/ {printf "RESULT scale: %d atoms: %.1f s wall, %.1f s cpu, peak %.0f MB = %.0f B/atom (sum of the structures %.0f B/atom, peaks of freed ones included); 64M at this rate: %.1f GB\n", n, $2, $3+$4, $5*1024/1e6, $5*1024/n, sum/n, $5*1024/n*64e6/1e9}
+/^TOTAL/ {printf "RESULT scale: %d atoms: %.1f s wall, %.1f s cpu, peak %.0f MB = %.0f B/atom; 64M at this rate: %.1f GB\n", n, $2, $3+$4, $5*1024/1e6, $5*1024/n, $5*1024/n*64e6/1e9}
 ' $log

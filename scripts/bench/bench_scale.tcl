@@ -17,14 +17,25 @@ proc cpu_now {} {
     return [expr {([lindex $fields 11] + [lindex $fields 12]) / 100.0}]
 }
 
+# VmHWM and VmRSS of this process in bytes (from /proc, so that builds before
+# ::molscope::memory can be measured the same way).
+proc vm {} {
+    set f [open /proc/self/status]
+    set s [read $f]
+    close $f
+    regexp {VmHWM:\s+(\d+)} $s -> hwm
+    regexp {VmRSS:\s+(\d+)} $s -> rss
+    return [list [expr {$hwm * 1024}] [expr {$rss * 1024}]]
+}
+
 proc stage {name script} {
     set t0 [clock microseconds]
     set c0 [cpu_now]
     uplevel 1 $script
     set wall [expr {([clock microseconds] - $t0) / 1e6}]
     set cpu [expr {[cpu_now] - $c0}]
-    array set mem [::molscope::memory]
-    puts [format "STAGE %s %.2f %.2f %d %d" $name $wall $cpu $mem(peak) $mem(rss)]
+    lassign [vm] hwm rss
+    puts [format "STAGE %s %.2f %.2f %d %d" $name $wall $cpu $hwm $rss]
     flush stdout
 }
 
@@ -54,5 +65,7 @@ stage render {
     axes location off
     render TachyonInternal $image
 }
-foreach {key bytes} [::molscope::memory] {puts "MEM $key $bytes"}
+if {[info commands ::molscope::memory] ne ""} {
+    foreach {key bytes} [::molscope::memory] {puts "MEM $key $bytes"}
+}
 quit
