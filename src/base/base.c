@@ -100,7 +100,6 @@ int ms_word_eq(const char *word, const char *name)
     return strncasecmp(word, name, 15) == 0;
 }
 
-
 /* A "Name: N kB" line of a /proc file, in bytes; 0 when absent. */
 static size_t proc_kb(const char *path, const char *name)
 {
