@@ -100,21 +100,58 @@ int ms_word_eq(const char *word, const char *name)
     return strncasecmp(word, name, 15) == 0;
 }
 
-size_t ms_peak_rss(void)
+/* A "Name: N kB" line of a /proc file, in bytes; 0 when absent. */
+static size_t proc_kb(const char *path, const char *name)
 {
-    struct rusage ru;
-    if (getrusage(RUSAGE_SELF, &ru) != 0) return 0;
-    return (size_t)ru.ru_maxrss * 1024u;
-}
-
-size_t ms_mem_available(void)
-{
-    FILE *f = fopen("/proc/meminfo", "r");
+    FILE *f = fopen(path, "r");
     if (!f) return 0;
     char line[256];
     unsigned long long kb = 0;
+    size_t len = strlen(name);
     while (fgets(line, sizeof line, f))
-        if (sscanf(line, "MemAvailable: %llu kB", &kb) == 1) break;
+        if (strncmp(line, name, len) == 0 && line[len] == ':' &&
+            sscanf(line + len + 1, "%llu", &kb) == 1)
+            break;
     fclose(f);
     return (size_t)kb * 1024u;
+}
+
+size_t ms_rss(void) { return proc_kb("/proc/self/status", "VmRSS"); }
+
+size_t ms_peak_rss(void)
+{
+    size_t hwm = proc_kb("/proc/self/status", "VmHWM");
+    struct rusage ru;
+    if (hwm || getrusage(RUSAGE_SELF, &ru) != 0) return hwm;
+    return (size_t)ru.ru_maxrss * 1024u;
+}
+
+/* A number from the first line of a file; 0 when absent or not a number ("max"). */
+static size_t file_number(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    unsigned long long v = 0;
+    if (!f) return 0;
+    if (fscanf(f, "%llu", &v) != 1) v = 0;
+    fclose(f);
+    return (size_t)v;
+}
+
+/* a < b, where 0 means unknown (larger than anything) */
+static size_t min_known(size_t a, size_t b) { return !a ? b : !b ? a : MS_MIN(a, b); }
+
+size_t ms_mem_available(void)
+{
+    size_t avail = proc_kb("/proc/meminfo", "MemAvailable");
+    /* a batch job's memory limit (cgroup v2) may be lower than the machine's */
+    size_t max = file_number("/sys/fs/cgroup/memory.max");
+    size_t cur = file_number("/sys/fs/cgroup/memory.current");
+    if (max) avail = min_known(avail, max > cur ? max - cur : 1);
+    /* and so may the address-space limit (ulimit -v), less what is mapped already */
+    struct rlimit rl;
+    if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) {
+        size_t mapped = proc_kb("/proc/self/status", "VmSize");
+        avail = min_known(avail, (size_t)rl.rlim_cur > mapped ? (size_t)rl.rlim_cur - mapped : 1);
+    }
+    return avail;
 }

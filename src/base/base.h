@@ -43,10 +43,14 @@ int ms_env_flag(const char *name);
  * characters as VMD does: "newcartoon" matches "NewCartoon". */
 int ms_word_eq(const char *word, const char *name);
 
-/* Resident-set peak of this process in bytes (from getrusage). */
+/* Resident-set peak of this process in bytes (VmHWM of /proc/self/status, else getrusage). */
 size_t ms_peak_rss(void);
-/* Memory the system can still give, in bytes (MemAvailable in /proc/meminfo); 0 when
- * unknown. For sizes no file bounds: check them before allocating. */
+/* Resident set of this process now, in bytes (VmRSS of /proc/self/status); 0 when unknown. */
+size_t ms_rss(void);
+/* Memory this process can still get, in bytes: MemAvailable in /proc/meminfo, or less when
+ * the cgroup's memory limit or the address-space limit (RLIMIT_AS, `ulimit -v`, less what
+ * is mapped already) leaves less; 0 when unknown. For sizes no file bounds: check them
+ * before allocating. */
 size_t ms_mem_available(void);
 
 #define MS_MIN(a, b) ((a) < (b) ? (a) : (b))

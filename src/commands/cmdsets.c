@@ -1,7 +1,8 @@
 /* cmdsets.c: the table of command sets ms_app_new creates, in order: quit and exit, the
  * molecule commands, atomselect, the scene-side commands (scenecmds.h), the rep subcommands
  * of mol (which extend `mol`, so they come after it), measure and the vector commands,
- * volmap, the C commands under the movie library and topotools' ::molscope::topo. */
+ * volmap, the C commands under the movie library, topotools' ::molscope::topo and the
+ * memory report ::molscope::memory. */
 #include "config.h"
 #include "commands/atomsel.h"
 #include "commands/commands.h"
@@ -38,5 +39,6 @@ const ms_app_cmdset_fn ms_command_sets[] = {
     ms_cmd_movie_register,
     ms_cmd_pbc_register,
     ms_cmd_topo_register,
+    ms_cmd_memory_register,
     NULL,
 };

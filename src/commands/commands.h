@@ -75,6 +75,8 @@ void ms_cmd_ss_register(ms_app *app);
 void ms_cmd_movie_register(ms_app *app);
 /* pbc: pbctools' wrap, unwrap, join, set, get (cmd_pbc.c) */
 void ms_cmd_pbc_register(ms_app *app);
+/* ::molscope::memory (cmd_memory.c): the bytes each data structure holds. */
+void ms_cmd_memory_register(ms_app *app);
 /* ::molscope::topo (cmd_topo.c, cmd_topo_build.c): the C half of the topotools package. */
 void ms_cmd_topo_register(ms_app *app);
 /* The rep subcommands of mol (addrep, modstyle, ...) and molinfo's rep keywords

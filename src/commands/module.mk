@@ -8,7 +8,8 @@ src_libmscore_la_SOURCES += \
 	src/commands/cmd_mol.c src/commands/cmd_animate.c src/commands/cmd_vmdinfo.c \
 	src/commands/tclvec.h src/commands/tclvec.c src/commands/cmd_vector.c \
 	src/commands/cmd_measure.c src/commands/cmd_measure_geom.c src/commands/cmd_ss.c \
-	src/commands/cmd_volmap.c src/commands/cmd_movie.c src/commands/cmd_pbc.c
+	src/commands/cmd_volmap.c src/commands/cmd_movie.c src/commands/cmd_pbc.c \
+	src/commands/cmd_memory.c
 # topotools' C half (topo.h)
 src_libmscore_la_SOURCES += \
 	src/commands/topo.h src/commands/cmd_topo.c src/commands/cmd_topo_build.c

@@ -275,24 +275,48 @@ void ms_terms_clear(ms_terms *t)
     memset(t, 0, sizeof *t);
 }
 
-size_t ms_mol_structure_bytes(const ms_molecule *m)
+static size_t bond_bytes(const ms_molecule *m)
 {
-    size_t per_atom = 0;
-    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) per_atom += atom_fields[k].elsize;
-    size_t bytes = per_atom * m->atoms.cap + ms_strtab_bytes(m->strings);
-    if (m->has_bonds) {
-        size_t nb = m->bonds.start[m->atoms.n];
-        bytes += (m->atoms.n + 1) * sizeof(uint32_t) + nb * sizeof(uint32_t);
-        if (m->bonds.order) bytes += nb * sizeof(float);
-        if (m->bonds.type) bytes += nb * sizeof(ms_str);
-    }
-    bytes += (m->nresidues + 1) * sizeof(uint32_t);
+    if (!m->has_bonds) return 0;
+    size_t nb = m->bonds.start[m->atoms.n];
+    return (m->atoms.n + 1) * sizeof(uint32_t) + nb * sizeof(uint32_t) +
+           (m->bonds.order ? nb * sizeof(float) : 0) + (m->bonds.type ? nb * sizeof(ms_str) : 0);
+}
+
+static size_t topology_bytes(const ms_molecule *m)
+{
+    size_t bytes = (m->nresidues + 1) * sizeof(uint32_t);
     for (int k = 0; k < MS_TERM_KINDS; k++) {
         const ms_terms *t = &m->terms[k];
         bytes += t->cap * ms_term_width(k) * sizeof(uint32_t);
         if (t->type) bytes += t->cap * sizeof(ms_str);
     }
+    if (m->pfrag) bytes += m->atoms.n * sizeof(int32_t);
+    if (m->nfrag) bytes += m->atoms.n * sizeof(int32_t);
     return bytes;
+}
+
+void ms_mol_memory_of(const ms_molecule *m, ms_mol_memory *out)
+{
+    memset(out, 0, sizeof *out);
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) out->atoms += atom_fields[k].elsize;
+    out->atoms *= m->atoms.cap;
+    out->strings = ms_strtab_bytes(m->strings);
+    out->bonds = bond_bytes(m);
+    out->topology = topology_bytes(m);
+    for (size_t f = 0; f < m->nframes; f++)
+        out->frames += 3 * m->atoms.n * sizeof(float) * (m->frames[f].vel ? 2 : 1);
+    for (int k = 0; k < 4; k++)
+        if (m->user[k]) out->other += m->atoms.cap * sizeof(float);
+    for (size_t v = 0; v < m->nvolumes; v++)
+        out->other += ms_volume_size(&m->volumes[v]) * sizeof(float);
+}
+
+size_t ms_mol_structure_bytes(const ms_molecule *m)
+{
+    ms_mol_memory mm;
+    ms_mol_memory_of(m, &mm);
+    return mm.atoms + mm.strings + mm.bonds + mm.topology;
 }
 
 int ms_mol_add_file(ms_molecule *m, const char *path, const char *type, ms_error *err)

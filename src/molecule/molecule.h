@@ -175,6 +175,17 @@ static inline const char *ms_mol_str(const ms_molecule *m, ms_str id)
     return ms_strtab_get(m->strings, id);
 }
 
+/* Bytes a molecule holds, by structure (allocated capacities, not what is in use). */
+typedef struct ms_mol_memory {
+    size_t atoms;      /* the per-atom arrays of ms_atoms */
+    size_t strings;    /* the interned strings */
+    size_t bonds;      /* bonds (CSR, orders and types) */
+    size_t topology;   /* residues, fragments, angles, dihedrals, impropers */
+    size_t frames;     /* coordinates and velocities of every frame */
+    size_t other;      /* user fields, volumes' data */
+} ms_mol_memory;
+void ms_mol_memory_of(const ms_molecule *m, ms_mol_memory *out);
+
 /* Bytes used by the structure (not frames), for memory reports. */
 size_t ms_mol_structure_bytes(const ms_molecule *m);
 

@@ -223,7 +223,7 @@ static int draw_surface(const ms_rep_build *b, const ms_volume *v, const iso_par
     int rc = 0;
     if (ip->style == STYLE_SOLID) {
         ms_dl_mesh_adopt(dl, (float *)mesh.pos, (int8_t *)mesh.normal, (ms_rgba8 *)mesh.color,
-                         mesh.nv, mesh.index, mesh.nt);
+                         mesh.nv, MS_QSURF_MESH_VCAP(&mesh), mesh.index, mesh.nt);
         return 0;
     }
     if (ip->style == STYLE_WIRE) rc = wire_lines(b, &mesh, ip->thickness, dl, err);

@@ -70,7 +70,7 @@ static int build(const ms_rep_build *b, ms_displaylist *dl, ms_error *err)
     ms_qsurf_beads_free(&beads);
     if (rc) return -1;
     ms_dl_mesh_adopt(dl, (float *)mesh.pos, (int8_t *)mesh.normal, (ms_rgba8 *)mesh.color,
-                     mesh.nv, mesh.index, mesh.nt);
+                     mesh.nv, MS_QSURF_MESH_VCAP(&mesh), mesh.index, mesh.nt);
     return 0;
 }
 

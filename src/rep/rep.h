@@ -221,6 +221,9 @@ int ms_rep_update(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err);
 /* Only the selection and colours (for resetview, scaleminmax and counts). */
 int ms_rep_update_data(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err);
 const ms_displaylist *ms_rep_list(const ms_rep *r);
+/* Bytes a rep keeps besides its display list: the selection, colour ids, smoothed
+ * coordinates and builders' scratch buffers. */
+size_t ms_rep_cache_bytes(const ms_rep *r);
 /* Place the shown reps of m in s, each brought up to date first and placed once per periodic
  * image, model being the molecule's model-to-world transform. 0, or -1 with err naming the
  * rep. */

@@ -232,6 +232,7 @@ typedef struct ms_replist {
     size_t n, cap;
     unsigned next_name;
     unsigned long struct_gen, coord_gen, vol_gen;
+    unsigned long ss_gen;       /* secondary structure computed: only reps reading it care */
     long last_frame;
 } ms_replist;
 

@@ -27,13 +27,22 @@ static int needs_ss(const ms_rep *r)
            r->coloring.method == MS_COL_STRUCTURE || mentions_ss(r->seltext);
 }
 
-/* Secondary structure for a molecule whose file had none: DSSP, computed once. */
+/* Secondary structure for a molecule whose file had none: DSSP, computed once. It changes
+ * only the atoms' ss codes, so the reps that do not read them (a QuickSurf coloured by chain)
+ * keep their selection, colours and list. */
 static int ensure_ss(ms_molecule *m, ms_replist *l, const ms_rep *r, ms_error *err)
 {
     if (m->ss_known || m->nframes == 0 || !needs_ss(r)) return 0;
     if (ms_ss_ensure(m, m->frame, err)) return -1;
-    if (m->ss_known) l->struct_gen++;
+    if (m->ss_known) l->ss_gen++;
     return 0;
+}
+
+/* The structure's generation as r sees it: both counts only grow, so their sum changes
+ * whenever one r depends on does. */
+static unsigned long struct_gen_of(const ms_replist *l, const ms_rep *r)
+{
+    return l->struct_gen + (needs_ss(r) ? l->ss_gen : 0);
 }
 
 /* ---------------------------------------------------------------- selection */
@@ -62,7 +71,7 @@ static int evaluate(ms_rep *r, ms_molecule *m, long f, ms_bitset *bits, uint32_t
 static int update_selection(ms_molecule *m, ms_replist *l, ms_rep *r, ms_error *err)
 {
     ms_rep_cache *c = r->cache;
-    int stale = !c->sel_valid || c->sel_struct != l->struct_gen || c->sel_natoms != m->atoms.n ||
+    int stale = !c->sel_valid || c->sel_struct != struct_gen_of(l, r) || c->sel_natoms != m->atoms.n ||
                 (r->selupdate && (c->sel_frame != m->frame || c->sel_coord != l->coord_gen));
     if (!stale) return 0;
     ms_bitset bits;
@@ -82,7 +91,7 @@ static int update_selection(ms_molecule *m, ms_replist *l, ms_rep *r, ms_error *
         ms_bitset_free(&bits);
     }
     c->sel_valid = 1;
-    c->sel_struct = l->struct_gen;
+    c->sel_struct = struct_gen_of(l, r);
     c->sel_coord = l->coord_gen;
     c->sel_frame = m->frame;
     c->sel_natoms = m->atoms.n;
@@ -97,7 +106,7 @@ static int update_colors(ms_rep_state *reps, ms_molecule *m, ms_replist *l, ms_r
     ms_colmethod meth = r->coloring.method;
     int per_frame = r->colupdate || ms_rep_coloring_timed(meth);
     int stale = !c->col_valid || c->col_colors != reps->colors->version ||
-                c->col_struct != l->struct_gen || c->colcap < m->atoms.n ||
+                c->col_struct != struct_gen_of(l, r) || c->colcap < m->atoms.n ||
                 (per_frame && c->col_frame != m->frame) ||
                 (r->colupdate && c->col_coord != l->coord_gen) || meth == MS_COL_THROB;
     if (!stale) return 0;
@@ -116,7 +125,7 @@ static int update_colors(ms_rep_state *reps, ms_molecule *m, ms_replist *l, ms_r
     r->range_auto = 0;
     c->col_valid = 1;
     c->col_colors = reps->colors->version;
-    c->col_struct = l->struct_gen;
+    c->col_struct = struct_gen_of(l, r);
     c->col_coord = l->coord_gen;
     c->col_frame = m->frame;
     c->col_gen++;
@@ -145,7 +154,7 @@ static void make_key(ms_rep_state *reps, const ms_molecule *m, const ms_replist 
 {
     memset(k, 0, sizeof *k);
     k->style_gen = r->cache->style_gen;
-    k->struct_gen = l->struct_gen;
+    k->struct_gen = struct_gen_of(l, r);
     k->coord_gen = l->coord_gen;
     k->sel_gen = r->cache->sel_gen;
     k->col_gen = r->cache->col_gen;
@@ -158,6 +167,19 @@ static void make_key(ms_rep_state *reps, const ms_molecule *m, const ms_replist 
     }
     k->frame = draws_now(r) || strstr(r->frames, "now") ? m->frame : -1;
     k->nframes = !draws_now(r) || r->smooth ? m->nframes : 0;
+}
+
+/* Scratch buffers are kept for the next build up to this size in all; beyond it (per-atom
+ * buffers of a large molecule: 12 bytes an atom for QuickSurf's colours, 7 for a NewCartoon
+ * of one protein in 1M atoms) they are freed, so that they do not sit beside the
+ * tracer's structures through a render. */
+#define SCRATCH_KEEP ((size_t)4 << 20)
+
+static void release_scratch(ms_rep_scratch *s)
+{
+    size_t bytes = 0;
+    for (int k = 0; k < MS_REP_NSCRATCH; k++) bytes += s->cap[k];
+    if (bytes > SCRATCH_KEEP) ms_rep_scratch_free(s);
 }
 
 int ms_rep_update(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err)
@@ -184,6 +206,7 @@ int ms_rep_update(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error *err)
     c->dl_valid = 1;
     c->key = key;
     c->builds++;
+    release_scratch(&c->scratch);
     return 0;
 }
 
@@ -289,6 +312,15 @@ int ms_rep_build_frames(ms_rep_state *reps, ms_molecule *m, ms_rep *r, ms_error 
 }
 
 const ms_displaylist *ms_rep_list(const ms_rep *r) { return &r->cache->dl; }
+
+size_t ms_rep_cache_bytes(const ms_rep *r)
+{
+    const ms_rep_cache *c = r->cache;
+    size_t bytes = (c->on.nbits + 63) / 64 * sizeof(uint64_t) + c->idxcap * sizeof(uint32_t) +
+                   c->colcap * sizeof(uint16_t) + c->poscap * sizeof(float);
+    for (int k = 0; k < MS_REP_NSCRATCH; k++) bytes += c->scratch.cap[k];
+    return bytes;
+}
 
 const uint32_t *ms_rep_atoms(const ms_rep *r, size_t *n)
 {

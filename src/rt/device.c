@@ -17,6 +17,7 @@ static RTCDevice device;
 static char start_error[256];
 
 static atomic_llong held;            /* bytes Embree holds */
+static atomic_llong peak;            /* the most it held since the last reset */
 static atomic_llong budget;          /* 0: no limit */
 static atomic_int denied;            /* an allocation was refused */
 static __thread char last_error[256];
@@ -36,6 +37,8 @@ static bool on_memory(void *user, ssize_t bytes, bool post)
         atomic_store(&denied, 1);
         return false;
     }
+    for (long long p = atomic_load(&peak); now > p && !atomic_compare_exchange_weak(&peak, &p, now);)
+        ;
     return true;
 }
 
@@ -71,37 +74,36 @@ void rt_device_set_budget(size_t bytes)
     atomic_store(&denied, 0);
 }
 
+size_t rt_device_held(void)
+{
+    long long h = atomic_load(&held);
+    return h > 0 ? (size_t)h : 0;
+}
+
+size_t rt_device_peak(void)
+{
+    long long p = atomic_load(&peak);
+    return p > 0 ? (size_t)p : 0;
+}
+
+void rt_device_peak_reset(void)
+{
+    atomic_store(&peak, atomic_load(&held));
+}
+
 int rt_device_check(RTCDevice dev, const char *what, ms_error *err)
 {
     enum RTCError code = rtcGetDeviceError(dev);
     if (code == RTC_ERROR_NONE && !atomic_load(&denied)) return 0;
     if (code == RTC_ERROR_OUT_OF_MEMORY || atomic_load(&denied))
-        ms_error_set(err, "%s: the scene is too large for the memory available", what);
+        ms_error_set(err, "%s: the scene is too large for the memory available (%.2f GB "
+                     "allowed): a coarser QuickSurf grid spacing, fewer atoms drawn or a smaller "
+                     "image would fit", what, (double)MS_MAX(atomic_load(&budget), 0) / 1e9);
     else
         ms_error_set(err, "%s: %s", what, last_error[0] ? last_error : "Embree failed");
     atomic_store(&denied, 0);
     last_error[0] = '\0';
     return -1;
-}
-
-/* A number from the first line of a file; 0 when absent or not a number ("max"). */
-static size_t file_number(const char *path)
-{
-    FILE *f = fopen(path, "r");
-    unsigned long long v = 0;
-    if (!f) return 0;
-    if (fscanf(f, "%llu", &v) != 1) v = 0;
-    fclose(f);
-    return (size_t)v;
-}
-
-size_t rt_mem_available(void)
-{
-    size_t avail = ms_mem_available();
-    /* a batch job's memory limit (cgroup v2) may be lower than the machine's */
-    size_t max = file_number("/sys/fs/cgroup/memory.max"), cur = file_number("/sys/fs/cgroup/memory.current");
-    if (max && max > cur && (!avail || max - cur < avail)) avail = max - cur;
-    return avail;
 }
 
 unsigned rt_fpu_fast(void)

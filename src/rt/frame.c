@@ -65,13 +65,25 @@ int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
 {
     size_t npix = (size_t)s->width * (size_t)s->height;
     size_t need = npix * (3 * sizeof(float) + sizeof(uint32_t) + 3);
-    size_t avail = o->memory ? o->memory : rt_mem_available();
+    size_t avail = o->memory ? o->memory : ms_mem_available();
     if (avail && need > avail / 10 * 9) {
         ms_error_set(err, "a %dx%d image needs %.2f GB for its buffers, more than the %.2f GB of "
-                     "memory available", s->width, s->height, (double)need / 1e9, (double)avail / 1e9);
+                     "memory available: a smaller image (display resize) would fit", s->width,
+                     s->height, (double)need / 1e9, (double)avail / 1e9);
         return -1;
     }
-    rt_device_set_budget(avail ? avail / 10 * 9 - need : 0);
+    size_t room = avail ? avail / 10 * 9 - need : 0, ntris, nother;
+    size_t est = rt_world_estimate(s, &ntris, &nother);
+    if (avail && est > room) {
+        ms_error_set(err, "the scene is too large: the ray tracer's acceleration structures "
+                     "need at least %.2f GB for "
+                     "%zu triangles and %zu other primitives, more than the %.2f GB of memory "
+                     "available beside the %dx%d image's buffers: a coarser QuickSurf grid "
+                     "spacing, fewer atoms drawn or a smaller image would fit",
+                     (double)est / 1e9, ntris, nother, (double)room / 1e9, s->width, s->height);
+        return -1;
+    }
+    rt_device_set_budget(room);
     return 0;
 }
 
@@ -158,6 +170,11 @@ static void frame_free(frame *f)
     free(f->rays);
 }
 
+/* The last render's memory (ms_rt_last_memory); renders run one at a time. */
+static ms_rt_memory last_memory;
+
+void ms_rt_last_memory(ms_rt_memory *out) { *out = last_memory; }
+
 static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options *o, ms_image *img,
                        ms_rt_stats *st, ms_error *err)
 {
@@ -165,6 +182,10 @@ static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options
     rt_shader sh;
     rt_shader_init(&sh, s, w, o->aosamples);
     if (frame_init(&f, s, &sh, o, err)) return -1;
+    size_t npix = (size_t)s->width * (size_t)s->height;
+    last_memory.world = w->owned_bytes;
+    last_memory.frame = npix * (3 * sizeof(float) + sizeof(uint32_t));
+    last_memory.image = 3 * npix;
     int rc = ms_image_alloc(img, s->width, s->height, err);
     if (rc == 0) {
         run_passes(&f, o, st);
@@ -183,6 +204,8 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     memset(img, 0, sizeof *img);
     if (rt_check_options(s, o, err) || rt_plan_memory(s, o, err)) return -1;
     rt_world w;
+    size_t held0 = rt_device_held();
+    rt_device_peak_reset();
     double t0 = ms_now(), c0 = cpu_now();
     int passes = o->max_passes > 0 && o->max_passes < o->aasamples + 1 ? o->max_passes : o->aasamples + 1;
     int rc = rt_world_build(&w, s, (double)s->width * (double)s->height * passes, err);
@@ -190,6 +213,7 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     st->build_cpu_s = cpu_now() - c0;
     if (rc == 0) {
         rc = trace_frame(s, &w, o, img, st, err);
+        last_memory.embree = rt_device_peak() - held0;
         rt_world_free(&w);
     }
     rt_device_set_budget(0);

@@ -49,6 +49,15 @@ typedef struct ms_rt_stats {
     uint64_t rays[MS_RT_NRAYKINDS];   /* camera, shadow, occlusion, reflection/transmission */
 } ms_rt_stats;
 
+/* What the last render (ms_rt_render) held at its peak, in bytes: Embree's acceleration
+ * structures and the buffers it made (its memory monitor's high-water mark), the arrays the
+ * world made for Embree (padded copies, spheres kept apart), the frame's accumulation and
+ * random-state buffers, and the 8-bit image. */
+typedef struct ms_rt_memory {
+    size_t embree, world, frame, image;
+} ms_rt_memory;
+void ms_rt_last_memory(ms_rt_memory *out);
+
 /* 12 antialiasing and 12 occlusion samples (VMD's defaults), no limits, no progress. */
 void ms_rt_options_default(ms_rt_options *o);
 /* The pass limit, time budget and ray depth from MOLSCOPE_RT_PASSES, MOLSCOPE_RT_TIME and

@@ -23,11 +23,12 @@ RTCDevice rt_device(ms_error *err);
 /* Bytes Embree may hold from now on (allocations past it fail, and the build reports that
  * the scene does not fit in memory); 0 lifts the limit. */
 void rt_device_set_budget(size_t bytes);
+/* Bytes Embree holds now, and the most it held since rt_device_peak_reset. */
+size_t rt_device_held(void);
+size_t rt_device_peak(void);
+void rt_device_peak_reset(void);
 /* After an Embree call: 0 when no error is pending, else -1 with err saying what failed. */
 int rt_device_check(RTCDevice dev, const char *what, ms_error *err);
-/* Memory available to this process now, in bytes: MemAvailable, or what is left of the
- * cgroup's limit when that is less; 0 when unknown. */
-size_t rt_mem_available(void);
 /* Flush-to-zero and denormals-are-zero on for the calling thread; returns the old state for
  * rt_fpu_restore. */
 unsigned rt_fpu_fast(void);
@@ -97,6 +98,7 @@ typedef struct rt_world {
     float eps;                  /* secondary ray offset, from the scene's size */
     void **owned;               /* arrays made for the build */
     size_t nowned, capowned;
+    size_t owned_bytes;         /* their sizes together */
     rt_sources set;             /* the scene's lists, their strokes and cap discs */
 } rt_world;
 
@@ -104,6 +106,9 @@ typedef struct rt_world {
  * times passes; 0: unknown, as for a session, which may trace many passes). 0, or -1 with err
  * set and w freed. */
 int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err);
+/* A lower bound of the bytes Embree will hold for s (its triangles, and its other
+ * primitives), to refuse a scene that cannot fit before building it. */
+size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother);
 /* The matrices of an item from a 4x4 row-major transform; -1 when singular. */
 int rt_item_matrices(rt_item *ri, const float x[16]);
 void rt_world_free(rt_world *w);

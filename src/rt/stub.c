@@ -42,3 +42,5 @@ int ms_rt_session_image(const ms_rt_session *ss, ms_image *img, ms_error *err)
 }
 
 void ms_rt_session_end(ms_rt_session *ss) {}
+
+void ms_rt_last_memory(ms_rt_memory *out) { memset(out, 0, sizeof *out); }

@@ -148,7 +148,7 @@ static int oom(ms_error *err)
 }
 
 void ms_dl_mesh_adopt(ms_displaylist *dl, float *xyz, int8_t *normal, ms_rgba8 *color,
-                      size_t nverts, uint32_t *tri, size_t ntris)
+                      size_t nverts, size_t vcap, uint32_t *tri, size_t ntris)
 {
     ms_dl_mesh *m = &dl->mesh;
     free(m->xyz);
@@ -159,7 +159,8 @@ void ms_dl_mesh_adopt(ms_displaylist *dl, float *xyz, int8_t *normal, ms_rgba8 *
     m->normal = normal;
     m->color = color;
     m->tri = tri;
-    m->nverts = m->vcap = nverts;
+    m->nverts = nverts;
+    m->vcap = MS_MAX(vcap, nverts);
     m->ntris = m->tcap = ntris;
 }
 

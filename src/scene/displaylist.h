@@ -136,9 +136,10 @@ int ms_dl_mesh_extend(ms_displaylist *dl, size_t nverts, size_t ntris, size_t *v
                       ms_error *err);
 
 /* Make the list's mesh these malloc'd arrays (a surface engine's output, taken without a
- * copy); whatever mesh the list held is freed. */
+ * copy): nverts vertices in arrays of vcap >= nverts (vcap > nverts spares the tracer a
+ * padded copy of xyz); whatever mesh the list held is freed. */
 void ms_dl_mesh_adopt(ms_displaylist *dl, float *xyz, int8_t *normal, ms_rgba8 *color,
-                      size_t nverts, uint32_t *tri, size_t ntris);
+                      size_t nverts, size_t vcap, uint32_t *tri, size_t ntris);
 
 /* Append one primitive. Each returns 0, or -1 when memory runs out (the list is unchanged). */
 int ms_dl_sphere(ms_displaylist *dl, const float c[3], float r, ms_rgba8 col, int res);

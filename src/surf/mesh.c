@@ -1,5 +1,5 @@
 /* mesh.c: the QuickSurf mesh: exact-size growth (realloc, which for large blocks remaps
- * pages instead of copying) within the surface's memory budget, release, memory and area; and the advice that large buffers
+ * pages instead of copying; the vertex arrays keep one spare vertex, MS_QSURF_MESH_VCAP) within the surface's memory budget, release, memory and area; and the advice that large buffers
  * be backed by huge pages, which spares most of their page faults. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
@@ -29,9 +29,10 @@ static int resize(void **p, size_t n, size_t elsize)
 
 int ms_qsurf_mesh_resize(ms_qsurf_mesh *m, size_t nv, size_t nt)
 {
-    if (resize((void **)&m->pos, nv, 3 * sizeof *m->pos) < 0 ||
-        resize((void **)&m->normal, nv, 3 * sizeof *m->normal) < 0 ||
-        resize((void **)&m->color, nv, 4 * sizeof *m->color) < 0 ||
+    /* one spare vertex: a display list adopting the arrays hands pos to Embree as it is */
+    if (resize((void **)&m->pos, nv + 1, 3 * sizeof *m->pos) < 0 ||
+        resize((void **)&m->normal, nv + 1, 3 * sizeof *m->normal) < 0 ||
+        resize((void **)&m->color, nv + 1, 4 * sizeof *m->color) < 0 ||
         resize((void **)&m->index, nt, 3 * sizeof *m->index) < 0)
         return -1;
     m->nv = nv, m->nt = nt;
@@ -45,7 +46,8 @@ int ms_qsurf_mesh_fits(ms_qsurf_extract *mc, size_t nv, size_t nt, ms_error *err
     mc->over_budget = 1;
     ms_error_set(err, "the mesh needs %.1f MB (%zu vertices and %zu triangles so far), more "
                  "than the %.1f MB the memory budget of %.1f MB leaves it beside the density "
-                 "slabs (MOLSCOPE_QUICKSURF_MEMLIMIT)", bytes / 1048576, nv, nt,
+                 "slabs (MOLSCOPE_QUICKSURF_MEMLIMIT or the memory available; a coarser grid "
+                 "spacing makes a smaller mesh)", bytes / 1048576, nv, nt,
                  (double)mc->mesh_room / 1048576, (double)mc->budget / 1048576);
     return -1;
 }

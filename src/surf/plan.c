@@ -9,6 +9,7 @@
 #include "surf/qsurf_impl.h"
 
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -109,10 +110,14 @@ static int plan_within(const ms_qsurf_grid *g, int colored, size_t budget, int m
     }
     if (layers == 0) {
         int want = MS_MIN(8, total);
+        size_t need = ms_qsurf_plan_bytes(g, colored, want);
+        /* a slab's planes shrink with the square of the spacing */
+        double fit = g->h * sqrt((double)need / (double)MS_MAX(budget, 1)) * 1.05;
         ms_error_set(err, "a slab of %d layers of %d x %d voxels needs %zu bytes, more than "
-                     "half the memory budget of %zu bytes (MOLSCOPE_QUICKSURF_MEMLIMIT; the "
-                     "other half is kept for the mesh)", want, g->n[0], g->n[1],
-                     ms_qsurf_plan_bytes(g, colored, want), 2 * budget);
+                     "half the memory budget of %zu bytes (MOLSCOPE_QUICKSURF_MEMLIMIT or the "
+                     "memory available; the other half is kept for the mesh): a grid spacing "
+                     "of about %.2g A instead of %.2g A would fit", want, g->n[0], g->n[1],
+                     need, 2 * budget, fit, g->h);
         return -1;
     }
     pl->layers = layers;

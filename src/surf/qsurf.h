@@ -107,6 +107,9 @@ static inline float ms_qsurf_unpack_color(ms_qsurf_color_t c)
  * An indexed triangle mesh with shared vertices: each vertex is used by all the triangles
  * around it. Triangles are counter-clockwise seen from outside (from lower density);
  * normals point outwards. The arrays are plain malloc blocks a caller may adopt. */
+/* The vertex arrays hold nv + 1 vertices (the last one spare, so that a display list can
+ * hand pos to Embree, which reads 16 bytes per vertex, without a copy): MS_QSURF_MESH_VCAP
+ * is the capacity in vertices of a mesh whose arrays exist. */
 typedef struct ms_qsurf_mesh {
     size_t nv, nt;
     ms_qsurf_pos_t *pos;          /* 3 * nv: x y z */
@@ -114,6 +117,8 @@ typedef struct ms_qsurf_mesh {
     ms_qsurf_color_t *color;      /* 4 * nv: r g b a */
     uint32_t *index;              /* 3 * nt */
 } ms_qsurf_mesh;
+
+#define MS_QSURF_MESH_VCAP(m) ((m)->pos ? (m)->nv + 1 : 0)
 
 void ms_qsurf_mesh_free(ms_qsurf_mesh *m);
 /* Bytes held by the mesh arrays; per vertex (attributes only) and in all. */
