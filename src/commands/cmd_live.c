@@ -4,6 +4,8 @@
  *                                          the URL with its token on stdout and return it
  *   display live off                       stop serving
  *   display live status                    "off", or a dict: url port images passes error
+ *   display live mode ?raster|progressive? the page's images: the raster image alone, or
+ *                                          refined by ray-traced passes (the default)
  *
  * Under MPI only rank 0 serves; on the other ranks the command does nothing. */
 #include "config.h"
@@ -39,6 +41,9 @@ static int live_on(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
     if (ms_live_start(app, port, bind, &st, &err))
         return ms_cmd_error(interp, "display live on: %s", err.msg);
     printf("display live: %s\n", st.url);
+    printf("display live: whoever holds this URL (its token) can run any command in this "
+           "session from the page's console, as you can at this prompt: share it only as "
+           "you would your shell\n");
     fflush(stdout);
     Tcl_SetObjResult(interp, Tcl_NewStringObj(st.url, -1));
     return TCL_OK;
@@ -69,12 +74,24 @@ static int live_status(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     return TCL_OK;
 }
 
+static int live_mode(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const char *const modes[] = {"progressive", "raster", NULL};
+    int raster = 0;
+    if (objc == 4 && ms_arg_choice(interp, objv[3], modes, "mode", &raster)) return TCL_ERROR;
+    if (ms_live_mode(app, objc == 4, &raster))
+        return ms_cmd_error(interp, "display live mode: the live view is not on");
+    Tcl_SetObjResult(interp, Tcl_NewStringObj(modes[raster], -1));
+    return TCL_OK;
+}
+
 static int disp_live(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
 {
     static const ms_subcmd table[] = {
         {"on", live_on, 0, 3, "?<port>? ?-bind <address>?"},
         {"off", live_off, 0, 0, ""},
         {"status", live_status, 0, 0, ""},
+        {"mode", live_mode, 0, 1, "?raster|progressive?"},
         {NULL, NULL, 0, 0, NULL}};
     return ms_args_dispatch(app, interp, objc, objv, 2, table, NULL, NULL);
 }

@@ -59,6 +59,14 @@ static void drop_scene(ms_live_frames *f)
     f->valid = 0;
 }
 
+void ms_live_frames_set_raster(ms_live_frames *f, int raster_only)
+{
+    if (f->raster_only == raster_only) return;
+    f->raster_only = raster_only;
+    f->valid = 0;                    /* the next step makes the scene and its image again */
+    ms_live_frames_kick(f);
+}
+
 int ms_live_frames_stale(const ms_live_frames *f)
 {
     const ms_app *app = f->app;
@@ -112,8 +120,8 @@ static void restart(ms_live_frames *f)
     rt_settings(f, &o);
     f->scene.aa_samples = o.aasamples;
     f->scene.ao_samples = o.aosamples;
-    f->rt_pending = ms_rt_available();
     ms_gl *gl = ms_gl_display_current();
+    f->rt_pending = ms_rt_available() && !(gl && f->raster_only);
     if (gl) {
         ms_image img;
         if (ms_gl_render(gl, &f->scene, &img, NULL, &err) == 0) {
