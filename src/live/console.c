@@ -1,18 +1,18 @@
 /* console.c: what the live page runs in the session (live.h): a command typed in its console
  * (Tcl, or Python through ::molscope::live::python) or one command given as its words (the
  * panels' `mol modstyle ...`), evaluated at the global level like a command at the prompt,
- * with what it writes to stdout and stderr captured (a channel stacked over each for the
- * time of the command, which also passes everything on) and answered as JSON; and the
+ * with what it writes to stdout and stderr captured (the descriptors sent to a temporary
+ * file for the time of the command, then passed on) and answered as JSON; and the
  * session's state for the panels, read by tcl/live/live.tcl's ::molscope::live::session
  * with the catalog of drawing methods and colouring methods added from the rep module. */
 #include "config.h"
 #include "live/live.h"
 #include "rep/rep.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <tcl.h>
+#include <unistd.h>
 
 #define MAX_CAPTURE (1 << 20)        /* output kept per command; the rest is dropped */
 
@@ -48,61 +48,56 @@ static void json_key(Tcl_DString *out, const char *key, const char *value)
 
 /* ---------------------------------------------------------------- output capture */
 
+/* What the command writes to a descriptor (Tcl's puts, the C printf of `mol list`, Python's
+ * prints) goes to a temporary file for its time, then is read back and written on to the
+ * real descriptor, so the terminal still gets it, after the command. */
 typedef struct capture {
-    Tcl_Channel base;                /* the standard channel (its handle stays the bottom) */
-    Tcl_Channel top;                 /* the stacked channel, NULL when none */
-    Tcl_DString text;
+    int fd, saved;
+    FILE *tmp;
 } capture;
 
-static int cap_close(ClientData cd, Tcl_Interp *interp)
+static void flush_fd(Tcl_Interp *interp, int fd)
 {
-    return 0;
+    Tcl_Channel ch = Tcl_GetStdChannel(fd == 1 ? TCL_STDOUT : TCL_STDERR);
+    if (ch) Tcl_Flush(ch);
+    fflush(fd == 1 ? stdout : stderr);
 }
 
-static int cap_input(ClientData cd, char *buf, int n, int *err)
+static void capture_start(Tcl_Interp *interp, capture *c, int fd)
 {
-    *err = EINVAL;
-    return -1;
-}
-
-static int cap_output(ClientData cd, const char *buf, int n, int *err)
-{
-    capture *c = cd;
-    if (Tcl_DStringLength(&c->text) + n <= MAX_CAPTURE) Tcl_DStringAppend(&c->text, buf, n);
-    Tcl_Channel below = c->top ? Tcl_GetStackedChannel(c->top) : NULL;
-    if (below) Tcl_WriteRaw(below, buf, n);
-    return n;
-}
-
-static void cap_watch(ClientData cd, int mask)
-{
-}
-
-static int cap_handle(ClientData cd, int direction, ClientData *handle)
-{
-    return TCL_ERROR;
-}
-
-static const Tcl_ChannelType cap_type = {
-    "molscope-live-capture", TCL_CHANNEL_VERSION_5, cap_close, cap_input, cap_output, NULL, NULL,
-    NULL, cap_watch, cap_handle, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
-
-static void capture_start(Tcl_Interp *interp, capture *c, int which)
-{
-    Tcl_DStringInit(&c->text);
-    c->base = Tcl_GetStdChannel(which);
-    c->top = c->base ? Tcl_StackChannel(interp, &cap_type, c, TCL_WRITABLE, c->base) : NULL;
-}
-
-/* Unstack the channel when the command left it in place (it may have closed the channel or
- * set another standard channel). */
-static void capture_stop(Tcl_Interp *interp, capture *c, int which)
-{
-    if (c->top && Tcl_GetStdChannel(which) == c->base && Tcl_GetTopChannel(c->base) == c->top) {
-        Tcl_Flush(c->top);
-        Tcl_UnstackChannel(interp, c->top);
+    c->fd = fd;
+    c->saved = -1;
+    if (!(c->tmp = tmpfile())) return;
+    flush_fd(interp, fd);
+    if ((c->saved = dup(fd)) < 0 || dup2(fileno(c->tmp), fd) < 0) {
+        if (c->saved >= 0) close(c->saved);
+        fclose(c->tmp);
+        c->tmp = NULL;
     }
-    c->top = NULL;
+}
+
+/* Put the descriptor back; what was written is appended to text (MAX_CAPTURE at most) and
+ * written on to the descriptor. */
+static void capture_stop(Tcl_Interp *interp, capture *c, Tcl_DString *text)
+{
+    if (!c->tmp) return;
+    flush_fd(interp, c->fd);
+    dup2(c->saved, c->fd);
+    close(c->saved);
+    rewind(c->tmp);
+    char buf[8192];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, c->tmp)) > 0) {
+        size_t keep = MAX_CAPTURE - (size_t)Tcl_DStringLength(text);
+        Tcl_DStringAppend(text, buf, (int)(n < keep ? n : keep));
+        for (size_t off = 0; off < n;) {
+            ssize_t w = write(c->fd, buf + off, n - off);
+            if (w <= 0) break;
+            off += (size_t)w;
+        }
+    }
+    fclose(c->tmp);
+    c->tmp = NULL;
 }
 
 /* ---------------------------------------------------------------- running commands */
@@ -111,28 +106,28 @@ int ms_live_run(ms_app *app, Tcl_Obj *cmd, int as_words, Tcl_DString *json)
 {
     Tcl_Interp *interp = app->interp;
     capture out, err;
+    Tcl_DString text;
     Tcl_Obj **objv;
     int objc = 0, rc;
     Tcl_IncrRefCount(cmd);
-    capture_start(interp, &out, TCL_STDOUT);
-    capture_start(interp, &err, TCL_STDERR);
+    capture_start(interp, &out, 1);
+    capture_start(interp, &err, 2);
     if (as_words && Tcl_ListObjGetElements(interp, cmd, &objc, &objv) == TCL_OK && objc > 0)
         rc = Tcl_EvalObjv(interp, objc, objv, TCL_EVAL_GLOBAL);
     else if (as_words)
         rc = objc == 0 ? (Tcl_SetResult(interp, "no command given", TCL_STATIC), TCL_ERROR) : TCL_ERROR;
     else
         rc = Tcl_EvalObjEx(interp, cmd, TCL_EVAL_GLOBAL);
-    capture_stop(interp, &err, TCL_STDERR);
-    capture_stop(interp, &out, TCL_STDOUT);
+    Tcl_DStringInit(&text);
+    capture_stop(interp, &out, &text);
+    capture_stop(interp, &err, &text);
     Tcl_DecrRefCount(cmd);
-    Tcl_DStringAppend(&out.text, Tcl_DStringValue(&err.text), Tcl_DStringLength(&err.text));
     Tcl_DStringAppend(json, rc == TCL_ERROR ? "{\"ok\":false," : "{\"ok\":true,", -1);
     json_key(json, rc == TCL_ERROR ? "error" : "result", Tcl_GetStringResult(interp));
     Tcl_DStringAppend(json, ",\"output\":", -1);
-    ms_live_json_str(json, Tcl_DStringValue(&out.text), (size_t)Tcl_DStringLength(&out.text));
+    ms_live_json_str(json, Tcl_DStringValue(&text), (size_t)Tcl_DStringLength(&text));
     Tcl_DStringAppend(json, "}", 1);
-    Tcl_DStringFree(&out.text);
-    Tcl_DStringFree(&err.text);
+    Tcl_DStringFree(&text);
     Tcl_ResetResult(interp);
     return rc == TCL_ERROR ? -1 : 0;
 }
