@@ -4,7 +4,8 @@
  * commands. libmicrohttpd parses HTTP and form bodies; this file only routes:
  *
  *   GET  /?token=T             the page (tcl/live/index.html of the Tcl library)
- *   GET  /state?token=T        {"serial":N,"passes":P,"maxpasses":M,"width":W,...} (JSON);
+ *   GET  /state?token=T        {"serial":N,"passes":P,"maxpasses":M,"width":W,...,"version":V}
+ *                              (JSON; V: the world's scene version, which /session gives too);
  *                              with &since=N, a long poll: the answer waits (the connection
  *                              suspended) until the image serial is no longer N, or 20 s
  *   GET  /image.png?token=T    the current image
@@ -134,8 +135,9 @@ static enum MHD_Result reply_state(live_server *sv, struct MHD_Connection *c)
     err[k] = '\0';
     snprintf(json, sizeof json,
              "{\"serial\":%lu,\"passes\":%d,\"maxpasses\":%d,\"width\":%d,\"height\":%d,"
-             "\"error\":\"%s\"}",
-             f->serial, f->passes, f->max_passes, sv->app->world.width, sv->app->world.height, err);
+             "\"version\":%lu,\"error\":\"%s\"}",
+             f->serial, f->passes, f->max_passes, sv->app->world.width, sv->app->world.height,
+             sv->app->world.scene_version, err);
     return reply(c, MHD_HTTP_OK, "application/json", json, strlen(json));
 }
 
