@@ -4,6 +4,8 @@
  *                                          the URL with its token on stdout and return it
  *   display live off                       stop serving
  *   display live status                    "off", or a dict: url port images passes error
+ *                                          timing (the last raster image's milliseconds:
+ *                                          scene, upload, draw and readback, PNG)
  *   display live mode ?raster|progressive? the page's images: the raster image alone, or
  *                                          refined by ray-traced passes (the default)
  *
@@ -70,6 +72,9 @@ static int live_status(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("images", -1), Tcl_NewWideIntObj((Tcl_WideInt)st.images));
     Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("passes", -1), Tcl_NewIntObj(st.passes));
     Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("error", -1), Tcl_NewStringObj(st.error, -1));
+    Tcl_Obj *t = Tcl_NewListObj(0, NULL);
+    for (int i = 0; i < 4; i++) Tcl_ListObjAppendElement(NULL, t, Tcl_NewDoubleObj(st.timing[i] * 1e3));
+    Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("timing", -1), t);
     Tcl_SetObjResult(interp, d);
     return TCL_OK;
 }

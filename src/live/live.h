@@ -45,6 +45,9 @@ typedef struct ms_live_frames {
     int idle_queued;
     void *timer;                  /* Tcl_TimerToken of the change check */
     int raster_only;              /* no ray-traced passes while a GL display draws */
+    double timing[4];             /* the last raster image's seconds: scene, upload, draw, PNG */
+    double interact_until;        /* view changes from the page: coarse images until then */
+    int coarse;                   /* the image is a coarse one (redrawn whole after the drag) */
     void (*on_image)(void *ud);   /* called after each new image (may be NULL) */
     void *ud;
 } ms_live_frames;
@@ -54,6 +57,9 @@ void ms_live_frames_start(ms_live_frames *f, ms_app *app);
 void ms_live_frames_stop(ms_live_frames *f);
 /* Render at the next idle turn, not at the next change check (after a view change). */
 void ms_live_frames_kick(ms_live_frames *f);
+/* A view change from the page: while they come (0.3 s apart at most) the raster images are
+ * drawn at half the size each way and not ray traced, then the whole image follows. */
+void ms_live_frames_interact(ms_live_frames *f);
 /* Show the raster image only (1) or refine it with ray-traced passes (0); the next image
  * follows the choice. */
 void ms_live_frames_set_raster(ms_live_frames *f, int raster_only);
@@ -92,6 +98,7 @@ typedef struct ms_live_status {
     unsigned long images;         /* serial of the current image */
     int passes;
     char error[256];
+    double timing[4];             /* ms_live_frames.timing */
 } ms_live_status;
 
 /* Whether this build has the server; when not, why is written in why. */

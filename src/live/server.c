@@ -233,7 +233,7 @@ static enum MHD_Result on_view(live_server *sv, struct MHD_Connection *c, const 
     if (post_feed(pc, data, size, MAX_BODY)) return MHD_YES;
     if (pc->bad) return refuse(c, "view", pc);
     ms_live_view_apply(sv->app, &pc->v);
-    ms_live_frames_kick(&sv->frames);
+    ms_live_frames_interact(&sv->frames);
     return reply(c, MHD_HTTP_OK, "application/json", "{\"ok\":true}", 11);
 }
 
@@ -669,6 +669,7 @@ void ms_live_get_status(ms_app *app, ms_live_status *st)
     st->images = sv->frames.serial;
     st->passes = sv->frames.passes;
     snprintf(st->error, sizeof st->error, "%s", sv->frames.error);
+    memcpy(st->timing, sv->frames.timing, sizeof st->timing);
 }
 
 int ms_live_mode(ms_app *app, int set, int *raster_only)
