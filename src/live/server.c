@@ -8,7 +8,8 @@
  *                              (JSON; V: the world's scene version, which /session gives too);
  *                              with &since=N, a long poll: the answer waits (the connection
  *                              suspended) until the image serial is no longer N, or 20 s
- *   GET  /image.png?token=T    the current image
+ *   GET  /image.png?token=T    the current image (headers X-Serial, X-Passes); with &since=N
+ *                              a long poll like /state's, answered with the next image
  *   POST /view?token=T         form fields rx ry rz scale tx ty tz (live.h bounds)
  *   GET  /session?token=T      molecules, reps, trajectory and display settings (console.c)
  *   POST /tcl?token=T          form field cmd: a script run as at the prompt (lang=python:
@@ -408,15 +409,37 @@ static void on_image(void *ud)
     wake(ud, 0);
 }
 
-/* GET /state: at once, or (since= the current serial) suspended until wake() resumes it. */
-static enum MHD_Result on_state(live_server *sv, struct MHD_Connection *c, void **con_cls)
+/* The current image, its serial and pass count in the headers X-Serial and X-Passes. */
+static enum MHD_Result reply_image(live_server *sv, struct MHD_Connection *c)
+{
+    if (!sv->frames.png) return reply_text(c, MHD_HTTP_SERVICE_UNAVAILABLE, "no image yet\n");
+    struct MHD_Response *r = MHD_create_response_from_buffer(sv->frames.png_len, sv->frames.png,
+                                                             MHD_RESPMEM_MUST_COPY);
+    if (!r) return MHD_NO;
+    char serial[32], passes[32];
+    snprintf(serial, sizeof serial, "%lu", sv->frames.serial);
+    snprintf(passes, sizeof passes, "%d", sv->frames.passes);
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, "image/png");
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
+    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    MHD_add_response_header(r, "X-Serial", serial);
+    MHD_add_response_header(r, "X-Passes", passes);
+    enum MHD_Result rc = MHD_queue_response(c, MHD_HTTP_OK, r);
+    MHD_destroy_response(r);
+    return rc;
+}
+
+/* GET /state and /image.png: at once, or (since= the current serial) suspended until
+ * wake() resumes the request, which then gets the answer. */
+static enum MHD_Result long_poll(live_server *sv, struct MHD_Connection *c, void **con_cls,
+                                 enum MHD_Result (*answer)(live_server *, struct MHD_Connection *))
 {
     const char *since = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "since");
     char *end;
     unsigned long n = since ? strtoul(since, &end, 10) : 0;
-    if (*con_cls || !since || *end || n != sv->frames.serial) return reply_state(sv, c);
+    if (*con_cls || !since || *end || n != sv->frames.serial) return answer(sv, c);
     req_ctx *w = calloc(1, sizeof *w);
-    if (!w) return reply_state(sv, c);
+    if (!w) return answer(sv, c);
     w->kind = REQ_WAIT;
     w->conn = c;
     w->since = n;
@@ -450,13 +473,10 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
                           "only GET, and POST /view /tcl /cmd /render\n");
     if (!strcmp(url, "/") || !strcmp(url, "/index.html"))
         return reply(c, MHD_HTTP_OK, "text/html; charset=utf-8", sv->page, sv->page_len);
-    if (!strcmp(url, "/state")) return on_state(sv, c, con_cls);
+    if (!strcmp(url, "/state")) return long_poll(sv, c, con_cls, reply_state);
+    if (!strcmp(url, "/image.png")) return long_poll(sv, c, con_cls, reply_image);
     if (!strcmp(url, "/session")) return on_session(sv, c);
     if (!strcmp(url, "/download")) return on_download(sv, c);
-    if (!strcmp(url, "/image.png")) {
-        if (!sv->frames.png) return reply_text(c, MHD_HTTP_SERVICE_UNAVAILABLE, "no image yet\n");
-        return reply(c, MHD_HTTP_OK, "image/png", sv->frames.png, sv->frames.png_len);
-    }
     return reply_text(c, MHD_HTTP_NOT_FOUND, "not found\n");
 }
 

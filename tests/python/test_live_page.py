@@ -106,6 +106,17 @@ class Page:
     def css(self, sel):
         return self.drv.find_elements(self.By.CSS_SELECTOR, sel)
 
+    def click(self, sel):
+        """Click the element sel finds, found again if the page redrew it meanwhile."""
+        from selenium.common.exceptions import StaleElementReferenceException
+        for _ in range(20):
+            try:
+                wait_for(lambda: self.css(sel), timeout=5)
+                return self.css(sel)[0].click()
+            except StaleElementReferenceException:
+                time.sleep(0.05)
+        raise RuntimeError("cannot click " + sel)
+
     def choose(self, id_, text):
         self.Select(self.el(id_)).select_by_visible_text(text)
 
@@ -128,6 +139,11 @@ class Page:
 
     def log(self):
         return self.el("console-log").text
+
+    def spans(self, cls):
+        """The console's lines of a kind (res: results, err: errors, out, cmd, note)."""
+        return self.js("return [...document.querySelectorAll('#console-log .' + arguments[0])]"
+                       ".map(e => e.textContent.trim());", cls)
 
     def reps(self):
         """The rep table's rows (style, colouring, selection), read at once in the page."""
@@ -157,15 +173,15 @@ def changed(fn, old, timeout=10):
 
 def check_console(s, p):
     p.console("expr {6*7}")
-    R.report(wait_for(lambda: "42" in p.log()), "console: a command's result is shown", p.log())
+    R.report(wait_for(lambda: "42" in p.spans("res")), "console: a command's result is shown", p.log())
     p.console('puts "hello from the page"')
-    R.report(wait_for(lambda: "hello from the page" in p.log()), "console: its output is shown",
+    R.report(wait_for(lambda: "hello from the page" in p.spans("out")), "console: its output is shown",
              p.log()[-200:])
     p.console("mol modstyle 0 0 NoSuchMethod")
-    err = wait_for(lambda: [e.text for e in p.css("#console-log .err") if "NoSuchMethod" in e.text])
+    err = wait_for(lambda: [e for e in p.spans("err") if "NoSuchMethod" in e])
     R.report(bool(err), "console: an error is shown with its message (in red)", p.log()[-200:])
     p.console("set survived yes")
-    R.report(wait_for(lambda: p.log().rstrip().endswith("yes")) and s.cmd("set survived") == "yes",
+    R.report(wait_for(lambda: "yes" in p.spans("res")) and s.cmd("set survived") == "yes",
              "console: the session survives an error and shares the terminal's variables",
              p.log()[-100:])
     from selenium.webdriver.common.keys import Keys
@@ -183,10 +199,10 @@ def check_console(s, p):
     if p.el("console-lang").is_displayed():
         p.choose("console-lang", "Python")
         p.console("print(6 * 7 + 1)")
-        R.report(wait_for(lambda: "43" in p.log(), timeout=30), "console: Python runs (gopython)",
+        R.report(wait_for(lambda: "43" in p.spans("out"), timeout=30), "console: Python runs (gopython)",
                  p.log()[-200:])
         p.console("1/0")
-        R.report(wait_for(lambda: any("ZeroDivisionError" in e.text for e in p.css("#console-log .err"))),
+        R.report(wait_for(lambda: any("ZeroDivisionError" in e for e in p.spans("err"))),
                  "console: a Python exception is shown as an error", p.log()[-200:])
         p.choose("console-lang", "Tcl")
     else:
@@ -208,16 +224,16 @@ def check_molecules(s, p):
     new = rows()[1]
     R.report(s.cmd("molinfo top") == new, "molecules: the new molecule is top", s.cmd("molinfo top"))
     wait_for(lambda: p.css("#mols tbody tr[data-molid='%s'] .mol-top:checked" % new))
-    p.css("#mols tbody tr[data-molid='0'] .mol-top")[0].click()
+    p.click("#mols tbody tr[data-molid='0'] .mol-top")
     R.report(wait_for(lambda: s.cmd("molinfo top") == "0"), "molecules: T makes a molecule top",
              s.cmd("molinfo top"))
-    p.css("#mols tbody tr[data-molid='%s'] .mol-shown" % new)[0].click()
+    p.click("#mols tbody tr[data-molid='%s'] .mol-shown" % new)
     R.report(wait_for(lambda: s.cmd("molinfo %s get drawn" % new) == "0"),
              "molecules: D hides a molecule", s.cmd("molinfo %s get drawn" % new))
-    p.css("#mols tbody tr[data-molid='%s'] .mol-active" % new)[0].click()
+    p.click("#mols tbody tr[data-molid='%s'] .mol-active" % new)
     R.report(wait_for(lambda: s.cmd("molinfo %s get active" % new) == "0"),
              "molecules: A makes it inactive", s.cmd("molinfo %s get active" % new))
-    p.css("#mols tbody tr[data-molid='%s'] .mol-delete" % new)[0].click()
+    p.click("#mols tbody tr[data-molid='%s'] .mol-delete" % new)
     R.report(wait_for(lambda: s.cmd("molinfo list") == "0" and rows() == ["0"]),
              "molecules: the delete button deletes", "%s / %s" % (s.cmd("molinfo list"), rows()))
 
@@ -271,9 +287,9 @@ def check_reps(s, p):
     p.choose("rep-material", "Glossy")
     R.report(wait_for(lambda: repget(s, "material", k) == "Glossy"),
              "reps: the material changes", repget(s, "material", k))
-    p.css("#reps tbody tr[data-rep='%d'] .rep-shown" % k)[0].click()
+    p.click("#reps tbody tr[data-rep='%d'] .rep-shown" % k)
     R.report(wait_for(lambda: s.cmd("mol showrep 0 %d" % k) == "0"), "reps: the box hides a rep")
-    p.css("#reps tbody tr[data-rep='%d'] .rep-shown" % k)[0].click()
+    p.click("#reps tbody tr[data-rep='%d'] .rep-shown" % k)
     R.report(wait_for(lambda: s.cmd("mol showrep 0 %d" % k) == "1"), "reps: and shows it again")
     R.report(wait_for(lambda: p.reps() == molinfo_reps(s)), "reps: the list still matches molinfo",
              "%s vs %s" % (p.reps(), molinfo_reps(s)))
@@ -364,7 +380,7 @@ def check_display(s, p):
     R.report(px and px["passes"] == 0 and s.cmd("dict get [display live status] passes") == "0",
              "display: in raster mode no ray-traced pass follows", str(px))
     p.choose("disp-mode", "progressive ray tracing")
-    R.report(wait_for(lambda: p.pixels()["passes"] >= 2, timeout=20),
+    R.report(wait_for(lambda: (p.pixels() or {}).get("passes", 0) >= 2, timeout=20),
              "display: progressive mode refines the image again", str(p.pixels()))
     p.el("disp-reset").click()
     R.report(wait_for(lambda: is_identity(matrix(s, "rotate_matrix"))), "display: Reset view",
