@@ -50,15 +50,17 @@ const timer = setInterval(() => {
 }, 16);
 """
 
-# Time from an action to the next image shown in the page.
+# Time from an action to the first image of the new scene shown (loaded) in the page: the
+# first image with no ray-traced pass, so that a pass of the scene before cannot count.
 LATENCY_JS = """
 const done = arguments[arguments.length - 1];
 const action = arguments[0];
 const img = document.getElementById('view');
-const before = img.src;
 const t0 = performance.now();
-new MutationObserver((m, obs) => { obs.disconnect(); done(performance.now() - t0); })
-  .observe(img, {attributes: true, attributeFilter: ['src']});
+new MutationObserver((m, obs) => {
+  if (img.dataset.passes !== '0') return;
+  obs.disconnect(); done(performance.now() - t0);
+}).observe(img, {attributes: true, attributeFilter: ['data-serial']});
 if (action === 'wheel')
   img.dispatchEvent(new WheelEvent('wheel', {deltaY: -100, bubbles: true, cancelable: true}));
 else {
