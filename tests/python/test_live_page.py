@@ -16,7 +16,8 @@ session holds through molscope's own prompt (molinfo, mol, animate, display, col
   - the trajectory controls move `molinfo top get frame` (slider, step, ends, play and
     pause) and set `animate speed` and `animate style`
   - the display controls set projection, background (the image's corner follows), depth
-    cue, axes, AO, shadows, raster or progressive images, and reset the view
+    cue, axes, AO, shadows, raster or progressive images, and reset the view; a drag shows
+    coarse images (half the width), then the whole image and its passes
   - render runs `render <method> <file>` and offers the file for download
   - two browser sessions see each other's changes and the terminal's
   - the display follows the window's size; screenshots at two sizes show a molecule
@@ -382,9 +383,43 @@ def check_display(s, p):
     p.choose("disp-mode", "progressive ray tracing")
     R.report(wait_for(lambda: (p.pixels() or {}).get("passes", 0) >= 2, timeout=20),
              "display: progressive mode refines the image again", str(p.pixels()))
+    check_drag(s, p)
     p.el("disp-reset").click()
     R.report(wait_for(lambda: is_identity(matrix(s, "rotate_matrix"))), "display: Reset view",
              str(matrix(s, "rotate_matrix")))
+
+
+DRAG_JS = """
+const done = arguments[arguments.length - 1];
+const img = document.getElementById('view');
+const r = img.getBoundingClientRect();
+let x = r.x + r.width / 2, n = 0;
+const widths = [];
+const obs = new MutationObserver(() => widths.push(img.naturalWidth));
+obs.observe(img, {attributes: true, attributeFilter: ['data-serial']});
+img.dispatchEvent(new MouseEvent('mousedown', {clientX: x, clientY: r.y + 50, bubbles: true}));
+const timer = setInterval(() => {
+  x += 3;
+  window.dispatchEvent(new MouseEvent('mousemove', {clientX: x, clientY: r.y + 50, bubbles: true}));
+  if (++n === 60) {
+    clearInterval(timer);
+    window.dispatchEvent(new MouseEvent('mouseup', {bubbles: true}));
+    setTimeout(() => { obs.disconnect(); done(widths); }, 300);
+  }
+}, 25);
+"""
+
+
+def check_drag(s, p):
+    """While the page drags, coarse images (half the width, no passes); then the whole one."""
+    width = int(s.cmd("display get size").split()[0])
+    p.drv.set_script_timeout(30)
+    widths = p.drv.execute_async_script(DRAG_JS)
+    R.report(width // 2 in widths, "a drag shows coarse images (half the display width)",
+             "display %d, images %s" % (width, widths))
+    R.report(bool(wait_for(lambda: (lambda px: px and px["w"] == width and px["passes"] >= 1)(p.pixels()),
+                           timeout=20)),
+             "after the drag the whole image and its passes follow", str(p.pixels()))
 
 
 def check_render(s, p, base, token):
