@@ -20,7 +20,8 @@ session holds through molscope's own prompt (molinfo, mol, animate, display, col
     coarse images (half the width), then the whole image and its passes
   - render runs `render <method> <file>` and offers the file for download
   - two browser sessions see each other's changes and the terminal's
-  - the display follows the window's size; screenshots at two sizes show a molecule
+  - the display follows the window's size and its device pixel ratio (a 2x screen gets a
+    2x image laid out at the viewport's size); screenshots at three sizes show a molecule
 """
 import io
 import json
@@ -481,14 +482,19 @@ def molecule_fraction(png, rect):
 def check_sizes(s, p):
     fracs = []
     sizes = []
-    for w, h in [(1100, 800), (640, 560)]:
-        p.drv.set_window_size(w, h)
+    for w, h, dpr in [(1100, 800, 0), (640, 560, 0), (900, 600, 2)]:
+        if dpr:         # a 2x screen: chromium's device metrics emulation
+            p.drv.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                                  {"width": w, "height": h, "deviceScaleFactor": dpr, "mobile": False})
+        else:
+            p.drv.set_window_size(w, h)
         vp = p.js("const r = document.getElementById('viewport').getBoundingClientRect();"
                   "return [r.width, r.height, window.devicePixelRatio];")
         want = [round(vp[0] * vp[2]), round(vp[1] * vp[2])]
         ok = wait_for(lambda: [int(x) for x in s.cmd("display get size").split()] == want, timeout=10)
-        R.report(bool(ok), "size %dx%d: the display follows the viewport" % (w, h),
-                 "%s vs %s" % (s.cmd("display get size"), want))
+        R.report(bool(ok) and (not dpr or vp[2] == dpr),
+                 "size %dx%d (pixel ratio %s): the display follows the viewport in device pixels"
+                 % (w, h, vp[2]), "%s vs %s" % (s.cmd("display get size"), want))
         ok = wait_for(lambda: (lambda px: px and [px["w"], px["h"]] == want and px["passes"] >= 1)(p.pixels()),
                       timeout=20)
         rect = p.js("const r = document.getElementById('view').getBoundingClientRect();"
@@ -501,10 +507,15 @@ def check_sizes(s, p):
         frac = molecule_fraction(png, rect)
         fracs.append(frac)
         sizes.append(want)
+        css = p.js("const i = document.getElementById('view'); return [i.clientWidth, i.clientHeight];")
+        R.report(abs(css[0] - want[0] / vp[2]) <= 1 and abs(css[1] - want[1] / vp[2]) <= 1,
+                 "size %dx%d: the image is laid out at the viewport's CSS size" % (w, h),
+                 "%s for an image of %s at ratio %s" % (css, want, vp[2]))
         R.report(bool(ok) and 0.01 < frac < 0.8,
                  "size %dx%d: the screenshot shows a molecule" % (w, h),
                  "lit fraction %.4f, image %s (%s)" % (frac, p.pixels(), path))
-    R.report(sizes[0] != sizes[1], "the two sizes give two display sizes", str(sizes))
+    R.report(len(set(map(tuple, sizes))) == 3, "the three sizes give three display sizes", str(sizes))
+    p.drv.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
 
 
 def page_session():
