@@ -1,6 +1,6 @@
 # scripts: set-up, example and benchmark drivers.
 EXTRA_DIST += scripts/bootstrap scripts/example scripts/example.tcl scripts/gpu-check \
-	scripts/colormaps.py
+	scripts/colormaps.py scripts/live-screenshot.py
 EXTRA_DIST += scripts/bench
 
 # `make bench`: every benchmark beside its peer (long; not part of the tests).

@@ -10,7 +10,7 @@ dist_topotools_DATA = tcl/topotools/pkgIndex.tcl tcl/topotools/topotools.tcl
 
 # The page of the live view (display live, doc/live.md).
 livepagedir = $(tcllibdir)/live
-dist_livepage_DATA = tcl/live/index.html
+dist_livepage_DATA = tcl/live/index.html tcl/live/live.tcl
 
 # The molscope::parallel package: a loadable Tcl extension (libtool module) with its
 # pkgIndex.tcl, in tcl/parallel/ of the Tcl library. It carries its own copy of the MPI

@@ -4,6 +4,10 @@
  *                                          the URL with its token on stdout and return it
  *   display live off                       stop serving
  *   display live status                    "off", or a dict: url port images passes error
+ *                                          timing (the last raster image's milliseconds:
+ *                                          scene, upload, draw and readback, PNG)
+ *   display live mode ?raster|progressive? the page's images: the raster image alone, or
+ *                                          refined by ray-traced passes (the default)
  *
  * Under MPI only rank 0 serves; on the other ranks the command does nothing. */
 #include "config.h"
@@ -39,6 +43,9 @@ static int live_on(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
     if (ms_live_start(app, port, bind, &st, &err))
         return ms_cmd_error(interp, "display live on: %s", err.msg);
     printf("display live: %s\n", st.url);
+    printf("display live: whoever holds this URL (its token) can run any command in this "
+           "session from the page's console, as you can at this prompt: share it only as "
+           "you would your shell\n");
     fflush(stdout);
     Tcl_SetObjResult(interp, Tcl_NewStringObj(st.url, -1));
     return TCL_OK;
@@ -65,7 +72,21 @@ static int live_status(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("images", -1), Tcl_NewWideIntObj((Tcl_WideInt)st.images));
     Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("passes", -1), Tcl_NewIntObj(st.passes));
     Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("error", -1), Tcl_NewStringObj(st.error, -1));
+    Tcl_Obj *t = Tcl_NewListObj(0, NULL);
+    for (int i = 0; i < 4; i++) Tcl_ListObjAppendElement(NULL, t, Tcl_NewDoubleObj(st.timing[i] * 1e3));
+    Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("timing", -1), t);
     Tcl_SetObjResult(interp, d);
+    return TCL_OK;
+}
+
+static int live_mode(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv[])
+{
+    static const char *const modes[] = {"progressive", "raster", NULL};
+    int raster = 0;
+    if (objc == 4 && ms_arg_choice(interp, objv[3], modes, "mode", &raster)) return TCL_ERROR;
+    if (ms_live_mode(app, objc == 4, &raster))
+        return ms_cmd_error(interp, "display live mode: the live view is not on");
+    Tcl_SetObjResult(interp, Tcl_NewStringObj(modes[raster], -1));
     return TCL_OK;
 }
 
@@ -75,6 +96,7 @@ static int disp_live(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
         {"on", live_on, 0, 3, "?<port>? ?-bind <address>?"},
         {"off", live_off, 0, 0, ""},
         {"status", live_status, 0, 0, ""},
+        {"mode", live_mode, 0, 1, "?raster|progressive?"},
         {NULL, NULL, 0, 0, NULL}};
     return ms_args_dispatch(app, interp, objc, objv, 2, table, NULL, NULL);
 }

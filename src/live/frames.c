@@ -18,6 +18,7 @@
 #include <tcl.h>
 
 #define CHECK_MS 100        /* how often a quiet session is checked for changes */
+#define INTERACT_S 0.3      /* a drag's images are coarse until the view rests this long */
 
 /* ---------------------------------------------------------------- images */
 
@@ -46,10 +47,24 @@ static void drop_scene(ms_live_frames *f)
     f->valid = 0;
 }
 
+void ms_live_frames_set_raster(ms_live_frames *f, int raster_only)
+{
+    if (f->raster_only == raster_only) return;
+    f->raster_only = raster_only;
+    f->valid = 0;                    /* the next step makes the scene and its image again */
+    ms_live_frames_kick(f);
+}
+
+void ms_live_frames_interact(ms_live_frames *f)
+{
+    f->interact_until = ms_now() + INTERACT_S;
+    ms_live_frames_kick(f);
+}
+
 int ms_live_frames_stale(const ms_live_frames *f)
 {
     const ms_app *app = f->app;
-    return !f->valid || f->version != app->world.scene_version || f->builds != app->world.scene_builds ||
+    return !f->valid || (f->coarse && ms_now() >= f->interact_until) || f->version != app->world.scene_version || f->builds != app->world.scene_builds ||
            (app->world.colors && f->colors_version != app->world.colors->version) ||
            (app->world.materials && f->materials_version != app->world.materials->version) ||
            f->width != app->world.width || f->height != app->world.height;
@@ -86,6 +101,7 @@ static void rt_settings(ms_live_frames *f, ms_rt_options *o)
 static void restart(ms_live_frames *f)
 {
     ms_error err = {{0}};
+    double t0 = ms_now();
     drop_scene(f);
     f->error[0] = '\0';
     if (ms_world_build_scene(&f->app->world, &f->scene, &err)) {
@@ -99,13 +115,27 @@ static void restart(ms_live_frames *f)
     rt_settings(f, &o);
     f->scene.aa_samples = o.aasamples;
     f->scene.ao_samples = o.aosamples;
-    f->rt_pending = ms_rt_available();
     ms_gl *gl = ms_gl_display_current();
+    f->rt_pending = ms_rt_available() && !(gl && f->raster_only);
     if (gl) {
         ms_image img;
-        if (ms_gl_render(gl, &f->scene, &img, NULL, &err) == 0) {
+        ms_gl_times t = {0, 0, 0};
+        double t1 = ms_now();
+        /* while the page drags, a coarse image (half the size each way), and no passes */
+        f->coarse = t1 < f->interact_until && f->scene.width >= 64 && f->scene.height >= 64;
+        if (f->coarse) {
+            f->scene.width /= 2;
+            f->scene.height /= 2;
+            f->rt_pending = 0;
+        }
+        if (ms_gl_render(gl, &f->scene, &img, &t, &err) == 0) {
+            double t2 = ms_now();
             if (publish(f, &img, 0, &err)) snprintf(f->error, sizeof f->error, "%.200s", err.msg);
             ms_image_free(&img);
+            f->timing[0] = t1 - t0;
+            f->timing[1] = t.upload;
+            f->timing[2] = t.draw + t.readback;
+            f->timing[3] = ms_now() - t2;
         } else {
             snprintf(f->error, sizeof f->error, "snapshot: %.200s", err.msg);
         }

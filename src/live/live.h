@@ -18,6 +18,8 @@
 
 #include <stddef.h>
 
+#include <tcl.h>
+
 #include "app/app.h"
 #include "base/base.h"
 #include "rt/rt.h"
@@ -42,6 +44,10 @@ typedef struct ms_live_frames {
     char error[256];              /* why the last image could not be made ("" when fine) */
     int idle_queued;
     void *timer;                  /* Tcl_TimerToken of the change check */
+    int raster_only;              /* no ray-traced passes while a GL display draws */
+    double timing[4];             /* the last raster image's seconds: scene, upload, draw, PNG */
+    double interact_until;        /* view changes from the page: coarse images until then */
+    int coarse;                   /* the image is a coarse one (redrawn whole after the drag) */
     void (*on_image)(void *ud);   /* called after each new image (may be NULL) */
     void *ud;
 } ms_live_frames;
@@ -51,6 +57,12 @@ void ms_live_frames_start(ms_live_frames *f, ms_app *app);
 void ms_live_frames_stop(ms_live_frames *f);
 /* Render at the next idle turn, not at the next change check (after a view change). */
 void ms_live_frames_kick(ms_live_frames *f);
+/* A view change from the page: while they come (0.3 s apart at most) the raster images are
+ * drawn at half the size each way and not ray traced, then the whole image follows. */
+void ms_live_frames_interact(ms_live_frames *f);
+/* Show the raster image only (1) or refine it with ray-traced passes (0); the next image
+ * follows the choice. */
+void ms_live_frames_set_raster(ms_live_frames *f, int raster_only);
 /* Whether the picture may have changed since the image was made. */
 int ms_live_frames_stale(const ms_live_frames *f);
 /* One unit of work: a new scene and its first image when stale, else one more pass.
@@ -86,6 +98,7 @@ typedef struct ms_live_status {
     unsigned long images;         /* serial of the current image */
     int passes;
     char error[256];
+    double timing[4];             /* ms_live_frames.timing */
 } ms_live_status;
 
 /* Whether this build has the server; when not, why is written in why. */
@@ -98,5 +111,21 @@ int ms_live_start(ms_app *app, int port, const char *bind_addr, ms_live_status *
 /* Stop serving: 0, or -1 when it was not on. */
 int ms_live_stop(ms_app *app);
 void ms_live_get_status(ms_app *app, ms_live_status *st);
+/* `display live mode`: 0 and the mode in *raster_only (1 raster, 0 progressive); with set,
+ * change it first. -1 when the server is not on. */
+int ms_live_mode(ms_app *app, int set, int *raster_only);
+
+/* ---------------------------------------------------------------- the console (console.c) */
+
+/* s (n bytes) as a JSON string, control characters escaped. */
+void ms_live_json_str(Tcl_DString *out, const char *s, size_t n);
+/* Run cmd at the global level as the prompt would: a script, or (as_words) one command of
+ * the list's words. Appends {"ok":true,"result":R,"output":O} or {"ok":false,"error":E,
+ * "output":O} to json (O: what it wrote to stdout and stderr, which still get it); 0, or -1
+ * when the command failed. */
+int ms_live_run(ms_app *app, Tcl_Obj *cmd, int as_words, Tcl_DString *json);
+/* The session's state for the page's panels (tcl/live/live.tcl) with the scene version,
+ * the display mode and the catalog of rep methods, as JSON; -1 with err set. */
+int ms_live_session_json(ms_app *app, int raster_only, Tcl_DString *json, ms_error *err);
 
 #endif

@@ -4,7 +4,8 @@
 # built, and `display live on` says why it is unavailable.
 src_libmscore_la_SOURCES += src/live/live.h src/live/frames.c
 if HAVE_MHD
-src_libmscore_la_SOURCES += src/live/server.c src/live/guard.h src/live/guard.c
+src_libmscore_la_SOURCES += src/live/server.c src/live/console.c src/live/guard.h \
+                           src/live/guard.c
 src_libmscore_la_LIBADD += $(MHD_LIBS)
 else
 src_libmscore_la_SOURCES += src/live/nolive.c

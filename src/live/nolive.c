@@ -32,3 +32,8 @@ void ms_live_get_status(ms_app *app, ms_live_status *st)
 {
     memset(st, 0, sizeof *st);
 }
+
+int ms_live_mode(ms_app *app, int set, int *raster_only)
+{
+    return -1;
+}

@@ -4,11 +4,22 @@
  * commands. libmicrohttpd parses HTTP and form bodies; this file only routes:
  *
  *   GET  /?token=T             the page (tcl/live/index.html of the Tcl library)
- *   GET  /state?token=T        {"serial":N,"passes":P,"maxpasses":M,"width":W,...} (JSON);
+ *   GET  /state?token=T        {"serial":N,"passes":P,"maxpasses":M,"width":W,...,"version":V}
+ *                              (JSON; V: the world's scene version, which /session gives too);
  *                              with &since=N, a long poll: the answer waits (the connection
  *                              suspended) until the image serial is no longer N, or 20 s
- *   GET  /image.png?token=T    the current image
+ *   GET  /image.png?token=T    the current image (headers X-Serial, X-Passes); with &since=N
+ *                              a long poll like /state's, answered with the next image
  *   POST /view?token=T         form fields rx ry rz scale tx ty tz (live.h bounds)
+ *   GET  /session?token=T      molecules, reps, trajectory and display settings (console.c)
+ *   POST /tcl?token=T          form field cmd: a script run as at the prompt (lang=python:
+ *                              Python code); the answer is console.c's JSON
+ *   POST /cmd?token=T          form fields w (repeated): one command's words (the panels)
+ *   POST /render?token=T       form fields method, file: `render <method> <file>`
+ *   GET  /download?token=T     the file the last POST /render wrote
+ *
+ * The console and the panels run any command, as the terminal does: whoever holds the token
+ * can run code as the user who started molscope (doc/SECURITY.md).
  *
  * Every request without the token gets 403, whatever its path, as soon as its headers are
  * read, and its connection is closed. Connections that have not shown the token are
@@ -26,21 +37,25 @@
 #include <stdlib.h>
 #include <string.h>
 #include <tcl.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define ASSOC "molscope::live"
 #define TOKEN_BYTES 16               /* 128 bits from /dev/urandom */
 #define MAX_BODY 4096                /* a view change is a few dozen bytes */
+#define MAX_FORM_BODY (1 << 20)      /* a console script or a command's words */
 #define MAX_WAIT_MS 500              /* the longest the daemon waits to be run */
 #define LONG_POLL_S 20.0             /* the longest a /state?since= request waits */
 
-/* What a request keeps between the calls libmicrohttpd makes for it: the form a POST /view
+/* What a request keeps between the calls libmicrohttpd makes for it: the form a POST
  * gathers while its body arrives, or a long poll's place in the waiting list. */
 typedef struct req_ctx {
-    enum { REQ_VIEW = 1, REQ_WAIT } kind;
-    /* REQ_VIEW */
+    enum { REQ_VIEW = 1, REQ_FORM, REQ_WAIT } kind;
+    /* REQ_VIEW, REQ_FORM */
     struct MHD_PostProcessor *pp;
     ms_live_view v;
+    Tcl_Obj *fields;                 /* REQ_FORM: key value ... */
     size_t received;
     int bad;
     ms_error err;
@@ -64,6 +79,9 @@ typedef struct live_server {
     ms_live_frames frames;
     req_ctx *waiting;                /* suspended long polls */
     ms_live_guard guard;             /* connections that have not shown the token */
+    int busy;                        /* inside a request: the daemon must not run again */
+    int stop_requested;              /* `display live off` came from the page itself */
+    char rendered[4096];             /* the file the last POST /render wrote */
 } live_server;
 
 static live_server *server_of(ms_app *app)
@@ -118,12 +136,16 @@ static enum MHD_Result reply_state(live_server *sv, struct MHD_Connection *c)
     err[k] = '\0';
     snprintf(json, sizeof json,
              "{\"serial\":%lu,\"passes\":%d,\"maxpasses\":%d,\"width\":%d,\"height\":%d,"
-             "\"error\":\"%s\"}",
-             f->serial, f->passes, f->max_passes, sv->app->world.width, sv->app->world.height, err);
+             "\"version\":%lu,\"error\":\"%s\"}",
+             f->serial, f->passes, f->max_passes, sv->app->world.width, sv->app->world.height,
+             sv->app->world.scene_version, err);
     return reply(c, MHD_HTTP_OK, "application/json", json, strlen(json));
 }
 
 /* ---------------------------------------------------------------- requests */
+
+static void on_timer(ClientData cd);
+static void on_ready(ClientData cd, int mask);
 
 /* Whether the request names the server's token (compared in constant time). */
 static int token_ok(const live_server *sv, struct MHD_Connection *c)
@@ -154,51 +176,205 @@ static enum MHD_Result on_field(void *cls, enum MHD_ValueKind kind, const char *
     return MHD_YES;
 }
 
+/* The first call of a POST: its context, with a form parser that calls it. NULL with
+ * *refused set when the body is not a form, or NULL alone when memory ran out. */
+static req_ctx *post_begin(struct MHD_Connection *c, int kind, MHD_PostDataIterator it,
+                           void **con_cls, int *refused)
+{
+    req_ctx *pc = calloc(1, sizeof *pc);
+    if (!pc) return NULL;
+    pc->kind = kind;
+    ms_live_view_init(&pc->v);
+    pc->pp = MHD_create_post_processor(c, 1024, it, pc);
+    if (!pc->pp) {
+        free(pc);
+        *refused = 1;
+        return NULL;
+    }
+    if (kind == REQ_FORM) Tcl_IncrRefCount(pc->fields = Tcl_NewListObj(0, NULL));
+    *con_cls = pc;
+    return pc;
+}
+
+/* A chunk of the body (size > 0: parsed, and 1 returned while more may come). */
+static int post_feed(req_ctx *pc, const char *data, size_t *size, size_t max)
+{
+    if (!*size) return 0;
+    pc->received += *size;
+    if (pc->received > max) {
+        ms_error_set(&pc->err, "body too large (over %zu bytes)", max);
+        pc->bad = 1;
+    }
+    if (!pc->bad && MHD_post_process(pc->pp, data, *size) != MHD_YES) {
+        ms_error_set(&pc->err, "malformed form body");
+        pc->bad = 1;
+    }
+    *size = 0;
+    return 1;
+}
+
+static enum MHD_Result refuse(struct MHD_Connection *c, const char *what, const req_ctx *pc)
+{
+    char msg[400];
+    if (!pc) snprintf(msg, sizeof msg, "%s: expected an application/x-www-form-urlencoded body\n", what);
+    else snprintf(msg, sizeof msg, "%s: refused: %.250s\n", what, pc->err.msg);
+    return reply_text(c, MHD_HTTP_BAD_REQUEST, msg);
+}
+
 /* POST /view: gather the body, then apply it only when every field was valid. */
 static enum MHD_Result on_view(live_server *sv, struct MHD_Connection *c, const char *data,
                                size_t *size, void **con_cls)
 {
     req_ctx *pc = *con_cls;
+    int refused = 0;
     if (!pc) {
-        if (!(pc = calloc(1, sizeof *pc))) return MHD_NO;
-        pc->kind = REQ_VIEW;
-        ms_live_view_init(&pc->v);
-        pc->pp = MHD_create_post_processor(c, 1024, on_field, pc);
-        if (!pc->pp) {
-            free(pc);
-            *con_cls = NULL;
-            return reply_text(c, MHD_HTTP_BAD_REQUEST,
-                              "view: expected an application/x-www-form-urlencoded body\n");
-        }
-        *con_cls = pc;
-        return MHD_YES;
+        if (post_begin(c, REQ_VIEW, on_field, con_cls, &refused)) return MHD_YES;
+        return refused ? refuse(c, "view", NULL) : MHD_NO;
     }
-    if (*size) {
-        pc->received += *size;
-        if (pc->received > MAX_BODY) {
-            ms_error_set(&pc->err, "body too large");
-            pc->bad = 1;
-        }
-        if (!pc->bad && MHD_post_process(pc->pp, data, *size) != MHD_YES) {
-            ms_error_set(&pc->err, "malformed form body");
-            pc->bad = 1;
-        }
-        *size = 0;
-        return MHD_YES;
-    }
-    if (pc->bad) {
-        char msg[300];
-        snprintf(msg, sizeof msg, "view: refused: %.250s\n", pc->err.msg);
-        return reply_text(c, MHD_HTTP_BAD_REQUEST, msg);
-    }
+    if (post_feed(pc, data, size, MAX_BODY)) return MHD_YES;
+    if (pc->bad) return refuse(c, "view", pc);
     ms_live_view_apply(sv->app, &pc->v);
-    ms_live_frames_kick(&sv->frames);
+    ms_live_frames_interact(&sv->frames);
     return reply(c, MHD_HTTP_OK, "application/json", "{\"ok\":true}", 11);
 }
 
-/* ---------------------------------------------------------------- long polls */
+/* ---------------------------------------------------------------- console and panels */
 
-static void on_timer(ClientData cd);
+/* A form field of /tcl /cmd /render: key and value appended, a value's later chunks
+ * (off > 0) added to it. */
+static enum MHD_Result on_form_field(void *cls, enum MHD_ValueKind kind, const char *key,
+                                     const char *filename, const char *content_type,
+                                     const char *transfer_encoding, const char *data,
+                                     uint64_t off, size_t size)
+{
+    req_ctx *pc = cls;
+    Tcl_Obj **v;
+    int n = 0;
+    Tcl_ListObjGetElements(NULL, pc->fields, &n, &v);
+    if (off > 0 && n >= 2) {
+        Tcl_AppendToObj(v[n - 1], data, (int)size);   /* held by the list alone */
+        Tcl_InvalidateStringRep(pc->fields);
+        return MHD_YES;
+    }
+    Tcl_ListObjAppendElement(NULL, pc->fields, Tcl_NewStringObj(key, -1));
+    Tcl_ListObjAppendElement(NULL, pc->fields, Tcl_NewStringObj(data, (int)size));
+    return MHD_YES;
+}
+
+/* The first value of key in the form, or NULL; with all, every value of key as a list. */
+static Tcl_Obj *form_value(Tcl_Obj *fields, const char *key, int all)
+{
+    Tcl_Obj **v, *list = all ? Tcl_NewListObj(0, NULL) : NULL;
+    int n = 0;
+    Tcl_ListObjGetElements(NULL, fields, &n, &v);
+    for (int i = 0; i + 1 < n; i += 2) {
+        if (strcmp(Tcl_GetString(v[i]), key)) continue;
+        if (!all) return v[i + 1];
+        Tcl_ListObjAppendElement(NULL, list, v[i + 1]);
+    }
+    return list;
+}
+
+/* Run cmd for the page with the daemon held (a command that runs the event loop, such as
+ * vwait or update, must not run it again inside this request) and answer its JSON. */
+static enum MHD_Result answer_run(live_server *sv, struct MHD_Connection *c, Tcl_Obj *cmd,
+                                  int as_words, const char *render_file)
+{
+    Tcl_DString json;
+    Tcl_DStringInit(&json);
+    sv->busy = 1;
+    Tcl_DeleteFileHandler(sv->epoll_fd);
+    int rc = ms_live_run(sv->app, cmd, as_words, &json);
+    Tcl_CreateFileHandler(sv->epoll_fd, TCL_READABLE, on_ready, sv);
+    sv->busy = 0;
+    if (rc == 0 && render_file) snprintf(sv->rendered, sizeof sv->rendered, "%s", render_file);
+    enum MHD_Result r = reply(c, MHD_HTTP_OK, "application/json", Tcl_DStringValue(&json),
+                              (size_t)Tcl_DStringLength(&json));
+    Tcl_DStringFree(&json);
+    return r;
+}
+
+static enum MHD_Result run_form(live_server *sv, struct MHD_Connection *c, const char *url,
+                                Tcl_Obj *fields)
+{
+    if (!strcmp(url, "/cmd")) return answer_run(sv, c, form_value(fields, "w", 1), 1, NULL);
+    if (!strcmp(url, "/tcl")) {
+        Tcl_Obj *code = form_value(fields, "cmd", 0), *lang = form_value(fields, "lang", 0);
+        if (!code) return reply_text(c, MHD_HTTP_BAD_REQUEST, "tcl: no field cmd\n");
+        if (!lang || !strcmp(Tcl_GetString(lang), "tcl")) return answer_run(sv, c, code, 0, NULL);
+        if (strcmp(Tcl_GetString(lang), "python"))
+            return reply_text(c, MHD_HTTP_BAD_REQUEST, "tcl: lang must be tcl or python\n");
+        Tcl_Obj *words[2] = {Tcl_NewStringObj("::molscope::live::python", -1), code};
+        return answer_run(sv, c, Tcl_NewListObj(2, words), 1, NULL);
+    }
+    Tcl_Obj *method = form_value(fields, "method", 0), *file = form_value(fields, "file", 0);
+    if (!method || !file || !*Tcl_GetString(file))
+        return reply_text(c, MHD_HTTP_BAD_REQUEST, "render: fields method and file are needed\n");
+    Tcl_Obj *words[3] = {Tcl_NewStringObj("render", -1), method, file};
+    return answer_run(sv, c, Tcl_NewListObj(3, words), 1, Tcl_GetString(file));
+}
+
+/* POST /tcl, /cmd, /render: gather the form, then run. */
+static enum MHD_Result on_form(live_server *sv, struct MHD_Connection *c, const char *url,
+                               const char *data, size_t *size, void **con_cls)
+{
+    req_ctx *pc = *con_cls;
+    int refused = 0;
+    if (!pc) {
+        if (post_begin(c, REQ_FORM, on_form_field, con_cls, &refused)) return MHD_YES;
+        return refused ? refuse(c, url + 1, NULL) : MHD_NO;
+    }
+    if (post_feed(pc, data, size, MAX_FORM_BODY)) return MHD_YES;
+    if (pc->bad) return refuse(c, url + 1, pc);
+    return run_form(sv, c, url, pc->fields);
+}
+
+/* GET /session: the panels' state. */
+static enum MHD_Result on_session(live_server *sv, struct MHD_Connection *c)
+{
+    Tcl_DString json;
+    ms_error err = {{0}};
+    Tcl_DStringInit(&json);
+    sv->busy = 1;
+    int rc = ms_live_session_json(sv->app, sv->frames.raster_only, &json, &err);
+    sv->busy = 0;
+    enum MHD_Result r = rc ? reply_text(c, MHD_HTTP_INTERNAL_SERVER_ERROR, err.msg)
+                           : reply(c, MHD_HTTP_OK, "application/json", Tcl_DStringValue(&json),
+                                   (size_t)Tcl_DStringLength(&json));
+    Tcl_DStringFree(&json);
+    return r;
+}
+
+/* GET /download: the file of the last render from the page, as an attachment. */
+static enum MHD_Result on_download(live_server *sv, struct MHD_Connection *c)
+{
+    struct stat sb;
+    int fd = sv->rendered[0] ? open(sv->rendered, O_RDONLY) : -1;
+    if (fd < 0 || fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        if (fd >= 0) close(fd);
+        return reply_text(c, MHD_HTTP_NOT_FOUND, "download: nothing rendered from this page yet\n");
+    }
+    struct MHD_Response *r = MHD_create_response_from_fd((uint64_t)sb.st_size, fd);
+    if (!r) {
+        close(fd);
+        return MHD_NO;
+    }
+    const char *base = strrchr(sv->rendered, '/');
+    char disp[400], name[300];
+    size_t k = 0;
+    for (const char *p = base ? base + 1 : sv->rendered; *p && k + 1 < sizeof name; p++)
+        name[k++] = (*p == '"' || *p == '\\' || (unsigned char)*p < 0x20) ? '_' : *p;
+    name[k] = '\0';
+    snprintf(disp, sizeof disp, "attachment; filename=\"%s\"", name);
+    MHD_add_response_header(r, "Content-Disposition", disp);
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, "application/octet-stream");
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
+    enum MHD_Result rc = MHD_queue_response(c, MHD_HTTP_OK, r);
+    MHD_destroy_response(r);
+    return rc;
+}
+
+/* ---------------------------------------------------------------- long polls */
 
 /* Resume the long polls whose answer is due: the image changed, their time is up, or all.
  * Returns how many were resumed (the daemon must run to answer them). */
@@ -233,15 +409,37 @@ static void on_image(void *ud)
     wake(ud, 0);
 }
 
-/* GET /state: at once, or (since= the current serial) suspended until wake() resumes it. */
-static enum MHD_Result on_state(live_server *sv, struct MHD_Connection *c, void **con_cls)
+/* The current image, its serial and pass count in the headers X-Serial and X-Passes. */
+static enum MHD_Result reply_image(live_server *sv, struct MHD_Connection *c)
+{
+    if (!sv->frames.png) return reply_text(c, MHD_HTTP_SERVICE_UNAVAILABLE, "no image yet\n");
+    struct MHD_Response *r = MHD_create_response_from_buffer(sv->frames.png_len, sv->frames.png,
+                                                             MHD_RESPMEM_MUST_COPY);
+    if (!r) return MHD_NO;
+    char serial[32], passes[32];
+    snprintf(serial, sizeof serial, "%lu", sv->frames.serial);
+    snprintf(passes, sizeof passes, "%d", sv->frames.passes);
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CONTENT_TYPE, "image/png");
+    MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
+    MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
+    MHD_add_response_header(r, "X-Serial", serial);
+    MHD_add_response_header(r, "X-Passes", passes);
+    enum MHD_Result rc = MHD_queue_response(c, MHD_HTTP_OK, r);
+    MHD_destroy_response(r);
+    return rc;
+}
+
+/* GET /state and /image.png: at once, or (since= the current serial) suspended until
+ * wake() resumes the request, which then gets the answer. */
+static enum MHD_Result long_poll(live_server *sv, struct MHD_Connection *c, void **con_cls,
+                                 enum MHD_Result (*answer)(live_server *, struct MHD_Connection *))
 {
     const char *since = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "since");
     char *end;
     unsigned long n = since ? strtoul(since, &end, 10) : 0;
-    if (*con_cls || !since || *end || n != sv->frames.serial) return reply_state(sv, c);
+    if (*con_cls || !since || *end || n != sv->frames.serial) return answer(sv, c);
     req_ctx *w = calloc(1, sizeof *w);
-    if (!w) return reply_state(sv, c);
+    if (!w) return answer(sv, c);
     w->kind = REQ_WAIT;
     w->conn = c;
     w->since = n;
@@ -268,15 +466,17 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         ms_live_guard_trust(&sv->guard, c);
     }
     if (post && !strcmp(url, "/view")) return on_view(sv, c, data, size, con_cls);
+    if (post && (!strcmp(url, "/tcl") || !strcmp(url, "/cmd") || !strcmp(url, "/render")))
+        return on_form(sv, c, url, data, size, con_cls);
     if (!get)
-        return reply_text(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET, and POST /view\n");
+        return reply_text(c, MHD_HTTP_METHOD_NOT_ALLOWED,
+                          "only GET, and POST /view /tcl /cmd /render\n");
     if (!strcmp(url, "/") || !strcmp(url, "/index.html"))
         return reply(c, MHD_HTTP_OK, "text/html; charset=utf-8", sv->page, sv->page_len);
-    if (!strcmp(url, "/state")) return on_state(sv, c, con_cls);
-    if (!strcmp(url, "/image.png")) {
-        if (!sv->frames.png) return reply_text(c, MHD_HTTP_SERVICE_UNAVAILABLE, "no image yet\n");
-        return reply(c, MHD_HTTP_OK, "image/png", sv->frames.png, sv->frames.png_len);
-    }
+    if (!strcmp(url, "/state")) return long_poll(sv, c, con_cls, reply_state);
+    if (!strcmp(url, "/image.png")) return long_poll(sv, c, con_cls, reply_image);
+    if (!strcmp(url, "/session")) return on_session(sv, c);
+    if (!strcmp(url, "/download")) return on_download(sv, c);
     return reply_text(c, MHD_HTTP_NOT_FOUND, "not found\n");
 }
 
@@ -286,7 +486,8 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls,
     live_server *sv = cls;
     req_ctx *rc = *con_cls;
     if (!rc) return;
-    if (rc->kind == REQ_VIEW) MHD_destroy_post_processor(rc->pp);
+    if (rc->kind != REQ_WAIT) MHD_destroy_post_processor(rc->pp);
+    if (rc->fields) Tcl_DecrRefCount(rc->fields);
     for (req_ctx **p = &sv->waiting; *p; p = &(*p)->next)
         if (*p == rc) {
             *p = rc->next;
@@ -301,9 +502,18 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls,
 /* Let the daemon do what is ready, then wake it again when its next timeout is due. */
 static void pump(live_server *sv)
 {
+    if (sv->busy) {                  /* the event loop runs inside a page's command */
+        if (sv->timer) Tcl_DeleteTimerHandler(sv->timer);
+        sv->timer = Tcl_CreateTimerHandler(MAX_WAIT_MS / 10, on_timer, sv);
+        return;
+    }
     resume_due(sv, 0);
     long due = ms_live_guard_expire(&sv->guard);
     MHD_run(sv->d);
+    if (sv->stop_requested) {        /* `display live off` from the page, now answered */
+        Tcl_DeleteAssocData(sv->app->interp, ASSOC);
+        return;
+    }
     MHD_UNSIGNED_LONG_LONG ms = MAX_WAIT_MS;
     if (MHD_get_timeout(sv->d, &ms) != MHD_YES || ms > MAX_WAIT_MS) ms = MAX_WAIT_MS;
     if (due >= 0 && (MHD_UNSIGNED_LONG_LONG)due < ms) ms = (MHD_UNSIGNED_LONG_LONG)due;
@@ -373,6 +583,16 @@ static int load_page(live_server *sv, ms_error *err)
     }
     fclose(f);
     sv->page_len = (size_t)n;
+    snprintf(path, sizeof path, "%s/live/live.tcl", sv->app->tcllib_dir);
+    Tcl_Obj *p = Tcl_NewStringObj(path, -1);
+    Tcl_IncrRefCount(p);
+    int rc = Tcl_FSEvalFileEx(sv->app->interp, p, "utf-8");
+    Tcl_DecrRefCount(p);
+    if (rc != TCL_OK) {
+        ms_error_set(err, "cannot load %s: %.200s", path, Tcl_GetStringResult(sv->app->interp));
+        Tcl_ResetResult(sv->app->interp);
+        return -1;
+    }
     return 0;
 }
 
@@ -448,6 +668,12 @@ int ms_live_stop(ms_app *app)
 {
     live_server *sv = server_of(app);
     if (!sv) return -1;
+    if (sv->busy) {                  /* from the page: stop once its answer is queued */
+        sv->stop_requested = 1;
+        if (sv->timer) Tcl_DeleteTimerHandler(sv->timer);
+        sv->timer = NULL;
+        return 0;
+    }
     Tcl_DeleteAssocData(app->interp, ASSOC);     /* calls on_interp_delete */
     return 0;
 }
@@ -463,4 +689,14 @@ void ms_live_get_status(ms_app *app, ms_live_status *st)
     st->images = sv->frames.serial;
     st->passes = sv->frames.passes;
     snprintf(st->error, sizeof st->error, "%s", sv->frames.error);
+    memcpy(st->timing, sv->frames.timing, sizeof st->timing);
+}
+
+int ms_live_mode(ms_app *app, int set, int *raster_only)
+{
+    live_server *sv = server_of(app);
+    if (!sv) return -1;
+    if (set) ms_live_frames_set_raster(&sv->frames, *raster_only);
+    *raster_only = sv->frames.raster_only;
+    return 0;
 }

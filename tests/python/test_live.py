@@ -443,7 +443,7 @@ def check_browser(s, url):
         from selenium.webdriver.common.by import By
         from selenium.webdriver.common.keys import Keys
         drv.set_page_load_timeout(20)
-        drv.get(url)
+        drv.get(url + "&fit=0")     # the display keeps its size (320 x 240)
         px = wait_for(lambda: drv.execute_script(PIXELS_JS), timeout=20)
         R.report(px is not None and px["w"] == 320 and px["h"] == 240,
                  "the image appears at the display size", str(px))
