@@ -12,14 +12,17 @@
 # Prints a table for doc/BENCHMARKS.md; logs in bench-out/rtfloor/.
 #
 #   scripts/bench/bench_rtfloor.sh [builddir]
-#   RTFLOOR_RUNS=3  RTFLOOR_VARIANTS="builtin instance user packet"  RTFLOOR_THREADS="1 N"
+#   RTFLOOR_RUNS=3  RTFLOOR_VARIANTS="builtin instance user packet cache"  RTFLOOR_THREADS="1 N"
+#   RTFLOOR_BEFORE=path/to/molscope: also time that binary (an older build) in the same run,
+#   and compare its picture with this build's pixel by pixel
 set -euo pipefail
 src=$(cd "$(dirname "$0")/../.." && pwd)
 build=$(cd "${1:-$src}" && pwd)
 out=$src/bench-out/rtfloor
 mkdir -p "$out"
 runs=${RTFLOOR_RUNS:-3}
-variants=${RTFLOOR_VARIANTS:-builtin instance user packet}
+variants=${RTFLOOR_VARIANTS:-builtin instance user packet cache}
+before=${RTFLOOR_BEFORE:-}
 threads=${RTFLOOR_THREADS:-1 $(nproc)}
 floor=$build/scripts/bench/rt_floor
 (cd "$build" && make -s scripts/bench/rt_floor)
@@ -27,15 +30,15 @@ pdb=$out/ao27.pdb
 [ -s "$pdb" ] || /usr/bin/python3 "$src/scripts/bench/replicate.py" "$src/tests/data/il2.pdb" 56000 "$pdb"
 export MOLSCOPE_TCLLIB=$src/tcl MOLSCOPE_PLUGINDIR=$build/plugins/.libs MOLSCOPE_NOREADLINE=1
 
-molscope() {   # threads, repeats, [extra environment...]: the render lines
-    local t=$1 r=$2
-    shift 2
+molscope() {   # binary, threads, repeats, [extra environment...]: the render lines
+    local bin=$1 t=$2 r=$3
+    shift 3
     env MOLSCOPE_THREADS="$t" BENCH_PDB="$pdb" BENCH_REPEAT="$r" BENCH_IMAGE="$out/ti.png" "$@" \
-        "$build/src/molscope" -dispdev text -e "$src/scripts/bench/bench_rtfloor.tcl" < /dev/null |
+        "$bin" -dispdev text -e "$src/scripts/bench/bench_rtfloor.tcl" < /dev/null |
         awk -F'\t' '$1 == "render" {print $2, $3}'
 }
 # "best median" of a column of numbers
-stats() { sort -g | awk '{v[NR] = $1} END {printf "%.2f %.2f", v[1], NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+stats() { sort -g | awk '{v[NR] = $1} END {printf "%.2f %.2f\n", v[1], NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 tachyon_run() {   # threads: "trace_wall cpu"
     /usr/bin/time -f "cpu %U %S" tachyon -numthreads "$1" -aasamples 4 -fullshade -format TARGA \
         -o "$out/tachyon.tga" "$out/scene.dat" 2>&1 | tr '\r' '\n' |
@@ -45,13 +48,23 @@ tachyon_run() {   # threads: "trace_wall cpu"
 
 echo "== AO on spheres: TachyonInternal, Embree-only floor, tachyon; $(date -u '+%F %H:%M'), load $(cut -d' ' -f1-3 /proc/loadavg)"
 # the dump and the export (all threads, one render)
-molscope "$(nproc)" 1 MOLSCOPE_RT_RAYDUMP="$out/ao.rays" BENCH_EXPORT="$out/scene.dat" > /dev/null
+molscope "$build/src/molscope" "$(nproc)" 1 MOLSCOPE_RT_RAYDUMP="$out/ao.rays" BENCH_EXPORT="$out/scene.dat" > /dev/null
 cp "$out/ti.png" "$out/ti_ref.png"
+if [ -n "$before" ]; then
+    molscope "$before" "$(nproc)" 1 > /dev/null
+    cp "$out/ti.png" "$out/ti_before.png"
+fi
 rows=()
 for t in $threads; do
-    molscope "$t" "$runs" > "$out/ti_$t.log"
+    molscope "$build/src/molscope" "$t" "$runs" > "$out/ti_$t.log"
     read -r ti_w ti_wm < <(awk '{print $1}' "$out/ti_$t.log" | stats)
     read -r ti_c ti_cm < <(awk '{print $2}' "$out/ti_$t.log" | stats)
+    if [ -n "$before" ]; then
+        molscope "$before" "$t" "$runs" > "$out/before_$t.log"
+        read -r bw bwm < <(awk '{print $1}' "$out/before_$t.log" | stats)
+        read -r bc bcm < <(awk '{print $2}' "$out/before_$t.log" | stats)
+        echo "    [before, $t threads] TachyonInternal best / median $bw / $bwm s (CPU $bc / $bcm); this build $ti_w / $ti_wm s (CPU $ti_c / $ti_cm)"
+    fi
     for v in $variants; do
         "$floor" -t "$t" -v "$v" -r "$runs" "$out/ao.rays" > "$out/floor_${v}_$t.log"
         sed "s/^/    [$v, $t threads] /" "$out/floor_${v}_$t.log"
@@ -77,10 +90,16 @@ printf '%s\n' "${rows[@]}"
 echo "(TachyonInternal: the whole render command, build and PNG included; floor: Embree alone on the"
 echo " dumped rays, best of $runs per kind, summed; tachyon: preprocessing + ray tracing, CPU of the"
 echo " whole run including its parse; ratios of best wall times, CPU in brackets)"
-/usr/bin/python3 - "$out/ti_ref.png" "$out/tachyon.tga" <<'PY' 2>/dev/null || true
+/usr/bin/python3 - "$out/ti_ref.png" "$out/tachyon.tga" "$out/ti_before.png" <<'PY' 2>/dev/null || true
+import os
 import sys
 import numpy as np
 from PIL import Image
-a, b = (np.asarray(Image.open(f).convert("RGB"), dtype=float) for f in sys.argv[1:3])
-print("mean |TachyonInternal - tachyon| of 8-bit channels: %.2f" % np.abs(a - b).mean())
+img = [np.asarray(Image.open(f).convert("RGB"), dtype=float) if os.path.exists(f) else None for f in sys.argv[1:4]]
+if img[1] is not None:
+    print("mean |TachyonInternal - tachyon| of 8-bit channels: %.2f" % np.abs(img[0] - img[1]).mean())
+if img[2] is not None:
+    d = np.abs(img[0] - img[2])
+    print("against the build before: %d of %d pixels differ, by at most %d, mean %.4f of 255"
+          % ((d.max(axis=2) > 0).sum(), d.shape[0] * d.shape[1], d.max(), d.mean()))
 PY

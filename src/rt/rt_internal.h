@@ -299,11 +299,12 @@ void rt_sample_pixel(uint32_t idx, int k, float *x, float *y);
 void rt_sample_disc(uint32_t *rng, float p[2]);
 /* A stratified set of count directions of the hemisphere around unit normal n. */
 typedef struct rt_hemisphere {
-    float n[3], t[3], b[3], r1, r2;
-    int count;
+    float n[3], t[3], b[3], r1;
+    float cs, sn;               /* the azimuth of the next direction */
+    int count, i;
 } rt_hemisphere;
 void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t *rng);
-/* Direction i (0 <= i < count) in d; returns its cosine with the normal. */
-float rt_hemisphere_dir(const rt_hemisphere *h, int i, float d[3]);
+/* The next direction (count of them, in order) in d; returns its cosine with the normal. */
+float rt_hemisphere_next(rt_hemisphere *h, float d[3]);
 
 #endif

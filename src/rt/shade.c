@@ -154,7 +154,7 @@ static void occlusion(const rt_shader *sh, rt_thread *th, const surface *s, floa
     rt_hemisphere_init(&h, s->n, sh->ao_samples, &th->rng);
     float sum = 0.0f, d[3];
     for (int i = 0; i < sh->ao_samples; i++) {
-        float cosine = rt_hemisphere_dir(&h, i, d);
+        float cosine = rt_hemisphere_next(&h, d);
         sum += cosine * visibility(sh, th, s->p, d, MS_RT_AO);
     }
     for (int k = 0; k < 3; k++) out[k] = 2.0f / (float)sh->ao_samples * sum * sh->ao_col[k];
