@@ -14,7 +14,10 @@
  *   cache     builtin, each thread testing the sphere that blocked its last occlusion ray
  *             (recorded by an occlusion filter) before walking the tree
  *
- *   rt_floor [-t threads] [-v variant] [-r repeats] dump
+ *   rt_floor [-t threads] [-v variant] [-r repeats] [-shuffle] dump
+ *
+ * -shuffle traces each kind's rays in a random order instead of the render's (tile by tile,
+ * a hit's occlusion rays together): what the coherence of the render's order is worth.
  *
  * Only spheres are in the dump's geometry: a dump whose scene had other primitives is traced
  * without them, and the program says so. */
@@ -98,6 +101,19 @@ static void read_dump(const char *path, dump *d)
     if (fread(d->spheres, 16, d->nspheres, f) != d->nspheres) die("%s: truncated", path);
     read_rays(f, d, path);
     fclose(f);
+}
+
+/* Each kind's rays in a random order (a fixed seed). */
+static void shuffle(dump *d)
+{
+    uint64_t x = 88172645463325252ull;
+    for (int k = 0; k < NKINDS; k++)
+        for (size_t i = d->nrays[k]; i > 1; i--) {
+            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+            size_t j = (size_t)(x % i);
+            rayrec t = d->rays[k][i - 1];
+            d->rays[k][i - 1] = d->rays[k][j], d->rays[k][j] = t;
+        }
 }
 
 /* ---------------------------------------------------------------- the user sphere */
@@ -352,17 +368,18 @@ static uint64_t trace_kind(RTCScene s, variant v, const dump *d, int kind, int n
 
 static void usage(void)
 {
-    die("%s", "usage: rt_floor [-t threads] [-v builtin|instance|user|packet|cache] [-r repeats] dump");
+    die("%s", "usage: rt_floor [-t threads] [-v builtin|instance|user|packet|cache] [-r repeats] [-shuffle] dump");
 }
 
 int main(int argc, char **argv)
 {
-    int nthreads = 1, repeats = 1;
+    int nthreads = 1, repeats = 1, shuffled = 0;
     variant v = V_BUILTIN;
     const char *path = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "-t") && i + 1 < argc) nthreads = atoi(argv[++i]);
         else if (!strcmp(argv[i], "-r") && i + 1 < argc) repeats = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "-shuffle")) shuffled = 1;
         else if (!strcmp(argv[i], "-v") && i + 1 < argc) {
             const char *name = argv[++i];
             for (v = 0; v < NVARIANTS && strcmp(name, variant_names[v]); v++) {}
@@ -373,6 +390,7 @@ int main(int argc, char **argv)
     if (!path || nthreads < 1 || nthreads > 256 || repeats < 1) usage();
     dump d;
     read_dump(path, &d);
+    if (shuffled) shuffle(&d);
     if (d.nother)
         printf("note: the scene's %llu other primitives are not in the dump; spheres only\n",
                (unsigned long long)d.nother);
@@ -382,8 +400,8 @@ int main(int argc, char **argv)
     if (!dev) die("%s", "Embree did not start");
     double b0 = now();
     RTCScene s = build_scene(dev, &d, v);
-    printf("floor variant=%s threads=%d spheres=%llu build=%.3f\n", variant_names[v], nthreads,
-           (unsigned long long)d.nspheres, now() - b0);
+    printf("floor variant=%s%s threads=%d spheres=%llu build=%.3f\n", variant_names[v],
+           shuffled ? " (shuffled)" : "", nthreads, (unsigned long long)d.nspheres, now() - b0);
     double total = 0, total_cpu = 0;
     uint64_t nall = 0;
     for (int k = 0; k < NKINDS; k++) {
