@@ -19,6 +19,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+_Static_assert(sizeof(rt_rayrec) == 32, "a dumped ray is 32 bytes");
+
 struct rt_raydump {
     ms_ofile *out;
     rt_raybuf *bufs;            /* per thread */
