@@ -16,9 +16,8 @@
 #   RTFLOOR_BEFORE=path/to/molscope: also time that binary (an older build) in the same run,
 #   and compare its picture with this build's pixel by pixel
 set -euo pipefail
-src=$(cd "$(dirname "$0")/../.." && pwd)
-build=$(cd "${1:-$src}" && pwd)
-out=$src/bench-out/rtfloor
+. "$(dirname "$0")/lib.sh" "$@"
+out=$out/rtfloor
 mkdir -p "$out"
 runs=${RTFLOOR_RUNS:-3}
 variants=${RTFLOOR_VARIANTS:-builtin instance user packet cache}

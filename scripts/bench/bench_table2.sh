@@ -11,9 +11,8 @@
 #   scripts/bench/bench_table2.sh [builddir]
 #   T2_ATOMS=56000  T2_SIZE=1024  T2_TACHYON=1 (0: TachyonInternal only)
 set -euo pipefail
-src=$(cd "$(dirname "$0")/../.." && pwd)
-build=$(cd "${1:-$src}" && pwd)
-out=$src/bench-out/table2
+. "$(dirname "$0")/lib.sh" "$@"
+out=$out/table2
 mkdir -p "$out"
 atoms=${T2_ATOMS:-56000}
 size=${T2_SIZE:-1024}
