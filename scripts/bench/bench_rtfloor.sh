@@ -49,6 +49,7 @@ echo "== AO on spheres: TachyonInternal, Embree-only floor, tachyon; $(date -u '
 # the dump and the export (all threads, one render)
 molscope "$build/src/molscope" "$(nproc)" 1 MOLSCOPE_RT_RAYDUMP="$out/ao.rays" BENCH_EXPORT="$out/scene.dat" > /dev/null
 cp "$out/ti.png" "$out/ti_ref.png"
+rm -f "$out/ti_before.png"
 if [ -n "$before" ]; then
     molscope "$before" "$(nproc)" 1 > /dev/null
     cp "$out/ti.png" "$out/ti_before.png"
