@@ -1,5 +1,6 @@
 # scripts/bench/lib.sh: the common start of the trajectory benchmarks (bench_xtc.sh,
-# bench_xtc_write.sh, bench_netcdf.sh, bench_pbc.sh), sourced after `set -eu` with the
+# bench_xtc_write.sh, bench_netcdf.sh, bench_pbc.sh) and of the ray tracer's
+# (bench_rtfloor.sh, bench_table2.sh), sourced after `set -eu` with the
 # script's arguments: `. "$(dirname "$0")/lib.sh" "$@"`. Sets src (the source tree), build
 # (the build tree: $1, else src), out (bench-out/ in the source tree, made here) and natoms
 # (NATOMS, default 1,000,000). `bench_replicate PDB` writes 1tii.pdb replicated to natoms

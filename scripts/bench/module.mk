@@ -24,3 +24,11 @@ bench: bench-programs
 scripts_bench_bench_rt_SOURCES = scripts/bench/bench_rt.c \
 	scripts/bench/bench_system.h scripts/bench/bench_system.c
 scripts_bench_bench_rt_LDADD = $(BENCH_LIBS)
+
+# rt_floor: the rays of a TachyonInternal ray dump traced by Embree alone (bench_rtfloor.sh).
+if HAVE_EMBREE
+EXTRA_PROGRAMS += scripts/bench/rt_floor
+BENCH_DRIVERS += scripts/bench/rt_floor$(EXEEXT)
+scripts_bench_rt_floor_SOURCES = scripts/bench/rt_floor.c
+scripts_bench_rt_floor_LDADD = $(EMBREE_LIBS) $(PTHREAD_LIBS) -lm
+endif

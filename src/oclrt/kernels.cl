@@ -97,8 +97,8 @@ static float2 sample_disc(uint *rng)
 
 typedef struct hemisphere {
     float3 n, t, b;
-    float r1, r2;
-    int count;
+    float r1, cs, sn;
+    int count, i;
 } hemisphere;
 
 static void hemisphere_init(hemisphere *h, float3 n, int count, uint *rng)
@@ -110,16 +110,21 @@ static void hemisphere_init(hemisphere *h, float3 n, int count, uint *rng)
     norm3(&h->t);
     h->b = cross3(n, h->t);
     h->count = count;
+    h->i = 0;
     h->r1 = rt_randf(rng);
-    h->r2 = rt_randf(rng);
+    float r2 = rt_randf(rng);
+    h->cs = cos(6.2831853f * r2);
+    h->sn = sin(6.2831853f * r2);
 }
 
-static float hemisphere_dir(const hemisphere *h, int i, float3 *d)
+static float hemisphere_next(hemisphere *h, float3 *d)
 {
-    float u = ((float)i + h->r1) / (float)h->count, v = (float)i * 0.618034f + h->r2;
-    v -= floor(v);
-    float sn = sqrt(fmax(0.0f, 1.0f - u * u)), cs = cos(6.2831853f * v), sw = sin(6.2831853f * v);
-    *d = sn * (cs * h->t + sw * h->b) + u * h->n;
+    float u = ((float)h->i + h->r1) / (float)h->count;
+    float r = sqrt(fmax(0.0f, 1.0f - u * u)), cs = h->cs, sn = h->sn;
+    *d = r * (cs * h->t + sn * h->b) + u * h->n;
+    h->cs = cs * -0.73736883f - sn * -0.67549035f;
+    h->sn = sn * -0.73736883f + cs * -0.67549035f;
+    h->i++;
     return u;
 }
 
@@ -549,7 +554,7 @@ static float3 occlusion(scene *S, const surface *s, uint *rng)
     float sum = 0.0f;
     for (int i = 0; i < count; i++) {
         float3 d;
-        float cosine = hemisphere_dir(&h, i, &d);
+        float cosine = hemisphere_next(&h, &d);
         sum += cosine * visibility(S, s->p, d, 2);
     }
     return 2.0f / (float)count * sum * vec3(S->P + P_AO_COL);

@@ -23,6 +23,7 @@ typedef struct frame {
     float *accum;               /* 3 floats per pixel: sums of the samples */
     uint32_t *rng;              /* per-pixel random state, kept from pass to pass */
     uint64_t (*rays)[MS_RT_NRAYKINDS];  /* per thread */
+    rt_raydump *dump;           /* MOLSCOPE_RT_RAYDUMP's file, or NULL */
 } frame;
 
 static void trace_tile(const frame *f, rt_thread *th, size_t tile)
@@ -51,6 +52,7 @@ static void trace_tiles(void *ctx, size_t b, size_t e, int thread)
     rt_thread th;
     memset(&th, 0, sizeof th);
     rtcInitIntersectContext(&th.ctx.ec);
+    th.dump = rt_raydump_buf(f->dump, thread);
     for (size_t t = b; t < e; t++) trace_tile(f, &th, t);
     for (int k = 0; k < MS_RT_NRAYKINDS; k++) f->rays[thread][k] += th.rays[k];
     rt_fpu_restore(fpu);
@@ -110,6 +112,7 @@ static void one_pass(frame *f, ms_rt_stats *st)
 {
     size_t ntiles = (size_t)f->tiles_x * (size_t)((f->height + TILE - 1) / TILE);
     ms_parallel_for(ntiles, 1, trace_tiles, f);
+    rt_raydump_flush(f->dump);
     st->passes = f->pass + 1;
     memset(st->rays, 0, sizeof st->rays);
     for (int t = 0; t < ms_threads_count(); t++)
@@ -148,7 +151,7 @@ static int frame_init(frame *f, const ms_scene *s, const rt_shader *sh, const ms
 {
     size_t npix = (size_t)s->width * (size_t)s->height;
     int depth = o->max_depth > 0 && o->max_depth < MS_RT_MAX_DEPTH ? o->max_depth : MS_RT_MAX_DEPTH;
-    *f = (frame){sh, s->width, s->height, (s->width + TILE - 1) / TILE, 0, depth, NULL, NULL, NULL};
+    *f = (frame){sh, s->width, s->height, (s->width + TILE - 1) / TILE, 0, depth, NULL, NULL, NULL, NULL};
     f->accum = ms_calloc_array(3 * npix, sizeof(float));
     f->rng = ms_alloc_array(npix, sizeof(uint32_t));
     f->rays = ms_calloc_array((size_t)ms_threads_count(), sizeof *f->rays);
@@ -187,9 +190,14 @@ static int trace_frame(const ms_scene *s, const rt_world *w, const ms_rt_options
     last_memory.frame = npix * (3 * sizeof(float) + sizeof(uint32_t));
     last_memory.image = 3 * npix;
     int rc = ms_image_alloc(img, s->width, s->height, err);
+    if (rc == 0 && o->raydump && *o->raydump) {
+        f.dump = rt_raydump_open(o->raydump, w, err);
+        if (!f.dump) rc = -1;
+    }
     if (rc == 0) {
         run_passes(&f, o, st);
         to_image(&f, st->passes, img);
+        rc = rt_raydump_close(f.dump, 1, err);
     }
     frame_free(&f);
     return rc;

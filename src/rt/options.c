@@ -49,6 +49,7 @@ int ms_rt_options_from_env(ms_rt_options *o, ms_error *err)
     o->max_passes = (int)passes;
     o->max_depth = (int)depth;
     o->time_budget = seconds;
+    o->raydump = getenv("MOLSCOPE_RT_RAYDUMP");
     o->progress = isatty(2);
     return 0;
 }

@@ -36,6 +36,8 @@ typedef struct ms_rt_options {
     double time_budget;   /* seconds (0: none); checked after each pass, one pass always runs */
     int progress;         /* a line per pass on stderr */
     size_t memory;        /* bytes the render may use; 0: what the system has available */
+    const char *raydump;  /* a file for every ray cast (raydump.c; NULL: none); only
+                           * ms_rt_render and ms_rt_write write it */
 } ms_rt_options;
 
 enum { MS_RT_PRIMARY, MS_RT_SHADOW, MS_RT_AO, MS_RT_SECONDARY, MS_RT_NRAYKINDS };
@@ -61,8 +63,9 @@ void ms_rt_last_memory(ms_rt_memory *out);
 /* 12 antialiasing and 12 occlusion samples (VMD's defaults), no limits, no progress. */
 void ms_rt_options_default(ms_rt_options *o);
 /* The pass limit, time budget and ray depth from MOLSCOPE_RT_PASSES, MOLSCOPE_RT_TIME and
- * MOLSCOPE_RT_DEPTH (unset or empty: none, none, MS_RT_MAX_DEPTH), and progress lines when
- * stderr is a terminal. 0, or -1 with err set when a value is not a positive number. */
+ * MOLSCOPE_RT_DEPTH (unset or empty: none, none, MS_RT_MAX_DEPTH), the ray dump's file from
+ * MOLSCOPE_RT_RAYDUMP (the environment's string, unset or empty: none), and progress lines
+ * when stderr is a terminal. 0, or -1 with err set when a value is not a positive number. */
 int ms_rt_options_from_env(ms_rt_options *o, ms_error *err);
 /* The options of the built-in devices for a scene: the defaults, the scene's sample counts
  * (`render aasamples|aosamples`), then the environment's limits as above. */

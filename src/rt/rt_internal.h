@@ -223,6 +223,34 @@ static inline void rt_user_occluded(const struct RTCOccludedFunctionNArguments *
     }
 }
 
+/* ---------------------------------------------------------------- ray dump (raydump.c) */
+
+/* One ray of the dump: origin, tnear, direction, kind | mask << 8 (32 bytes). */
+typedef struct rt_rayrec {
+    float org[3], tnear, dir[3];
+    uint32_t info;
+} rt_rayrec;
+/* A rendering thread's rays of the current pass. */
+typedef struct rt_raybuf {
+    rt_rayrec *r;
+    size_t n, cap;
+    int oom;
+} rt_raybuf;
+typedef struct rt_raydump rt_raydump;
+
+/* Open the dump file at path and write the header and the world's spheres; NULL with err
+ * set when it cannot be written. */
+rt_raydump *rt_raydump_open(const char *path, const rt_world *w, ms_error *err);
+/* The buffer of thread t (NULL when d is NULL: no dump). */
+rt_raybuf *rt_raydump_buf(rt_raydump *d, int thread);
+void rt_raybuf_add(rt_raybuf *b, int kind, unsigned mask, const float org[3], const float dir[3],
+                   float tnear);
+/* Write the threads' buffers (after a pass, in the calling thread) and empty them. */
+void rt_raydump_flush(rt_raydump *d);
+/* Finish the file (ok: keep it; else remove it) and free d; -1 with err set when ok and a
+ * write failed. NULL is allowed. */
+int rt_raydump_close(rt_raydump *d, int ok, ms_error *err);
+
 /* ---------------------------------------------------------------- tracing (shade.c) */
 
 /* Per rendering thread. */
@@ -230,6 +258,7 @@ typedef struct rt_thread {
     rt_ctx ctx;
     uint32_t rng;               /* the pixel's random state while it is traced */
     uint64_t rays[MS_RT_NRAYKINDS];
+    rt_raybuf *dump;            /* the ray dump's buffer; NULL when off */
 } rt_thread;
 
 /* The colour seen along a ray (dir unit length), with depth levels of reflection and
@@ -275,11 +304,12 @@ void rt_sample_pixel(uint32_t idx, int k, float *x, float *y);
 void rt_sample_disc(uint32_t *rng, float p[2]);
 /* A stratified set of count directions of the hemisphere around unit normal n. */
 typedef struct rt_hemisphere {
-    float n[3], t[3], b[3], r1, r2;
-    int count;
+    float n[3], t[3], b[3], r1;
+    float cs, sn;               /* the azimuth of the next direction */
+    int count, i;
 } rt_hemisphere;
 void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t *rng);
-/* Direction i (0 <= i < count) in d; returns its cosine with the normal. */
-float rt_hemisphere_dir(const rt_hemisphere *h, int i, float d[3]);
+/* The next direction (count of them, in order) in d; returns its cosine with the normal. */
+float rt_hemisphere_next(rt_hemisphere *h, float d[3]);
 
 #endif

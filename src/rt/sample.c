@@ -3,8 +3,10 @@
  * pixel so neighbours differ. Lenses: uniform on the disc. Ambient occlusion: n directions
  * of the hemisphere, uniform as Tachyon's (its uniform sphere directions flipped onto the
  * normal's side), but stratified: cos theta in n equal slices, azimuth spread by the golden
- * ratio, the whole set rotated at random per shaded point. Random numbers come from the
- * pixel's own state (rt_rand), kept from pass to pass.
+ * ratio (the azimuth turned by the golden angle from one direction to the next: four
+ * multiplications instead of a sine and a cosine), the whole set rotated at random per
+ * shaded point. Random numbers come from the pixel's own state (rt_rand), kept from pass to
+ * pass.
  * src/oclrt/kernels.cl mirrors this file function by function for the OpenCL tracer: change
  * both together. */
 #include "config.h"
@@ -31,6 +33,10 @@ void rt_sample_disc(uint32_t *rng, float p[2])
     p[1] = r * sinf(a);
 }
 
+/* The golden angle's rotation: azimuth i + 1 is azimuth i turned by 2 pi 0.618034. */
+#define GOLDEN_COS (-0.73736883f)
+#define GOLDEN_SIN (-0.67549035f)
+
 void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t *rng)
 {
     float a[3] = {1.0f, 0.0f, 0.0f};
@@ -40,15 +46,20 @@ void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t 
     ms_v3f_normalize_rcp(h->t);
     ms_v3f_cross(n, h->t, h->b);
     h->count = count;
+    h->i = 0;
     h->r1 = rt_randf(rng);
-    h->r2 = rt_randf(rng);
+    float r2 = rt_randf(rng);
+    h->cs = cosf(6.2831853f * r2);
+    h->sn = sinf(6.2831853f * r2);
 }
 
-float rt_hemisphere_dir(const rt_hemisphere *h, int i, float d[3])
+float rt_hemisphere_next(rt_hemisphere *h, float d[3])
 {
-    float u = ((float)i + h->r1) / (float)h->count, v = (float)i * 0.618034f + h->r2;
-    v -= floorf(v);
-    float sn = sqrtf(fmaxf(0.0f, 1.0f - u * u)), cs = cosf(6.2831853f * v), sw = sinf(6.2831853f * v);
-    for (int k = 0; k < 3; k++) d[k] = sn * (cs * h->t[k] + sw * h->b[k]) + u * h->n[k];
+    float u = ((float)h->i + h->r1) / (float)h->count;
+    float r = sqrtf(fmaxf(0.0f, 1.0f - u * u)), cs = h->cs, sn = h->sn;
+    for (int k = 0; k < 3; k++) d[k] = r * (cs * h->t[k] + sn * h->b[k]) + u * h->n[k];
+    h->cs = cs * GOLDEN_COS - sn * GOLDEN_SIN;
+    h->sn = sn * GOLDEN_COS + cs * GOLDEN_SIN;
+    h->i++;
     return u;
 }

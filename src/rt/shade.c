@@ -134,6 +134,7 @@ static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], co
     ray_init(&r, p, d, sh->w->eps);
     th->ctx.filter = &f;
     th->rays[kind]++;
+    if (th->dump) rt_raybuf_add(th->dump, kind, 0xffu, p, d, r.tnear);
     if (sh->w->split) {         /* opaque first: a blocked ray never walks the glass */
         r.mask = RT_MASK_OPAQUE;
         rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
@@ -153,7 +154,7 @@ static void occlusion(const rt_shader *sh, rt_thread *th, const surface *s, floa
     rt_hemisphere_init(&h, s->n, sh->ao_samples, &th->rng);
     float sum = 0.0f, d[3];
     for (int i = 0; i < sh->ao_samples; i++) {
-        float cosine = rt_hemisphere_dir(&h, i, d);
+        float cosine = rt_hemisphere_next(&h, d);
         sum += cosine * visibility(sh, th, s->p, d, MS_RT_AO);
     }
     for (int k = 0; k < 3; k++) out[k] = 2.0f / (float)sh->ao_samples * sum * sh->ao_col[k];
@@ -270,9 +271,11 @@ void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const floa
         memcpy(out, sh->bg, 3 * sizeof(float));
         return;
     }
+    int kind = primary ? MS_RT_PRIMARY : MS_RT_SECONDARY;
     ray_init(&rh.ray, org, dir, primary ? 0.0f : sh->w->eps);
+    if (th->dump) rt_raybuf_add(th->dump, kind, 0xffu, org, dir, rh.ray.tnear);
     intersect_unclipped(sh, th, &rh);
-    th->rays[primary ? MS_RT_PRIMARY : MS_RT_SECONDARY]++;
+    th->rays[kind]++;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         background(sh, org, dir, out);
         return;

@@ -1,0 +1,424 @@
+/* rt_floor.c: the floor of a TachyonInternal render. Reads a ray dump (MOLSCOPE_RT_RAYDUMP,
+ * src/rt/raydump.c: the scene's spheres in world coordinates and every ray the render cast,
+ * by kind) and traces the same rays with Embree alone: camera and transmission rays with
+ * rtcIntersect1, shadow and occlusion rays with rtcOccluded1, no sampling, no shading, no
+ * image. Prints, per ray kind, the rays, wall and CPU seconds (the least of the repeats, each)
+ * and Mrays/s (from the wall time), and the total: the time the render could not go below
+ * with these rays on this tree. Variants (-v), for the
+ * experiments of doc/BENCHMARKS.md:
+ *   builtin   Embree's sphere geometry (RTC_GEOMETRY_TYPE_SPHERE_POINT), one flat scene
+ *   instance  the same under one instance (as TachyonInternal places every transform)
+ *   user      a user geometry over Embree's tree, with a compact sphere test
+ *   packet    builtin, the occlusion rays sharing an origin (a hit's AO rays) traced
+ *             together by rtcOccluded4/8/16
+ *   cache     builtin, each thread testing the sphere that blocked its last occlusion ray
+ *             (recorded by an occlusion filter) before walking the tree
+ *
+ *   rt_floor [-t threads] [-v variant] [-r repeats] [-shuffle] dump
+ *
+ * -shuffle traces each kind's rays in a random order instead of the render's (tile by tile,
+ * a hit's occlusion rays together): what the coherence of the render's order is worth.
+ *
+ * Only spheres are in the dump's geometry: a dump whose scene had other primitives is traced
+ * without them, and the program says so. */
+#include <embree3/rtcore.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+
+enum { PRIMARY, SHADOW, AO, SECONDARY, NKINDS };
+static const char *const kind_names[NKINDS] = {"camera", "shadow", "occlusion", "transmission"};
+
+typedef struct rayrec {
+    float org[3], tnear, dir[3];
+    uint32_t info;
+} rayrec;
+
+typedef struct dump {
+    uint64_t nspheres, nother;
+    float *spheres;             /* x y z r */
+    rayrec *rays[NKINDS];
+    size_t nrays[NKINDS];
+} dump;
+
+typedef enum variant { V_BUILTIN, V_INSTANCE, V_USER, V_PACKET, V_CACHE, NVARIANTS } variant;
+static const char *const variant_names[] = {"builtin", "instance", "user", "packet", "cache"};
+
+/* The context of a query: Embree's, then the sphere that blocked the thread's last
+ * occlusion ray (the cache variant). */
+typedef struct query {
+    struct RTCIntersectContext ec;
+    unsigned last;
+} query;
+
+/* ---------------------------------------------------------------- reading the dump */
+
+static void die(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "rt_floor: ");
+    fprintf(stderr, fmt, arg);
+    fputc('\n', stderr);
+    exit(1);
+}
+
+static void read_rays(FILE *f, dump *d, const char *path)
+{
+    rayrec r;
+    size_t cap[NKINDS] = {0};
+    while (fread(&r, sizeof r, 1, f) == 1) {
+        unsigned k = r.info & 0xffu;
+        if (k >= NKINDS) die("%s: a ray of an unknown kind", path);
+        if (d->nrays[k] == cap[k]) {
+            cap[k] = cap[k] ? 2 * cap[k] : 1 << 16;
+            d->rays[k] = realloc(d->rays[k], cap[k] * sizeof r);
+            if (!d->rays[k]) die("%s: out of memory", path);
+        }
+        d->rays[k][d->nrays[k]++] = r;
+    }
+    if (ferror(f) || !feof(f)) die("%s: read error", path);
+}
+
+static void read_dump(const char *path, dump *d)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char h[32];
+    uint32_t v[2];
+    memset(d, 0, sizeof *d);
+    if (!f) die("%s: cannot open", path);
+    if (fread(h, 1, sizeof h, f) != sizeof h || memcmp(h, "MSRAYS01", 8)) die("%s: not a ray dump", path);
+    memcpy(v, h + 8, sizeof v);
+    memcpy(&d->nspheres, h + 16, 8);
+    memcpy(&d->nother, h + 24, 8);
+    if (v[0] != 1 || v[1] != NKINDS) die("%s: a ray dump of another version", path);
+    if (d->nspheres > ((uint64_t)1 << 32)) die("%s: too many spheres", path);
+    d->spheres = malloc(d->nspheres * 16 + 16);
+    if (!d->spheres) die("%s: out of memory", path);
+    if (fread(d->spheres, 16, d->nspheres, f) != d->nspheres) die("%s: truncated", path);
+    read_rays(f, d, path);
+    fclose(f);
+}
+
+/* Each kind's rays in a random order (a fixed seed). */
+static void shuffle(dump *d)
+{
+    uint64_t x = 88172645463325252ull;
+    for (int k = 0; k < NKINDS; k++)
+        for (size_t i = d->nrays[k]; i > 1; i--) {
+            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+            size_t j = (size_t)(x % i);
+            rayrec t = d->rays[k][i - 1];
+            d->rays[k][i - 1] = d->rays[k][j], d->rays[k][j] = t;
+        }
+}
+
+/* ---------------------------------------------------------------- the user sphere */
+
+static void sphere_bounds(const struct RTCBoundsFunctionArguments *a)
+{
+    const float *s = (const float *)a->geometryUserPtr + 4 * a->primID;
+    struct RTCBounds *b = a->bounds_o;
+    b->lower_x = s[0] - s[3], b->lower_y = s[1] - s[3], b->lower_z = s[2] - s[3];
+    b->upper_x = s[0] + s[3], b->upper_y = s[1] + s[3], b->upper_z = s[2] + s[3];
+}
+
+/* The nearest crossing of sphere s in (tnear, tfar) for ray i of an N-ray block; -1: none. */
+static float sphere_t(const float *s, const float *ray, unsigned N, unsigned i)
+{
+    float o[3] = {ray[i], ray[N + i], ray[2 * N + i]}, d[3] = {ray[4 * N + i], ray[5 * N + i], ray[6 * N + i]};
+    float tn = ray[3 * N + i], tf = ray[8 * N + i];
+    float oc[3] = {s[0] - o[0], s[1] - o[1], s[2] - o[2]};
+    float dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], inv = 1.0f / dd;
+    float tc = (oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2]) * inv;
+    float q[3] = {oc[0] - tc * d[0], oc[1] - tc * d[1], oc[2] - tc * d[2]};
+    float l2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2], r2 = s[3] * s[3];
+    if (l2 > r2) return -1.0f;
+    float td = sqrtf((r2 - l2) * inv);
+    if (tc - td > tn && tc - td < tf) return tc - td;
+    if (tc + td > tn && tc + td < tf) return tc + td;
+    return -1.0f;
+}
+
+static void sphere_intersect(const struct RTCIntersectFunctionNArguments *a)
+{
+    const float *s = (const float *)a->geometryUserPtr + 4 * a->primID;
+    float *ray = (float *)a->rayhit;
+    unsigned N = a->N;
+    for (unsigned i = 0; i < N; i++) {
+        if (!a->valid[i]) continue;
+        float t = sphere_t(s, ray, N, i);
+        if (t < 0.0f) continue;
+        ray[8 * N + i] = t;
+        float *hit = ray + 12 * N;       /* Ng x y z, u, v, primID, geomID, instID */
+        hit[i] = 1.0f, hit[N + i] = 0.0f, hit[2 * N + i] = 0.0f;
+        ((unsigned *)hit)[5 * N + i] = a->primID;
+        ((unsigned *)hit)[6 * N + i] = a->geomID;
+        ((unsigned *)hit)[7 * N + i] = a->context->instID[0];
+    }
+}
+
+static void sphere_occluded(const struct RTCOccludedFunctionNArguments *a)
+{
+    const float *s = (const float *)a->geometryUserPtr + 4 * a->primID;
+    float *ray = (float *)a->ray;
+    for (unsigned i = 0; i < a->N; i++)
+        if (a->valid[i] && sphere_t(s, ray, a->N, i) >= 0.0f) ray[8 * a->N + i] = -INFINITY;
+}
+
+/* The cache variant's occlusion filter: the blocker is remembered (and accepted). */
+static void record_blocker(const struct RTCFilterFunctionNArguments *a)
+{
+    ((query *)a->context)->last = ((const unsigned *)a->hit)[5 * a->N];
+}
+
+/* Does sphere s block the ray, clearly (a margin of 1e-4 of the radius inside the sphere
+ * and past tnear, so that no ray Embree would let pass is called blocked)? */
+static int sphere_blocks(const float *s, const float o[3], const float d[3], float tnear)
+{
+    float oc[3] = {s[0] - o[0], s[1] - o[1], s[2] - o[2]};
+    float tc = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    float l2 = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - tc * tc, r2 = s[3] * s[3] * 0.9998f;
+    if (!(l2 < r2)) return 0;
+    float td = sqrtf(r2 - l2);
+    return tc + td > tnear + 1e-4f * s[3];
+}
+
+/* ---------------------------------------------------------------- the scene */
+
+static RTCGeometry sphere_geometry(RTCDevice dev, const dump *d, variant v)
+{
+    RTCGeometry g;
+    if (v == V_USER) {
+        g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(g, (unsigned)d->nspheres);
+        rtcSetGeometryUserData(g, d->spheres);
+        rtcSetGeometryBoundsFunction(g, sphere_bounds, NULL);
+        rtcSetGeometryIntersectFunction(g, sphere_intersect);
+        rtcSetGeometryOccludedFunction(g, sphere_occluded);
+    } else {
+        g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, d->spheres, 0,
+                                   16, (size_t)d->nspheres);
+    }
+    if (v == V_CACHE) rtcSetGeometryOccludedFilterFunction(g, record_blocker);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_MEDIUM);
+    rtcCommitGeometry(g);
+    return g;
+}
+
+static RTCScene build_scene(RTCDevice dev, const dump *d, variant v)
+{
+    RTCScene s = rtcNewScene(dev);
+    RTCGeometry g = sphere_geometry(dev, d, v);
+    rtcAttachGeometry(s, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(s);
+    if (v != V_INSTANCE) return s;
+    RTCScene top = rtcNewScene(dev);
+    RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
+    float id[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+    rtcSetGeometryInstancedScene(inst, s);
+    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, id);
+    rtcCommitGeometry(inst);
+    rtcAttachGeometry(top, inst);
+    rtcReleaseGeometry(inst);
+    rtcReleaseScene(s);
+    rtcCommitScene(top);
+    return top;
+}
+
+/* ---------------------------------------------------------------- tracing */
+
+typedef struct job {
+    RTCScene scene;
+    const float *spheres;
+    variant v;
+    int kind;
+    const rayrec *rays;
+    size_t n, next;             /* next: the first ray of the next chunk (shared) */
+    pthread_mutex_t lock;
+    uint64_t hits;              /* camera: rays that hit; occlusion: rays blocked */
+} job;
+
+#define CHUNK 4096
+
+static void set_ray(struct RTCRay *r, const rayrec *q)
+{
+    r->org_x = q->org[0], r->org_y = q->org[1], r->org_z = q->org[2], r->tnear = q->tnear;
+    r->dir_x = q->dir[0], r->dir_y = q->dir[1], r->dir_z = q->dir[2], r->time = 0.0f;
+    r->tfar = INFINITY, r->mask = 0xffffffffu, r->id = 0, r->flags = 0;
+}
+
+static uint64_t trace_one(const job *j, query *qc, const rayrec *q)
+{
+    struct RTCIntersectContext *ctx = &qc->ec;
+    if (j->kind == PRIMARY || j->kind == SECONDARY) {
+        struct RTCRayHit rh;
+        set_ray(&rh.ray, q);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(j->scene, ctx, &rh);
+        return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+    if (j->v == V_CACHE && qc->last != ~0u && sphere_blocks(j->spheres + 4 * (size_t)qc->last, q->org, q->dir, q->tnear))
+        return 1;
+    struct RTCRay r;
+    set_ray(&r, q);
+    rtcOccluded1(j->scene, ctx, &r);
+    return r.tfar < 0.0f;
+}
+
+/* Rays q[0..n) (n <= 16, one origin) as one packet of 4, 8 or 16; returns those blocked. */
+static uint64_t trace_packet(const job *j, struct RTCIntersectContext *ctx, const rayrec *q, int n)
+{
+    int w = n <= 4 ? 4 : n <= 8 ? 8 : 16, valid[16];
+    RTC_ALIGN(64) struct RTCRay16 p;
+    float *f = (float *)&p;
+    for (int i = 0; i < w; i++) {
+        const rayrec *r = &q[i < n ? i : 0];
+        valid[i] = i < n ? -1 : 0;
+        float v[9] = {r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0.0f, INFINITY};
+        for (int k = 0; k < 9; k++) f[k * w + i] = v[k];
+        ((unsigned *)f)[9 * w + i] = 0xffffffffu;
+        ((unsigned *)f)[10 * w + i] = 0;
+        ((unsigned *)f)[11 * w + i] = 0;
+    }
+    if (w == 4) rtcOccluded4(valid, j->scene, ctx, (struct RTCRay4 *)&p);
+    else if (w == 8) rtcOccluded8(valid, j->scene, ctx, (struct RTCRay8 *)&p);
+    else rtcOccluded16(valid, j->scene, ctx, &p);
+    uint64_t blocked = 0;
+    for (int i = 0; i < n; i++) blocked += f[8 * w + i] < 0.0f;
+    return blocked;
+}
+
+static int same_origin(const rayrec *a, const rayrec *b)
+{
+    return !memcmp(a->org, b->org, sizeof a->org);
+}
+
+static uint64_t trace_range(const job *j, query *ctx, size_t b, size_t e)
+{
+    uint64_t hits = 0;
+    int packets = j->v == V_PACKET && (j->kind == AO || j->kind == SHADOW);
+    for (size_t i = b; i < e;) {
+        size_t k = i + 1;
+        while (packets && k < e && k - i < 16 && same_origin(&j->rays[i], &j->rays[k])) k++;
+        if (k - i > 1) hits += trace_packet(j, &ctx->ec, &j->rays[i], (int)(k - i));
+        else hits += trace_one(j, ctx, &j->rays[i]);
+        i = k;
+    }
+    return hits;
+}
+
+static void *worker(void *arg)
+{
+    job *j = arg;
+    query ctx;
+    uint64_t hits = 0;
+    rtcInitIntersectContext(&ctx.ec);
+    ctx.last = ~0u;
+    for (;;) {
+        pthread_mutex_lock(&j->lock);
+        size_t b = j->next;
+        j->next = b + CHUNK < j->n ? b + CHUNK : j->n;
+        pthread_mutex_unlock(&j->lock);
+        if (b >= j->n) break;
+        hits += trace_range(j, &ctx, b, b + CHUNK < j->n ? b + CHUNK : j->n);
+    }
+    pthread_mutex_lock(&j->lock);
+    j->hits += hits;
+    pthread_mutex_unlock(&j->lock);
+    return NULL;
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static double cpu(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+           1e-6 * (double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
+/* Trace every ray of one kind on nthreads threads: wall and CPU seconds, and the hits. */
+static uint64_t trace_kind(RTCScene s, variant v, const dump *d, int kind, int nthreads,
+                           double *wall, double *cpu_s)
+{
+    job j = {s, d->spheres, v, kind, d->rays[kind], d->nrays[kind], 0, PTHREAD_MUTEX_INITIALIZER, 0};
+    pthread_t th[256];
+    double t0 = now(), c0 = cpu();
+    for (int t = 1; t < nthreads; t++)
+        if (pthread_create(&th[t], NULL, worker, &j)) die("%s", "cannot start a thread");
+    worker(&j);
+    for (int t = 1; t < nthreads; t++) pthread_join(th[t], NULL);
+    *wall = now() - t0;
+    *cpu_s = cpu() - c0;
+    return j.hits;
+}
+
+static void usage(void)
+{
+    die("%s", "usage: rt_floor [-t threads] [-v builtin|instance|user|packet|cache] [-r repeats] [-shuffle] dump");
+}
+
+int main(int argc, char **argv)
+{
+    int nthreads = 1, repeats = 1, shuffled = 0;
+    variant v = V_BUILTIN;
+    const char *path = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "-t") && i + 1 < argc) nthreads = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "-r") && i + 1 < argc) repeats = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "-shuffle")) shuffled = 1;
+        else if (!strcmp(argv[i], "-v") && i + 1 < argc) {
+            const char *name = argv[++i];
+            for (v = 0; v < NVARIANTS && strcmp(name, variant_names[v]); v++) {}
+            if (v == NVARIANTS) usage();
+        } else if (argv[i][0] != '-' && !path) path = argv[i];
+        else usage();
+    }
+    if (!path || nthreads < 1 || nthreads > 256 || repeats < 1) usage();
+    dump d;
+    read_dump(path, &d);
+    if (shuffled) shuffle(&d);
+    if (d.nother)
+        printf("note: the scene's %llu other primitives are not in the dump; spheres only\n",
+               (unsigned long long)d.nother);
+    char cfg[32];
+    snprintf(cfg, sizeof cfg, "threads=%d", nthreads);
+    RTCDevice dev = rtcNewDevice(cfg);
+    if (!dev) die("%s", "Embree did not start");
+    double b0 = now();
+    RTCScene s = build_scene(dev, &d, v);
+    printf("floor variant=%s%s threads=%d spheres=%llu build=%.3f\n", variant_names[v],
+           shuffled ? " (shuffled)" : "", nthreads, (unsigned long long)d.nspheres, now() - b0);
+    double total = 0, total_cpu = 0;
+    uint64_t nall = 0;
+    for (int k = 0; k < NKINDS; k++) {
+        if (!d.nrays[k]) continue;
+        double best = INFINITY, best_cpu = INFINITY, wall, c;
+        uint64_t hits = 0;
+        for (int r = 0; r < repeats; r++) {     /* the least wall and the least CPU time */
+            hits = trace_kind(s, v, &d, k, nthreads, &wall, &c);
+            best = fmin(best, wall), best_cpu = fmin(best_cpu, c);
+        }
+        printf("kind=%s rays=%zu hits=%llu wall=%.3f cpu=%.3f mrays=%.2f\n", kind_names[k], d.nrays[k],
+               (unsigned long long)hits, best, best_cpu, (double)d.nrays[k] / best / 1e6);
+        total += best, total_cpu += best_cpu, nall += d.nrays[k];
+    }
+    printf("total rays=%llu wall=%.3f cpu=%.3f mrays=%.2f\n", (unsigned long long)nall, total, total_cpu,
+           (double)nall / total / 1e6);
+    rtcReleaseScene(s);
+    rtcReleaseDevice(dev);
+    return 0;
+}
