@@ -49,6 +49,8 @@ extern const ms_app_cmdset_fn ms_command_sets[];
 void ms_cmd_quit_register(ms_app *app);
 /* plugin (cmd_plugin.c) */
 void ms_cmd_plugin_register(ms_app *app);
+/* imd: a running simulation's coordinates over the IMD protocol (cmd_imd.c) */
+void ms_cmd_imd_register(ms_app *app);
 /* gettimestep, rawtimestep (cmd_timestep.c) */
 void ms_cmd_timestep_register(ms_app *app);
 /* play, logfile, vmdcon, sleep, wait (cmd_batch.c) */
