@@ -28,7 +28,8 @@
 
 #define ASSOC "molscope::imd"
 #define IMD_TIMEOUT 5.0            /* seconds for the connection and for the handshake */
-#define IMD_READ_SIZE (1u << 20)   /* bytes read per turn of the event loop at most */
+#define IMD_READ_SIZE (1u << 20)   /* bytes of one read */
+#define IMD_READS_PER_TURN 16      /* reads per turn of the event loop at most */
 
 typedef struct imd_session {
     ms_app *app;
@@ -142,26 +143,35 @@ static int handle_msg(imd_session *s, const ms_imd_msg *msg, ms_error *err)
     }
 }
 
-static void on_readable(ClientData cd, int mask)
+/* Decode and apply n bytes of s->buf: 0, 1 when the session ended (an error reported). */
+static int take_bytes(imd_session *s, long n)
 {
-    (void)mask;
-    imd_session *s = cd;
     ms_error err = {{0}};
-    long n = ms_imd_recv_now(s->fd, s->buf, IMD_READ_SIZE, &err);
-    if (n < 0) {
-        stream_failed(s, &err);
-        return;
-    }
     for (long at = 0; at < n;) {
         ms_imd_msg msg;
         int done, rc = 0;
         long used = ms_imd_feed(&s->dec, s->buf + at, (size_t)(n - at), &msg, &done, &err);
         if (used < 0 || (done && (rc = handle_msg(s, &msg, &err)) < 0)) {
             stream_failed(s, &err);
-            return;
+            return 1;
         }
-        if (rc) return;
+        if (rc) return 1;
         at += used;
+    }
+    return 0;
+}
+
+/* The socket is readable: what has arrived, up to IMD_READS_PER_TURN buffers, so a fast
+ * simulation cannot hold the event loop. */
+static void on_readable(ClientData cd, int mask)
+{
+    (void)mask;
+    imd_session *s = cd;
+    for (int i = 0; i < IMD_READS_PER_TURN; i++) {
+        ms_error err = {{0}};
+        long n = ms_imd_recv_now(s->fd, s->buf, IMD_READ_SIZE, &err);
+        if (n < 0) stream_failed(s, &err);
+        if (n <= 0 || take_bytes(s, n)) return;
     }
 }
 

@@ -128,6 +128,10 @@ int ms_imd_check_handshake(const unsigned char in[MS_IMD_HEADER_SIZE], int *swap
 
 void ms_imd_decode_coords(const unsigned char *in, size_t natoms, int swap, float *xyz)
 {
+    if (!swap) {
+        memcpy(xyz, in, 12 * natoms);
+        return;
+    }
     for (size_t i = 0; i < 3 * natoms; i++) xyz[i] = word_float(get_word(in + 4 * i, swap));
 }
 
@@ -212,7 +216,9 @@ static void finish_message(ms_imd_decoder *d, ms_imd_msg *msg)
     memset(msg, 0, sizeof *msg);
     msg->type = d->type;
     msg->length = d->length;
-    if (d->type == MS_IMD_FCOORDS) {
+    if (d->type == MS_IMD_FCOORDS && !d->swap) {
+        msg->coords = (const float *)(const void *)d->body;   /* malloc'd: aligned */
+    } else if (d->type == MS_IMD_FCOORDS) {
         ms_imd_decode_coords(d->body, d->natoms, d->swap, d->coords);
         msg->coords = d->coords;
     } else if (d->type == MS_IMD_ENERGIES) {

@@ -11,7 +11,7 @@ Then it records every message the client sends, one line each on stdout ("GO", "
 IMD_DISCONNECT, IMD_KILL or the end of the connection.
 
 usage: imdserver.py [--natoms N] [--frames K] [--mode MODE] [--swap] [--every S]
-                    [--after-go-wait SECONDS]
+                    [--after-go-wait SECONDS] [--same]
   --mode normal (default), bye (IMD_DISCONNECT after the frames), wrongcount (frames of
     N + 1 atoms), truncated (half a frame, then close), huge (an IMD_FCOORDS header of
     2147483647 atoms), unknown (message type 99), badhandshake (IMD_FCOORDS where the
@@ -19,6 +19,8 @@ usage: imdserver.py [--natoms N] [--frames K] [--mode MODE] [--swap] [--every S]
     (close right after accepting), ioerror (IMD_IOERROR)
   --swap: the other byte order than this machine's for the handshake and the bodies
   --every S: send one more frame every S seconds until the client leaves (after the K)
+  --same: every frame has frame 1's coordinates (made once: for benchmarks), the energies
+    still count the frames
 """
 import argparse
 import select
@@ -36,14 +38,20 @@ def header(kind, length):
     return struct.pack(">ii", kind, length)
 
 
-def frame(k, natoms, order):
-    coords = []
+def coords(k, natoms, order):
+    xyz = []
     for i in range(natoms):
-        coords += [k + 0.5 * i, -float(k), 0.25 * i + 0.125 * k]
-    body = struct.pack(order + "%df" % (3 * natoms), *coords)
-    energies = struct.pack(order + "i9f", 10 * k, 300.0 + k, -1000.5 + k,
-                           *[j + 1.5 for j in range(7)])
-    return header(FCOORDS, natoms) + body + header(ENERGIES, 1) + energies
+        xyz += [k + 0.5 * i, -float(k), 0.25 * i + 0.125 * k]
+    return header(FCOORDS, natoms) + struct.pack(order + "%df" % (3 * natoms), *xyz)
+
+
+def energies(k, order):
+    return header(ENERGIES, 1) + struct.pack(order + "i9f", 10 * k, 300.0 + k, -1000.5 + k,
+                                             *[j + 1.5 for j in range(7)])
+
+
+def frame(k, natoms, order):
+    return coords(k, natoms, order) + energies(k, order)
 
 
 def recv_exact(conn, n):
@@ -120,8 +128,13 @@ def serve(conn, args):
     if misbehave(conn, args, order):
         time.sleep(0.5)
         return
+    same = coords(1, args.natoms, order) if args.same else None
     for k in range(1, args.frames + 1):
-        conn.sendall(frame(k, args.natoms, order))
+        if same:
+            conn.sendall(same)
+            conn.sendall(energies(k, order))
+        else:
+            conn.sendall(frame(k, args.natoms, order))
     if args.mode == "bye":
         conn.sendall(header(DISCONNECT, 0))
         return
@@ -145,6 +158,7 @@ def main():
     p.add_argument("--swap", action="store_true")
     p.add_argument("--every", type=float, default=0)
     p.add_argument("--after-go-wait", type=float, default=0)
+    p.add_argument("--same", action="store_true")
     args = p.parse_args()
     srv = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
     srv.bind(("127.0.0.1", 0))
