@@ -42,6 +42,8 @@ typedef struct imd_session {
     int have_energies;
     ms_imd_energies energies;
     unsigned char *buf;
+    unsigned gen;                  /* sessions ended: a Tcl callback may end one mid-read */
+    int busy;                      /* reading: a nested event loop must not read again */
 } imd_session;
 
 static imd_session *session_of(ms_app *app)
@@ -56,6 +58,7 @@ static void session_close(imd_session *s)
     Tcl_DeleteFileHandler(s->fd);
     close(s->fd);
     s->fd = -1;
+    s->gen++;
     ms_imd_decoder_free(&s->dec);
 }
 
@@ -119,7 +122,9 @@ static int apply_coords(imd_session *s, const float *xyz, ms_error *err)
         ms_molset_emit(&app->mols, MS_EV_FRAME, m, NULL);
         return 0;
     }
+    int id = m->id;
     ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, m, NULL);
+    if (ms_molset_get(&app->mols, id) != m) return 0;    /* a trace callback deleted it */
     ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
     if (m->nframes == 1) ms_view_reset(&app->world);
     return 0;
@@ -143,10 +148,12 @@ static int handle_msg(imd_session *s, const ms_imd_msg *msg, ms_error *err)
     }
 }
 
-/* Decode and apply n bytes of s->buf: 0, 1 when the session ended (an error reported). */
+/* Decode and apply n bytes of s->buf: 0, 1 when the session ended (an error reported, or a
+ * Tcl callback of the frame's events ended it). */
 static int take_bytes(imd_session *s, long n)
 {
     ms_error err = {{0}};
+    unsigned gen = s->gen;
     for (long at = 0; at < n;) {
         ms_imd_msg msg;
         int done, rc = 0;
@@ -155,7 +162,7 @@ static int take_bytes(imd_session *s, long n)
             stream_failed(s, &err);
             return 1;
         }
-        if (rc) return 1;
+        if (rc || s->gen != gen) return 1;
         at += used;
     }
     return 0;
@@ -167,12 +174,15 @@ static void on_readable(ClientData cd, int mask)
 {
     (void)mask;
     imd_session *s = cd;
+    if (s->busy) return;           /* the socket stays readable: the outer call goes on */
+    s->busy = 1;
     for (int i = 0; i < IMD_READS_PER_TURN; i++) {
         ms_error err = {{0}};
         long n = ms_imd_recv_now(s->fd, s->buf, IMD_READ_SIZE, &err);
         if (n < 0) stream_failed(s, &err);
-        if (n <= 0 || take_bytes(s, n)) return;
+        if (n <= 0 || take_bytes(s, n)) break;
     }
+    s->busy = 0;
 }
 
 /* ---------------------------------------------------------------- subcommands */

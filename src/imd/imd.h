@@ -103,7 +103,8 @@ long ms_imd_feed(ms_imd_decoder *d, const unsigned char *buf, size_t n, ms_imd_m
 /* ---------------------------------------------------------------- the connection */
 
 /* A TCP connection to host:port within timeout seconds: the socket, or -1 with err (the
- * host unknown, the connection refused, no answer in time). */
+ * host unknown, the connection refused, no answer in time). Sends on it give up after the
+ * same time when the peer stops reading. */
 int ms_imd_connect(const char *host, int port, double timeout, ms_error *err);
 /* Wait up to timeout seconds for the simulation's handshake, check it and answer IMD_GO:
  * 0 and *swap, or -1 with err (nothing in time, the peer closed, not an IMD handshake). */

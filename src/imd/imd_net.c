@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/types.h>
 #include <unistd.h>
 
@@ -62,7 +63,11 @@ static int connect_one(const struct addrinfo *ai, double timeout, int *why)
         return -1;
     }
     int one = 1;
+    struct timeval limit;        /* for sends: a peer that stops reading */
+    limit.tv_sec = (time_t)timeout;
+    limit.tv_usec = (suseconds_t)((timeout - (double)limit.tv_sec) * 1e6);
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &limit, sizeof limit);
     return fd;
 }
 
@@ -136,6 +141,11 @@ int ms_imd_send(int fd, int32_t type, int32_t length, ms_error *err)
     while (sent < sizeof h) {
         ssize_t r = send(fd, h + sent, sizeof h - sent, MSG_NOSIGNAL);
         if (r < 0 && errno == EINTR) continue;
+        if (r < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+            ms_error_set(err, "sending %s: the simulation does not read its messages",
+                         ms_imd_type_name(type));
+            return -1;
+        }
         if (r <= 0) {
             ms_error_set(err, "sending %s: %s", ms_imd_type_name(type), strerror(errno));
             return -1;
