@@ -8,7 +8,6 @@
  *   animate delete all ?molid? | animate delete ?beg b? ?end e? ?skip s? ?molid?
  *   animate dup ?frame n|now|null? molid */
 #include "config.h"
-#include "assemble/view.h"
 #include "commands/atomsel.h"
 #include "commands/commands.h"
 #include "fileio/load.h"
@@ -290,9 +289,7 @@ static int an_dup(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
     } else {
         memset(f->pos, 0, bytes);
     }
-    ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, m, NULL);
-    ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
-    if (m->nframes == 1) ms_view_reset(&app->world);   /* its first coordinates, as VMD */
+    ms_cmd_frames_appended(app, m);
     return TCL_OK;
 }
 

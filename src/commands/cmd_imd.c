@@ -17,7 +17,6 @@
  * not the molecule's) end the session and go to the background error handler. */
 #include "config.h"
 #include "app/app.h"
-#include "assemble/view.h"
 #include "commands/args.h"
 #include "commands/commands.h"
 #include "imd/imd.h"
@@ -122,11 +121,7 @@ static int apply_coords(imd_session *s, const float *xyz, ms_error *err)
         ms_molset_emit(&app->mols, MS_EV_FRAME, m, NULL);
         return 0;
     }
-    int id = m->id;
-    ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, m, NULL);
-    if (ms_molset_get(&app->mols, id) != m) return 0;    /* a trace callback deleted it */
-    ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
-    if (m->nframes == 1) ms_view_reset(&app->world);
+    ms_cmd_frames_appended(app, m);
     return 0;
 }
 
