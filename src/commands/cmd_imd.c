@@ -61,8 +61,8 @@ static void session_close(imd_session *s)
     ms_imd_decoder_free(&s->dec);
 }
 
-/* Send a bodiless message and end the connection; errors only when asked (the simulation
- * may have gone already). */
+/* Send a bodiless message and end the connection either way: 0, or -1 with err when the
+ * message could not be sent (the simulation may have gone already). */
 static int session_end(imd_session *s, int32_t type, ms_error *err)
 {
     int rc = ms_imd_send(s->fd, type, 0, err);
@@ -256,9 +256,11 @@ static int imd_leave(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const o
     (void)objc;
     imd_session *s = connected(app, interp);
     if (!s) return TCL_ERROR;
-    int32_t type = ms_word_eq(Tcl_GetString(objv[1]), "kill") ? MS_IMD_KILL : MS_IMD_DISCONNECT;
+    int kill = ms_word_eq(Tcl_GetString(objv[1]), "kill");
     ms_error err = {{0}};
-    if (session_end(s, type, &err)) return ms_cmd_error(interp, "%s: %s", ms_args_where(), err.msg);
+    /* detaching from a simulation that is gone already is no error; a kill not sent is */
+    if (session_end(s, kill ? MS_IMD_KILL : MS_IMD_DISCONNECT, &err) && kill)
+        return ms_cmd_error(interp, "imd kill: %s (disconnected)", err.msg);
     return TCL_OK;
 }
 
