@@ -286,6 +286,7 @@ static int an_dup(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
         if (with_vel) memcpy(f->vel, s->vel, bytes);
         memcpy(f->cell, s->cell, sizeof f->cell);
         f->time = s->time;
+        memcpy(f->energy, s->energy, sizeof f->energy);
     } else {
         memset(f->pos, 0, bytes);
     }

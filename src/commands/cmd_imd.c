@@ -13,6 +13,9 @@
  *   imd copyunitcell ?on|off?    new frames take the unit cell of the frame before
  *   imd energies                 the last IMD_ENERGIES (molscope's addition), as molinfo names
  *
+ * A frame takes the last energies received before its coordinates (VMD's rule; GROMACS sends
+ * a step's energies first): molinfo's bond ... energy keywords read them.
+ *
  * Errors while streaming (the simulation closes, a wrong message, a coordinate count that is
  * not the molecule's) end the session and go to the background error handler. */
 #include "config.h"
@@ -99,6 +102,23 @@ static ms_frame *target_frame(imd_session *s, ms_molecule *m, int *added, ms_err
     return f;
 }
 
+/* The last energies received into a frame's terms, as VMD fills its timestep (kinetic is
+ * total - potential; IMD sends no H-bond or field term). */
+static void put_energies(const ms_imd_energies *e, float out[MS_EN_KINDS])
+{
+    memset(out, 0, sizeof(float[MS_EN_KINDS]));
+    out[MS_EN_BOND] = e->Ebond;
+    out[MS_EN_ANGLE] = e->Eangle;
+    out[MS_EN_DIHEDRAL] = e->Edihe;
+    out[MS_EN_IMPROPER] = e->Eimpr;
+    out[MS_EN_VDW] = e->Evdw;
+    out[MS_EN_ELEC] = e->Eelec;
+    out[MS_EN_KINETIC] = e->Etot - e->Epot;
+    out[MS_EN_POTENTIAL] = e->Epot;
+    out[MS_EN_TEMPERATURE] = e->T;
+    out[MS_EN_TOTAL] = e->Etot;
+}
+
 static int apply_coords(imd_session *s, const float *xyz, ms_error *err)
 {
     ms_app *app = s->app;
@@ -116,6 +136,7 @@ static int apply_coords(imd_session *s, const float *xyz, ms_error *err)
     ms_frame *f = target_frame(s, m, &added, err);
     if (!f) return -1;
     memcpy(f->pos, xyz, m->atoms.n * 3 * sizeof(float));
+    if (s->have_energies) put_energies(&s->energies, f->energy);
     app->world.scene_version++;
     if (!added) {
         ms_molset_emit(&app->mols, MS_EV_FRAME, m, NULL);

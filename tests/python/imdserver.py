@@ -4,7 +4,7 @@
 It listens on 127.0.0.1 (a free port), prints the port on the first line of stdout, takes
 one client, speaks IMD version 2 as NAMD does (the handshake's version in the server's own
 byte order, bodies in that order too) and sends known frames: frame k (1, 2, ...) puts atom
-i at (k + 0.5 i, -k, 0.25 i + 0.125 k), followed by IMD_ENERGIES with step 10 k,
+i at (k + 0.5 i, -k, 0.25 i + 0.125 k), after IMD_ENERGIES (as GROMACS orders them) with step 10 k,
 temperature 300 + k and energy -1000.5 + k (the other seven terms 1.5, 2.5 ... 7.5).
 Then it records every message the client sends, one line each on stdout ("GO", "PAUSE",
 "TRATE 5", "DISCONNECT", "KILL", "EOF" when the client closes), and exits after
@@ -51,7 +51,7 @@ def energies(k, order):
 
 
 def frame(k, natoms, order):
-    return coords(k, natoms, order) + energies(k, order)
+    return energies(k, order) + coords(k, natoms, order)
 
 
 def recv_exact(conn, n):
@@ -107,7 +107,7 @@ def misbehave(conn, args, order):
     if mode == "wrongcount":
         conn.sendall(frame(1, n + 1, order))
     elif mode == "truncated":
-        conn.sendall(frame(1, n, order)[: 8 + 6 * n])
+        conn.sendall(frame(1, n, order)[: 48 + 8 + 6 * n])
     elif mode == "huge":
         conn.sendall(header(FCOORDS, 2147483647) + b"\0" * 64)
     elif mode == "unknown":
@@ -131,8 +131,8 @@ def serve(conn, args):
     same = coords(1, args.natoms, order) if args.same else None
     for k in range(1, args.frames + 1):
         if same:
-            conn.sendall(same)
             conn.sendall(energies(k, order))
+            conn.sendall(same)
         else:
             conn.sendall(frame(k, args.natoms, order))
     if args.mode == "bye":
