@@ -9,9 +9,9 @@ proc cpu {} {
     close $f
     expr {([lindex $fields 12] + [lindex $fields 13]) / 100.0}
 }
+# the last frame is applied when the last frame's temperature (300 + k) is there
 proc poll {} {
-    set e [imd energies]
-    if {[llength $e] && [dict get $e timestep] >= 10 * $::frames} { set ::done 1 } else { after 2 poll }
+    if {[molinfo top get temperature frame last] >= 300 + $::frames} { set ::done 1 } else { after 2 poll }
 }
 set srv [open "|/usr/bin/python3 $server --natoms $natoms --frames $frames --same 2>@stderr" r]
 gets $srv port

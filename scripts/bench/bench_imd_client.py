@@ -2,7 +2,7 @@
 """bench_imd_client.py: the peer of bench_imd.sh: a minimal IMD client in Python (socket and
 numpy), receiving the same frames as molscope: handshake, IMD_GO, then each IMD_FCOORDS
 read into one buffer and copied into the current frame's array (keep 0) or appended as a
-new array (keep 1), until the energies of the last frame. Prints
+new array (keep 1), until the last frame's coordinates (after its energies). Prints
 "peer <keep> <frames> <seconds> <cpu-seconds>".
 
 usage: bench_imd_client.py <port> <natoms> <frames> <keep>
@@ -36,6 +36,7 @@ def main():
     current = np.zeros((natoms, 3), dtype=np.float32)
     kept = []
     energies = bytearray(40)
+    step = 0
     while True:
         recv_into(conn, memoryview(head))
         kind, length = struct.unpack(">ii", head)
@@ -46,10 +47,11 @@ def main():
                 kept.append(xyz.astype(np.float32))
             else:
                 current[:] = xyz
+            if step >= 10 * frames:
+                break
         elif kind == 1:
             recv_into(conn, memoryview(energies))
-            if struct.unpack(order + "i", energies[:4])[0] >= 10 * frames:
-                break
+            step = struct.unpack(order + "i", energies[:4])[0]
     t, c = time.perf_counter() - t0, time.process_time() - c0
     conn.sendall(struct.pack(">ii", 0, 0))
     conn.close()
