@@ -36,6 +36,8 @@
  *   cl/         what the OpenCL users (surf/, oclrt/) share: errors, device choice, the
  *               one engine (device, context, queue), the per-user cache folders,
  *               programs built or read from the binary cache
+ *   imd/        the IMD protocol (a running simulation's coordinates and energies over
+ *               TCP): the message codec, the stream decoder, the client connection
  *  core (no Tcl)
  *   ss/         secondary structure computed from the backbone (DSSP), on demand
  *   select/     the atom selection language (compiled to a tree, evaluated to bit sets)
@@ -98,6 +100,7 @@
 #include "fileio/load.h"
 #include "fileio/write.h"
 #include "image/image.h"
+#include "imd/imd.h"
 #ifdef MS_HAVE_OPENCL
 #include "cl/cl.h"          /* only built with OpenCL */
 #endif

@@ -8,7 +8,6 @@
  *   animate delete all ?molid? | animate delete ?beg b? ?end e? ?skip s? ?molid?
  *   animate dup ?frame n|now|null? molid */
 #include "config.h"
-#include "assemble/view.h"
 #include "commands/atomsel.h"
 #include "commands/commands.h"
 #include "fileio/load.h"
@@ -287,12 +286,11 @@ static int an_dup(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
         if (with_vel) memcpy(f->vel, s->vel, bytes);
         memcpy(f->cell, s->cell, sizeof f->cell);
         f->time = s->time;
+        memcpy(f->energy, s->energy, sizeof f->energy);
     } else {
         memset(f->pos, 0, bytes);
     }
-    ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, m, NULL);
-    ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
-    if (m->nframes == 1) ms_view_reset(&app->world);   /* its first coordinates, as VMD */
+    ms_cmd_frames_appended(app, m);
     return TCL_OK;
 }
 

@@ -138,14 +138,16 @@ typedef enum {
     K_REMARKS, K_NUMATOMS, K_NUMFRAMES, K_FRAME, K_LAST, K_NUMVOLUMEDATA, K_ACTIVE, K_DRAWN,
     K_DISPLAYED, K_FIXED, K_TOP, K_CENTER, K_CENTER_MATRIX, K_ROTATE_MATRIX, K_SCALE_MATRIX,
     K_GLOBAL_MATRIX, K_VIEW_MATRIX, K_PHYSICAL_TIME, K_TIMESTEPS, K_A, K_B, K_C, K_ALPHA,
-    K_BETA, K_GAMMA, K_COUNT
+    K_BETA, K_GAMMA, K_BOND, K_ANGLE, K_DIHEDRAL, K_IMPROPER, K_VDW, K_ELEC, K_HBOND,
+    K_KINETIC, K_POTENTIAL, K_TEMPERATURE, K_ENERGY, K_EFIELD, K_COUNT
 } keyword;
 static const char *const keywords[K_COUNT + 1] = {
     "id", "index", "name", "filename", "filetype", "filespec", "database", "accession",
     "remarks", "numatoms", "numframes", "frame", "last", "numvolumedata", "active", "drawn",
     "displayed", "fixed", "top", "center", "center_matrix", "rotate_matrix", "scale_matrix",
     "global_matrix", "view_matrix", "physical_time", "timesteps", "a", "b", "c", "alpha",
-    "beta", "gamma", NULL};
+    "beta", "gamma", "bond", "angle", "dihedral", "improper", "vdw", "elec", "hbond", "kinetic",
+    "potential", "temperature", "energy", "efield", NULL};
 
 /* An extra keyword's handler for k, or NULL ("rep " also takes "rep 0"). */
 static const ms_molinfo_keyword *find_extra(const char *k, int setting)
@@ -217,6 +219,11 @@ static int get_keyword(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const ch
     case K_PHYSICAL_TIME: *out = Tcl_NewDoubleObj(f ? f->time : 0.0); break;
     case K_A: case K_B: case K_C: case K_ALPHA: case K_BETA: case K_GAMMA:
         *out = Tcl_NewDoubleObj(f ? f->cell[i - K_A] : 0.0);
+        break;
+    case K_BOND: case K_ANGLE: case K_DIHEDRAL: case K_IMPROPER: case K_VDW: case K_ELEC:
+    case K_HBOND: case K_KINETIC: case K_POTENTIAL: case K_TEMPERATURE: case K_ENERGY:
+    case K_EFIELD:   /* the frame's energies (molecule.h: MS_EN_* in this order) */
+        *out = Tcl_NewDoubleObj(f ? f->energy[i - K_BOND] : 0.0);
         break;
     default: {
         const ms_molinfo_keyword *e = find_extra(k, 0);

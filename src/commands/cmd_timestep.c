@@ -14,7 +14,6 @@
 #include "app/app.h"
 #include "commands/args.h"
 #include "commands/commands.h"
-#include "assemble/view.h"
 
 #include <limits.h>
 #include <string.h>
@@ -98,9 +97,7 @@ static int rawtimestep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     if (!fr) return ms_cmd_error(interp, "rawtimestep: %s", err.msg);
     memcpy(fr->pos + 3 * a.start, bytes, n * 3 * sizeof(float));
     if (f < 0) {
-        ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, m, NULL);
-        ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
-        if (m->nframes == 1) ms_view_reset(&app->world);   /* its first coordinates, as VMD */
+        ms_cmd_frames_appended(app, m);
     } else {
         ms_molset_emit(&app->mols, MS_EV_FRAME, m, NULL);
     }

@@ -16,6 +16,7 @@ const ms_app_cmdset_fn ms_command_sets[] = {
     ms_cmd_gui_register,
     ms_cmd_plugin_register,
     ms_cmd_timestep_register,
+    ms_cmd_imd_register,
     ms_cmd_mol_register,
     ms_cmd_ss_register,
     ms_cmd_molinfo_register,

@@ -165,6 +165,17 @@ static ms_molecule *one_of_spec(ms_app *app, Tcl_Interp *interp, const char *w, 
     return m;
 }
 
+int ms_cmd_frames_appended(ms_app *app, ms_molecule *m)
+{
+    int id = m->id;
+    ms_molset_emit(&app->mols, MS_EV_FRAMES_ADDED, m, NULL);
+    if (ms_molset_get(&app->mols, id) != m) return -1;
+    ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
+    if (ms_molset_get(&app->mols, id) != m) return -1;
+    if (m->nframes == 1) ms_view_reset(&app->world);   /* its first coordinates, as VMD */
+    return 0;
+}
+
 ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const char *cmd)
 {
     const char *w = Tcl_GetString(word);

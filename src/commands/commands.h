@@ -34,6 +34,10 @@ void ms_cmdset_quiet(ms_app *app, const char *name);
  * are of the words after it. spec must live as long as the command. */
 void ms_cmd_create(ms_app *app, const ms_subcmd *spec);
 
+/* Frames were appended to m: tell the listeners (vmd_timestep), make the last frame current
+ * (vmd_frame) and, when it is the molecule's first, reset the view as VMD does. A Tcl trace
+ * callback may delete m meanwhile: 0, or -1 when m is gone (nothing more was done with it). */
+int ms_cmd_frames_appended(ms_app *app, ms_molecule *m);
 /* A molecule named by id or "top"; NULL with an error naming cmd and the word. */
 ms_molecule *ms_cmd_mol(ms_app *app, Tcl_Interp *interp, Tcl_Obj *word, const char *cmd);
 /* Molecule ids named by a molspec: ids, all, top, none, active, inactive, displayed/on,
@@ -49,6 +53,8 @@ extern const ms_app_cmdset_fn ms_command_sets[];
 void ms_cmd_quit_register(ms_app *app);
 /* plugin (cmd_plugin.c) */
 void ms_cmd_plugin_register(ms_app *app);
+/* imd: a running simulation's coordinates over the IMD protocol (cmd_imd.c) */
+void ms_cmd_imd_register(ms_app *app);
 /* gettimestep, rawtimestep (cmd_timestep.c) */
 void ms_cmd_timestep_register(ms_app *app);
 /* play, logfile, vmdcon, sleep, wait (cmd_batch.c) */

@@ -3,7 +3,7 @@ src_libmscore_la_SOURCES += \
 	src/commands/args.h src/commands/args.c \
 	src/commands/commands.h src/commands/cmdsets.c src/commands/cmdutil.c src/commands/cmd_quit.c \
 	src/commands/cmd_batch.c src/commands/cmd_gui.c \
-	src/commands/cmd_plugin.c src/commands/cmd_timestep.c \
+	src/commands/cmd_plugin.c src/commands/cmd_timestep.c src/commands/cmd_imd.c \
 	src/commands/molinfo.h src/commands/cmd_molinfo.c \
 	src/commands/cmd_mol.c src/commands/cmd_animate.c src/commands/cmd_vmdinfo.c \
 	src/commands/tclvec.h src/commands/tclvec.c src/commands/cmd_vector.c \

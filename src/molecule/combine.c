@@ -146,6 +146,7 @@ static int copy_frames(ms_molecule *m, const ms_mol_part *parts, size_t nparts, 
                 if (src && c == 0 && p == 0) {
                     memcpy(out->cell, src->cell, sizeof out->cell);
                     out->time = src->time;
+                    memcpy(out->energy, src->energy, sizeof out->energy);
                 }
                 for (size_t k = 0; k < part_count(&parts[p]); k++, at++)
                     for (int d = 0; d < 3; d++) {

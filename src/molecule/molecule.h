@@ -66,12 +66,21 @@ typedef struct ms_terms {
 /* Atoms a term of this kind names: 3 for an angle, 4 for a dihedral or an improper. */
 static inline size_t ms_term_width(int kind) { return kind == MS_TERM_ANGLE ? 3 : 4; }
 
-/* One frame: coordinates (and velocities when the file had them), cell and time. */
+/* A frame's energies, the terms VMD's timestep keeps (molinfo's keywords bond ... efield, in
+ * this order); zeros when unknown: files carry none, a simulation sends them over IMD. */
+enum {
+    MS_EN_BOND, MS_EN_ANGLE, MS_EN_DIHEDRAL, MS_EN_IMPROPER, MS_EN_VDW, MS_EN_ELEC,
+    MS_EN_HBOND, MS_EN_KINETIC, MS_EN_POTENTIAL, MS_EN_TEMPERATURE, MS_EN_TOTAL, MS_EN_EFIELD,
+    MS_EN_KINDS
+};
+
+/* One frame: coordinates (and velocities when the file had them), cell, time, energies. */
 typedef struct ms_frame {
     float *pos;        /* 3 * natoms, x y z interleaved */
     float *vel;        /* NULL when absent */
     float cell[6];     /* a b c alpha beta gamma; zeros when unknown */
     double time;       /* physical time */
+    float energy[MS_EN_KINDS];
 } ms_frame;
 
 /* A file that contributed to the molecule (for molinfo filename/filetype). */

@@ -83,7 +83,13 @@ void ms_molset_set_frame(ms_molset *s, ms_molecule *m, long frame)
 
 void ms_molset_emit(ms_molset *s, ms_mol_event ev, ms_molecule *m, const char *arg)
 {
-    for (int i = 0; i < s->nlisteners; i++) s->listeners[i].fn(s->listeners[i].ud, ev, m, arg);
+    int id = m ? m->id : -1, in_set = m && ms_molset_get(s, id) == m;
+    for (int i = 0; i < s->nlisteners; i++) {
+        s->listeners[i].fn(s->listeners[i].ud, ev, m, arg);
+        /* a listener (a Tcl trace callback) may have deleted the molecule: the others
+         * must not see it */
+        if (in_set && ms_molset_get(s, id) != m) return;
+    }
 }
 
 int ms_molset_listen(ms_molset *s, ms_mol_listener fn, void *ud)

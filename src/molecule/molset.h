@@ -55,6 +55,8 @@ int ms_molset_index_of(const ms_molset *s, int id);
 
 /* Set the current frame (clamped to the frames that exist) and tell listeners. */
 void ms_molset_set_frame(ms_molset *s, ms_molecule *m, long frame);
+/* Tell every listener of an event of m, in order; when one deletes m (a Tcl trace callback
+ * can), the rest are not told. */
 void ms_molset_emit(ms_molset *s, ms_mol_event ev, ms_molecule *m, const char *arg);
 int ms_molset_listen(ms_molset *s, ms_mol_listener fn, void *ud);
 /* Reserve a per-molecule attachment slot (ms_molecule.ext[slot]); -1 when none is left. */

@@ -7,7 +7,7 @@
 #include <string.h>
 
 static const char mol_magic[8] = "MSMOL02";
-static const char frm_magic[8] = "MSFRM01";
+static const char frm_magic[8] = "MSFRM02";
 #define ENDIAN_MARK 0x01020304u
 #define NO_STRING UINT64_MAX
 
@@ -504,6 +504,7 @@ int ms_molser_pack_frames(const ms_molecule *m, size_t first, size_t count, ms_m
         put(&w, &has_vel, 1);
         put(&w, fr->cell, sizeof fr->cell);
         put(&w, &fr->time, sizeof fr->time);
+        put(&w, fr->energy, sizeof fr->energy);
         add_block(&b, fr->pos, bytes);
         if (fr->vel) add_block(&b, fr->vel, bytes);
     }
@@ -524,8 +525,9 @@ int ms_molser_unpack_frames(ms_molecule *m, const void *head, size_t len, ms_mol
     rbuf r = {.p = head, .len = len};
     if (check_magic(&r, frm_magic, "frame", err)) return -1;
     uint64_t n = get_u64(&r), count = get_u64(&r);
-    if (r.bad || n != m->atoms.n || count > (r.len - r.pos) / (1 + 6 * sizeof(float) + 8) ||
-        (r.len - r.pos) != count * (1 + 6 * sizeof(float) + sizeof(double))) {
+    const size_t per_frame = 1 + sizeof(float[6]) + sizeof(double) + sizeof(float[MS_EN_KINDS]);
+    if (r.bad || n != m->atoms.n || count > (r.len - r.pos) / per_frame ||
+        (r.len - r.pos) != count * per_frame) {
         ms_error_set(err, "frame header does not fit the molecule (%llu atoms, it has %zu)",
                      (unsigned long long)n, m->atoms.n);
         return -1;
@@ -539,6 +541,7 @@ int ms_molser_unpack_frames(ms_molecule *m, const void *head, size_t len, ms_mol
         if (!f) goto fail;
         get(&r, f->cell, sizeof f->cell);
         get(&r, &f->time, sizeof f->time);
+        get(&r, f->energy, sizeof f->energy);
         add_block(&b, f->pos, bytes);
         if (f->vel) add_block(&b, f->vel, bytes);
     }

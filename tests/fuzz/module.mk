@@ -1,5 +1,5 @@
 # tests/fuzz: a fuzz target for every file reader (fuzz_<format>.c: LLVMFuzzerTestOneInput)
-# and for the selection parser.
+# and for the selection parser and the IMD message decoder.
 #
 # Smoke drivers, run by tests/run-tests over tests/fuzz/corpus/<format>: each target with
 # driver.c (seeds plus deterministic mutations), its plugin and the loading core, compiled
@@ -39,18 +39,26 @@ EXTRA_DIST += tests/fuzz/fuzz.h tests/fuzz/driver.c $(FUZZ_FORMATS:%=tests/fuzz/
 
 # The selection parser's target: the selection core with sanitizers over the fuzz core, run
 # by its own smoke driver (select_driver.c) over tests/fuzz/corpus/select.
+# The IMD message decoder's target: the codec over the fuzz core (base), run by driver.c over
+# tests/fuzz/corpus/imd (seeds from tests/fuzz/make_imd_corpus.py).
 check_PROGRAMS += tests/fuzz/fuzz_select
 tests_fuzz_fuzz_select_SOURCES = tests/fuzz/fuzz_select.c tests/fuzz/select_driver.c \
 	$(SELECT_CORE_SOURCES) $(SS_CORE_SOURCES)
 tests_fuzz_fuzz_select_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
 tests_fuzz_fuzz_select_LDFLAGS = $(SAN_CFLAGS)
 tests_fuzz_fuzz_select_LDADD = tests/fuzz/libfuzzcore.la $(PTHREAD_LIBS) -lm
+check_PROGRAMS += tests/fuzz/fuzz_imd
+tests_fuzz_fuzz_imd_SOURCES = tests/fuzz/fuzz_imd.c tests/fuzz/driver.c src/imd/imd.c
+tests_fuzz_fuzz_imd_CFLAGS = $(AM_CFLAGS) $(SAN_CFLAGS)
+tests_fuzz_fuzz_imd_LDFLAGS = $(SAN_CFLAGS)
+tests_fuzz_fuzz_imd_LDADD = tests/fuzz/libfuzzcore.la $(PTHREAD_LIBS) -lm
+EXTRA_DIST += tests/fuzz/make_imd_corpus.py
 
 LF_FLAGS = -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
 LF_CORE = $(FUZZ_CORE:%=$(srcdir)/%) $(srcdir)/plugins/plugin_util.c $(srcdir)/plugins/cif_tok.c
 LF_SELECT = $(filter %.c,$(SELECT_CORE_SOURCES:%=$(srcdir)/%) $(SS_CORE_SOURCES:%=$(srcdir)/%))
 if HAVE_LIBFUZZER
-fuzz: $(FUZZ_FORMATS:%=tests/fuzz/lf_%) tests/fuzz/lf_select
+fuzz: $(FUZZ_FORMATS:%=tests/fuzz/lf_%) tests/fuzz/lf_select tests/fuzz/lf_imd
 tests/fuzz/lf_%: $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c $(srcdir)/tests/fuzz/fuzz.h \
 		$(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
@@ -59,9 +67,12 @@ tests/fuzz/lf_%: $(srcdir)/tests/fuzz/fuzz_%.c $(srcdir)/plugins/%.c $(srcdir)/t
 tests/fuzz/lf_select: $(srcdir)/tests/fuzz/fuzz_select.c $(LF_SELECT) $(LF_CORE)
 	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
 		-o $@ $(srcdir)/tests/fuzz/fuzz_select.c $(LF_SELECT) $(LF_CORE) -lpthread -lm -ldl
+tests/fuzz/lf_imd: $(srcdir)/tests/fuzz/fuzz_imd.c $(srcdir)/src/imd/imd.c $(LF_CORE)
+	$(AM_V_CC)$(CLANG) $(LF_FLAGS) $(DEFS) $(DEFAULT_INCLUDES) $(AM_CPPFLAGS) -std=gnu11 \
+		-o $@ $(srcdir)/tests/fuzz/fuzz_imd.c $(srcdir)/src/imd/imd.c $(LF_CORE) -lpthread -lm -ldl
 else
 fuzz:
 	@echo "make fuzz needs clang with libFuzzer, which configure did not find"; exit 1
 endif
-CLEANFILES += $(FUZZ_FORMATS:%=tests/fuzz/lf_%) tests/fuzz/lf_select
+CLEANFILES += $(FUZZ_FORMATS:%=tests/fuzz/lf_%) tests/fuzz/lf_select tests/fuzz/lf_imd
 .PHONY: fuzz

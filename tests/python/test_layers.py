@@ -21,7 +21,7 @@ from mstest import Reporter  # noqa: E402
 # The layers, bottom first. A module may include its own layer and the layers below.
 LAYERS = [
     ("foundation", ["base", "vecmath"]),
-    ("data", ["molecule", "fileio", "image", "cl"]),
+    ("data", ["molecule", "fileio", "image", "cl", "imd"]),
     ("core", ["ss", "select", "measure", "pbc", "surf", "parallel", "movie", "scene"]),
     ("reps", ["rep"]),
     ("devices", ["render", "gl", "rt", "oclrt"]),

@@ -4,10 +4,12 @@ check_PROGRAMS += tests/unit/test_base tests/unit/test_molecule tests/unit/test_
 	tests/unit/test_select tests/unit/test_ss tests/unit/test_measure tests/unit/test_scene \
 	tests/unit/test_rep tests/unit/test_gl tests/unit/test_qsurf tests/unit/test_rt \
 	tests/unit/test_xtc tests/unit/test_live tests/unit/test_oclrt tests/unit/test_safewrite \
-	tests/unit/test_limits tests/unit/test_map tests/unit/test_pbc
+	tests/unit/test_limits tests/unit/test_map tests/unit/test_pbc tests/unit/test_imd
 
 tests_unit_test_base_SOURCES = tests/unit/test_base.c tests/unit/ms_test.h
 tests_unit_test_base_LDADD = $(TEST_LIBS)
+tests_unit_test_imd_SOURCES = tests/unit/test_imd.c tests/unit/ms_test.h
+tests_unit_test_imd_LDADD = $(TEST_LIBS)
 tests_unit_test_safewrite_SOURCES = tests/unit/test_safewrite.c tests/unit/ms_test.h
 tests_unit_test_safewrite_LDADD = $(TEST_LIBS)
 tests_unit_test_molecule_SOURCES = tests/unit/test_molecule.c tests/unit/ms_test.h tests/unit/ms_testload.h

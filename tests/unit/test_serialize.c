@@ -86,7 +86,7 @@ static const char *difference(ms_molecule *a, ms_molecule *b)
         ms_frame *x = &a->frames[f], *y = &b->frames[f];
         if (!same_bytes(x->pos, y->pos, n * 12) || !x->vel != !y->vel ||
             !same_bytes(x->vel, y->vel, n * 12) || memcmp(x->cell, y->cell, sizeof x->cell) ||
-            x->time != y->time) {
+            x->time != y->time || memcmp(x->energy, y->energy, sizeof x->energy)) {
             snprintf(why, sizeof why, "frame %zu", f);
             return why;
         }
@@ -112,6 +112,8 @@ static ms_molecule *rich_1tii(ms_error *err)
         }
         f->cell[0] = 10.0f * (float)k;
         f->time = 2.5 * k;
+        f->energy[MS_EN_TEMPERATURE] = 300.0f + (float)k;   /* as IMD frames have */
+        f->energy[MS_EN_EFIELD] = -(float)k;
     }
     m->frame = 2;
     m->user[1] = ms_alloc_array(n, sizeof(float));
