@@ -145,6 +145,25 @@ long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err)
     return (long)i;
 }
 
+long ms_mol_add_blank_atoms(ms_molecule *m, size_t n, ms_error *err)
+{
+    ms_atoms *a = &m->atoms;
+    if (n > a->cap - a->n) {
+        size_t want = a->n + n, grown = a->cap + a->cap / 2;
+        if (want < a->n || ms_mol_reserve_atoms(m, want > grown ? want : grown, err)) {
+            if (want < a->n) ms_error_set(err, "out of memory for %zu more atoms", n);
+            return -1;
+        }
+    }
+    size_t first = a->n;
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++)
+        memset((char *)*atom_field(a, k) + first * atom_fields[k].elsize, 0,
+               n * atom_fields[k].elsize);
+    memset(a->ss + first, MS_SS_COIL_CODE, n);
+    a->n += n;
+    return (long)first;
+}
+
 void ms_mol_shrink(ms_molecule *m)
 {
     ms_atoms *a = &m->atoms;
