@@ -111,6 +111,7 @@ int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err)
             return -1;
         }
         *p = q;
+        ms_advise_huge(q, bytes);
     }
     m->atoms.cap = n;
     return 0;
@@ -192,6 +193,8 @@ ms_frame *ms_mol_add_frame(ms_molecule *m, int with_vel, ms_error *err)
         ms_error_set(err, "out of memory for frame %zu of %zu atoms", m->nframes, m->atoms.n);
         return NULL;
     }
+    ms_advise_huge(f->pos, m->atoms.n * 3 * sizeof(float));
+    ms_advise_huge(f->vel, with_vel ? m->atoms.n * 3 * sizeof(float) : 0);
     m->nframes++;
     return f;
 }
