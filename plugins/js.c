@@ -452,10 +452,9 @@ static int js_give_bonds(js_reader *r, long long first, size_t k, int32_t *from,
         from[b]--, to[b]--;
         ord[b] = orders && isfinite(ord[b]) ? ord[b] : 1.0f;
     }
-    int bad = 0;
-    if (js_bulk(sink))
-        bad = sink->add_bonds(sink, k, (const uint32_t *)from, (const uint32_t *)to, ord);
-    for (size_t b = 0; !js_bulk(sink) && !bad && b < k; b++)
+    int bulk = js_bulk(sink), bad = 0;
+    if (bulk) bad = sink->add_bonds(sink, k, (const uint32_t *)from, (const uint32_t *)to, ord);
+    for (size_t b = 0; !bulk && !bad && b < k; b++)
         bad = sink->add_bond(sink, (size_t)from[b], (size_t)to[b], ord[b]);
     return bad ? ms_perr_set(err, "out of memory for bonds") : MS_PLUGIN_OK;
 }
