@@ -33,6 +33,8 @@ enum {
 /* The string tables: entry width and which atom field each names. */
 enum { T_NAME, T_TYPE, T_RESNAME, T_SEGID, T_CHAIN, T_N };
 static const int js_width[T_N] = {16, 16, 8, 8, 2};
+static const int js_strf[T_N] = {MS_STRF_NAME, MS_STRF_TYPE, MS_STRF_RESNAME, MS_STRF_SEGNAME,
+                                 MS_STRF_CHAIN};   /* the sink's field of each table */
 static const char *const js_table_name[T_N] = {"atom name", "atom type", "residue name",
                                                "segment name", "chain"};
 /* The optional float fields, in file order, and their flags. */
@@ -251,11 +253,12 @@ static void *js_open_read(const char *path, long *natoms, ms_perr *err)
 
 typedef struct js_tables {
     char *text[T_N];            /* count[t] entries of js_width[t] bytes, NUL-terminated */
+    const char **entry[T_N];    /* each entry's address, for the sink's set_strings */
 } js_tables;
 
 static void js_tables_free(js_tables *t)
 {
-    for (int k = 0; k < T_N; k++) free(t->text[k]);
+    for (int k = 0; k < T_N; k++) free(t->text[k]), free(t->entry[k]);
 }
 
 static int js_read_tables(js_reader *r, js_tables *t, ms_perr *err)
@@ -263,9 +266,14 @@ static int js_read_tables(js_reader *r, js_tables *t, ms_perr *err)
     long long p = r->tables_at;
     for (int k = 0; k < T_N; k++) {
         size_t bytes = (size_t)r->count[k] * (size_t)js_width[k];
-        if (!(t->text[k] = malloc(bytes))) return ms_perr_set(err, "out of memory");
+        if (!(t->text[k] = malloc(bytes)) ||
+            !(t->entry[k] = malloc((size_t)r->count[k] * sizeof *t->entry[k])))
+            return ms_perr_set(err, "out of memory");
         if (js_pread(r, t->text[k], bytes, p, js_table_name[k], err)) return MS_PLUGIN_ERROR;
-        for (int i = 0; i < r->count[k]; i++) t->text[k][(size_t)(i + 1) * js_width[k] - 1] = 0;
+        for (int i = 0; i < r->count[k]; i++) {
+            t->text[k][(size_t)(i + 1) * js_width[k] - 1] = 0;
+            t->entry[k][i] = t->text[k] + (size_t)i * js_width[k];
+        }
         p += (long long)bytes;
     }
     return MS_PLUGIN_OK;
@@ -274,6 +282,7 @@ static int js_read_tables(js_reader *r, js_tables *t, ms_perr *err)
 /* One chunk of every per-atom array. */
 typedef struct js_chunk {
     int16_t *idx[T_N];
+    uint32_t *str[T_N];          /* idx checked and widened, for the sink's add_atoms */
     int32_t *resid, *anum;
     float *f[F_N];
     char *block;                 /* the arrays above, for at most n atoms each */
@@ -282,9 +291,10 @@ typedef struct js_chunk {
 /* Room for n atoms (no more than a file's atom count: small files stay cheap). */
 static int js_chunk_alloc(js_chunk *c, long n)
 {
-    size_t per = 2 * T_N + 8 + 4 * F_N, un = (size_t)n;
+    size_t per = 6 * T_N + 8 + 4 * F_N, un = (size_t)n;
     if (!(c->block = malloc(per * un))) return -1;
     char *p = c->block;
+    for (int t = 0; t < T_N; t++) c->str[t] = (uint32_t *)p, p += 4 * un;
     c->resid = (int32_t *)p, p += 4 * un;
     c->anum = (int32_t *)p, p += 4 * un;
     for (int f = 0; f < F_N; f++) c->f[f] = (float *)p, p += 4 * un;
@@ -316,18 +326,25 @@ static int js_read_chunk(js_reader *r, js_chunk *c, long first, long n, ms_perr 
     return MS_PLUGIN_OK;
 }
 
-/* Atom i (k-th of its chunk) as a record pointing into the tables. */
-static int js_atom(const js_reader *r, const js_tables *t, const js_chunk *c, long i, long k,
-                   ms_atom_in *a, ms_perr *err)
+/* The string indices of the k-th atom of a chunk (atom i of the file), checked. */
+static int js_atom_strings(const js_reader *r, const js_chunk *c, long i, long k, ms_perr *err)
 {
-    const char *s[T_N];
     for (int f = 0; f < T_N; f++) {
         int x = c->idx[f][k];
         if (x < 0 || x >= r->count[f])
             return ms_perr_set(err, "atom %ld: %s index %d is outside its table of %d", i + 1,
                                js_table_name[f], x, r->count[f]);
-        s[f] = t->text[f] + (size_t)x * js_width[f];
+        c->str[f][k] = (uint32_t)x;
     }
+    return MS_PLUGIN_OK;
+}
+
+/* Atom k of a chunk as a record pointing into the tables (the one-atom-a-call path). */
+static void js_atom(const js_reader *r, const js_tables *t, const js_chunk *c, long k,
+                    ms_atom_in *a)
+{
+    const char *s[T_N];
+    for (int f = 0; f < T_N; f++) s[f] = t->text[f] + (size_t)c->str[f][k] * js_width[f];
     memset(a, 0, sizeof *a);
     a->name = s[T_NAME];
     a->type = s[T_TYPE];
@@ -347,30 +364,99 @@ static int js_atom(const js_reader *r, const js_tables *t, const js_chunk *c, lo
         a->atomicnumber = c->anum[k];
         a->has |= MS_HAS_ATOMICNUMBER;
     }
+}
+
+/* A chunk of n atoms as columns (ABI 4). */
+static void js_chunk_columns(const js_reader *r, const js_chunk *c, long n, ms_atom_columns *col)
+{
+    memset(col, 0, sizeof *col);
+    col->n = (size_t)n;
+    for (int f = 0; f < T_N; f++) col->str[js_strf[f]] = c->str[f];
+    col->resid = c->resid;
+    const float **dst[F_N] = {&col->occupancy, &col->beta, &col->mass, &col->charge,
+                              &col->radius};
+    for (int f = 0; f < F_N; f++)
+        if (r->float_at[f] >= 0) *dst[f] = c->f[f];
+    if (r->anum_at >= 0) col->atomicnumber = c->anum;
+}
+
+/* The bulk path: whether to take it (MOLSCOPE_JS_PER_ATOM=1 asks for one add_atom a call,
+ * which tests compare it with), and the tables given to the sink. */
+static int js_bulk(const ms_struct_sink *sink)
+{
+    const char *v = getenv("MOLSCOPE_JS_PER_ATOM");
+    return sink->add_atoms && !(v && *v && strcmp(v, "0") != 0);
+}
+
+static int js_set_strings(const js_reader *r, const js_tables *t, ms_struct_sink *sink,
+                          ms_perr *err)
+{
+    for (int f = 0; f < T_N; f++)
+        if (sink->set_strings(sink, js_strf[f], (size_t)r->count[f], t->entry[f]))
+            return ms_perr_set(err, "out of memory for the %s table", js_table_name[f]);
+    return MS_PLUGIN_OK;
+}
+
+/* Hand a chunk of n atoms (the first is atom `first`) to the sink. */
+static int js_give_chunk(js_reader *r, const js_tables *t, const js_chunk *c, long first,
+                         long n, int bulk, ms_struct_sink *sink, ms_perr *err)
+{
+    for (long k = 0; k < n; k++)
+        if (js_atom_strings(r, c, first + k, k, err)) return MS_PLUGIN_ERROR;
+    if (bulk) {
+        ms_atom_columns col;
+        js_chunk_columns(r, c, n, &col);
+        if (sink->add_atoms(sink, &col))
+            return ms_perr_set(err, "out of memory at atom %ld", first + 1);
+        return MS_PLUGIN_OK;
+    }
+    for (long k = 0; k < n; k++) {
+        ms_atom_in a;
+        js_atom(r, t, c, k, &a);
+        if (sink->add_atom(sink, &a))
+            return ms_perr_set(err, "out of memory at atom %ld", first + k + 1);
+    }
     return MS_PLUGIN_OK;
 }
 
 static int js_read_atoms(js_reader *r, ms_struct_sink *sink, ms_perr *err)
 {
-    js_tables t = {{0}};
+    js_tables t;
+    memset(&t, 0, sizeof t);
     js_chunk chunk, *c = &chunk;
     memset(c, 0, sizeof *c);
+    int bulk = js_bulk(sink);
     int rc = js_chunk_alloc(c, r->natoms < JS_CHUNK ? r->natoms : JS_CHUNK) == 0
                  ? js_read_tables(r, &t, err)
                  : ms_perr_set(err, "out of memory");
+    if (rc == MS_PLUGIN_OK && bulk) rc = js_set_strings(r, &t, sink, err);
     for (long first = 0; rc == MS_PLUGIN_OK && first < r->natoms; first += JS_CHUNK) {
         long n = r->natoms - first < JS_CHUNK ? r->natoms - first : JS_CHUNK;
         rc = js_read_chunk(r, c, first, n, err);
-        for (long k = 0; rc == MS_PLUGIN_OK && k < n; k++) {
-            ms_atom_in a;
-            rc = js_atom(r, &t, c, first + k, k, &a, err);
-            if (rc == MS_PLUGIN_OK && sink->add_atom(sink, &a))
-                rc = ms_perr_set(err, "out of memory at atom %ld", first + k + 1);
-        }
+        if (rc == MS_PLUGIN_OK) rc = js_give_chunk(r, &t, c, first, n, bulk, sink, err);
     }
     free(c->block);
     js_tables_free(&t);
     return rc;
+}
+
+/* One batch of k bonds (the first is bond `first`): checked, 0-based, orders defaulted. */
+static int js_give_bonds(js_reader *r, long long first, size_t k, int32_t *from, int32_t *to,
+                         float *ord, ms_struct_sink *sink, ms_perr *err)
+{
+    int orders = (r->opt & JS_BONDORDERS) != 0;
+    for (size_t b = 0; b < k; b++) {
+        if (from[b] < 1 || from[b] > r->natoms || to[b] < 1 || to[b] > r->natoms)
+            return ms_perr_set(err, "bond %lld joins atoms %d and %d of %ld",
+                               first + (long long)b + 1, from[b], to[b], r->natoms);
+        from[b]--, to[b]--;
+        ord[b] = orders && isfinite(ord[b]) ? ord[b] : 1.0f;
+    }
+    int bulk = js_bulk(sink), bad = 0;
+    if (bulk) bad = sink->add_bonds(sink, k, (const uint32_t *)from, (const uint32_t *)to, ord);
+    for (size_t b = 0; !bulk && !bad && b < k; b++)
+        bad = sink->add_bond(sink, (size_t)from[b], (size_t)to[b], ord[b]);
+    return bad ? ms_perr_set(err, "out of memory for bonds") : MS_PLUGIN_OK;
 }
 
 /* Bonds: from and to arrays (1-based), then orders. */
@@ -388,14 +474,7 @@ static int js_read_bonds(js_reader *r, ms_struct_sink *sink, ms_perr *err)
              js_pread(r, ord, 4 * k, at + 4 * (2 * n + first), "bond orders", err)))
             return MS_PLUGIN_ERROR;
         if (r->swap) js_swap_words(from, k, 4), js_swap_words(to, k, 4), js_swap_words(ord, k, 4);
-        for (size_t b = 0; b < k; b++) {
-            if (from[b] < 1 || from[b] > r->natoms || to[b] < 1 || to[b] > r->natoms)
-                return ms_perr_set(err, "bond %lld joins atoms %d and %d of %ld",
-                                   first + (long long)b + 1, from[b], to[b], r->natoms);
-            float o = r->opt & JS_BONDORDERS && isfinite(ord[b]) ? ord[b] : 1.0f;
-            if (sink->add_bond(sink, (size_t)from[b] - 1, (size_t)to[b] - 1, o))
-                return ms_perr_set(err, "out of memory for bonds");
-        }
+        if (js_give_bonds(r, first, k, from, to, ord, sink, err)) return MS_PLUGIN_ERROR;
     }
     sink->bonds_complete(sink);
     return MS_PLUGIN_OK;
@@ -404,6 +483,13 @@ static int js_read_bonds(js_reader *r, ms_struct_sink *sink, ms_perr *err)
 /* A file without a structure: blank atoms, as a trajectory. */
 static int js_blank_atoms(js_reader *r, ms_struct_sink *sink, ms_perr *err)
 {
+    ms_atom_columns col;
+    memset(&col, 0, sizeof col);
+    col.n = (size_t)r->natoms;
+    if (js_bulk(sink)) {
+        if (sink->add_atoms(sink, &col)) return ms_perr_set(err, "out of memory for atoms");
+        return MS_PLUGIN_OK;
+    }
     ms_atom_in a;
     memset(&a, 0, sizeof a);
     for (long i = 0; i < r->natoms; i++)

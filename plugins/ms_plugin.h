@@ -9,23 +9,26 @@
  *
  * This header is self-contained (C99, no molscope symbols), so plugins build on their own.
  *
- * ABI history. 1: structures and frames. 2 (this header): volumetric data (read_volume_meta,
+ * ABI history. 1: structures and frames. 2: volumetric data (read_volume_meta,
  * read_volume_data, write_volume and the MS_CAN_*_VOLUME bits, appended to ms_plugin) and
- * biological assemblies (add_assembly, appended to ms_struct_sink). The host still loads ABI
- * 1 plugins: it copies their shorter description into a zeroed ABI 2 one, so the new
- * members read as NULL; it fills every sink member, so an ABI 2 plugin may call any. */
+ * biological assemblies (add_assembly, appended to ms_struct_sink). 3: typed bonds, terms and
+ * options (appended to the sink and the view). 4 (this header): atoms and bonds in bulk
+ * (set_strings, add_atoms, add_bonds, appended to the sink). The host still loads ABI 1 to 3
+ * plugins: it copies an ABI 1 description into a zeroed current one, so the new members read
+ * as NULL; it fills every sink member, so a plugin may call any its ABI names. */
 #ifndef MS_PLUGIN_H
 #define MS_PLUGIN_H
 
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define MS_PLUGIN_ABI 3
+#define MS_PLUGIN_ABI 4
 #define MS_PLUGIN_ABI_MIN 1  /* the oldest ABI the host still loads */
 
 enum { MS_PLUGIN_OK = 0, MS_PLUGIN_EOF = 1, MS_PLUGIN_ERROR = -1 };
@@ -84,6 +87,27 @@ enum {
  * dihedral or an improper 4, in the order the file gives them. */
 enum { MS_PTERM_ANGLE = 0, MS_PTERM_DIHEDRAL = 1, MS_PTERM_IMPROPER = 2 };
 
+/* ABI 4: atoms in bulk. The string fields of an atom, as set_strings and ms_atom_columns
+ * name them. */
+enum {
+    MS_STRF_NAME, MS_STRF_TYPE, MS_STRF_RESNAME, MS_STRF_SEGNAME, MS_STRF_CHAIN, MS_STRF_STRINGS
+};
+
+/* A run of atoms as columns (ABI 4, add_atoms): what n add_atom calls would give, one array
+ * per field. A string field is an index per atom into the table set_strings declared for it
+ * (NULL: "" for every atom). A NULL number column is a field the file does not have (the
+ * host fills its default, as add_atom without the MS_HAS_ bit); an atomic number outside
+ * 1..118 is unknown (guessed from the name, as add_atom does). Insertion codes and altlocs
+ * are blank, no atom is a HETATM. */
+typedef struct ms_atom_columns {
+    size_t n;
+    const uint32_t *str[MS_STRF_STRINGS];
+    const int32_t *resid;
+    const float *beta, *occupancy, *charge, *mass, *radius;
+    const int32_t *atomicnumber;
+    const float *pos;             /* 3n: x y z of the first frame, NULL when none */
+} ms_atom_columns;
+
 /* Where a structure reader puts what it reads. Each function returns 0, or -1 when the host
  * ran out of memory (the plugin then returns MS_PLUGIN_ERROR with a message). */
 typedef struct ms_struct_sink ms_struct_sink;
@@ -120,6 +144,17 @@ struct ms_struct_sink {
     /* ABI 3. Reader options the caller gave (`key=value` words separated by blanks, such as
      * "atom_style=full"), NULL when none; a reader ignores keys it does not know. */
     const char *options;
+    /* ABI 4. The distinct strings (n of them) of string field `field` (MS_STRF_*) that later
+     * add_atoms calls index. They stay valid and unchanged until the next set_strings of
+     * that field or the end of read_structure; the host interns each once, when an atom
+     * first uses it. Returns -1 for a bad field as well. */
+    int (*set_strings)(ms_struct_sink *s, int field, size_t n, const char *const *strings);
+    /* ABI 4. Append c->n atoms (after those added so far, by either call). Returns -1, with
+     * nothing added, when an index is outside its table or the host ran out of memory. */
+    int (*add_atoms)(ms_struct_sink *s, const ms_atom_columns *c);
+    /* ABI 4. n bonds from[k]-to[k] (0-based), orders (NULL: all 1) as add_bond. */
+    int (*add_bonds)(ms_struct_sink *s, size_t n, const uint32_t *from, const uint32_t *to,
+                     const float *order);
 };
 
 /* One frame to fill. pos (3*natoms floats) is NULL when the host only skips this frame;

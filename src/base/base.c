@@ -7,6 +7,7 @@
 #include <string.h>
 #include <strings.h>
 #include <time.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 
 void ms_error_set(ms_error *err, const char *fmt, ...)
@@ -72,6 +73,17 @@ void *ms_alloc_array(size_t n, size_t elsize)
 void *ms_calloc_array(size_t n, size_t elsize)
 {
     return calloc(n ? n : 1, elsize ? elsize : 1);
+}
+
+void ms_advise_huge(void *p, size_t bytes)
+{
+#ifdef MADV_HUGEPAGE
+    const uintptr_t huge = (uintptr_t)2 << 20;
+    uintptr_t a = ((uintptr_t)p + huge - 1) & ~(huge - 1), e = ((uintptr_t)p + bytes) & ~(huge - 1);
+    if (p && e > a) madvise((void *)a, e - a, MADV_HUGEPAGE);
+#else
+    (void)p, (void)bytes;
+#endif
 }
 
 char *ms_strdup(const char *s)

@@ -60,6 +60,9 @@ typedef struct sink_state {
     ms_ss_range *ss;
     size_t nss, ss_cap;
     ms_str last_id[F_NFIELDS];
+    const char *const *strings[F_NFIELDS]; /* set_strings' tables */
+    ms_str *interned[F_NFIELDS];  /* their ids, MS_STR_NONE until an atom uses one */
+    size_t nstrings[F_NFIELDS];
     char *remarks;
     size_t remarks_len, remarks_cap;
     ms_asm_plan asm_all;      /* every generator the file reported */
@@ -92,6 +95,22 @@ static int sink_grow_xyz(float **buf, size_t *cap, size_t atoms_cap)
     if (!p) return -1;
     *buf = p;
     *cap = atoms_cap;
+    return 0;
+}
+
+/* The xyz of atoms i .. i+n-1 into a first-frame buffer: src (3n floats), or zeros when
+ * src is NULL and an earlier atom had some (the buffer starts when the first atom does). */
+static int sink_put_xyz(float **buf, size_t *cap, int *any, const float *src, size_t i,
+                        size_t n, size_t atoms_cap)
+{
+    if (!src && !*any) return 0;
+    if (sink_grow_xyz(buf, cap, atoms_cap)) return -1;
+    if (!*any) memset(*buf, 0, 3 * sizeof(float) * i);
+    *any = 1;
+    if (src)
+        memcpy(*buf + 3 * i, src, 3 * sizeof(float) * n);
+    else
+        memset(*buf + 3 * i, 0, 3 * sizeof(float) * n);
     return 0;
 }
 
@@ -135,49 +154,148 @@ static int sink_add_atom(ms_struct_sink *s, const ms_atom_in *in)
     a->atomicnumber[i] = (uint8_t)z;
     ms_analysis_atom_defaults(m, i, has & MS_HAS_MASS, has & MS_HAS_RADIUS, z > 0);
 
-    if (((has & MS_HAS_POS) || st->any_pos) && sink_grow_xyz(&st->pos, &st->pos_cap, a->cap))
+    if (sink_put_xyz(&st->pos, &st->pos_cap, &st->any_pos, has & MS_HAS_POS ? &in->x : NULL,
+                     i, 1, a->cap) ||
+        sink_put_xyz(&st->vel, &st->vel_cap, &st->any_vel, has & MS_HAS_VEL ? &in->vx : NULL,
+                     i, 1, a->cap))
         goto oom;
-    if (((has & MS_HAS_VEL) || st->any_vel) && sink_grow_xyz(&st->vel, &st->vel_cap, a->cap))
-        goto oom;
-    if (has & MS_HAS_POS) {
-        if (!st->any_pos) memset(st->pos, 0, 3 * sizeof(float) * i);
-        st->any_pos = 1;
-        st->pos[3 * i] = in->x;
-        st->pos[3 * i + 1] = in->y;
-        st->pos[3 * i + 2] = in->z;
-    } else if (st->any_pos) {
-        memset(st->pos + 3 * i, 0, 3 * sizeof(float));
-    }
-    if (has & MS_HAS_VEL) {
-        if (!st->any_vel) memset(st->vel, 0, 3 * sizeof(float) * i);
-        st->any_vel = 1;
-        st->vel[3 * i] = in->vx;
-        st->vel[3 * i + 1] = in->vy;
-        st->vel[3 * i + 2] = in->vz;
-    } else if (st->any_vel) {
-        memset(st->vel + 3 * i, 0, 3 * sizeof(float));
-    }
     return 0;
 oom:
     ms_error_set(st->err, "out of memory for coordinates of %zu atoms", a->n);
     return -1;
 }
 
-static int sink_add_bond(ms_struct_sink *s, size_t i, size_t j, float order)
+/* ---------------------------------------------------------------- atoms in bulk */
+
+static const char *const sink_field_name[F_NFIELDS] = {"atom name", "atom type", "residue name",
+                                                       "segment name", "chain"};
+
+static int sink_set_strings(ms_struct_sink *s, int field, size_t n, const char *const *strings)
 {
     sink_state *st = (sink_state *)s;
-    if (i > UINT32_MAX || j > UINT32_MAX) return 0;
-    if (ms_grow((void **)&st->pairs, &st->pairs_cap, 2 * (st->npairs + 1), sizeof(uint32_t)) ||
-        ms_grow((void **)&st->orders, &st->orders_cap, st->npairs + 1, sizeof(float))) {
+    if (field < 0 || field >= F_NFIELDS) {
+        ms_error_set(st->err, "the reader gave strings for unknown field %d", field);
+        return -1;
+    }
+    ms_str *ids = ms_alloc_array(n ? n : 1, sizeof *ids);
+    if (!ids) {
+        ms_error_set(st->err, "out of memory for %zu %s strings", n, sink_field_name[field]);
+        return -1;
+    }
+    for (size_t k = 0; k < n; k++) ids[k] = MS_STR_NONE;
+    free(st->interned[field]);
+    st->interned[field] = ids;
+    st->strings[field] = strings;
+    st->nstrings[field] = n;
+    return 0;
+}
+
+/* Every string index of c names a string set_strings gave. */
+static int bulk_check(sink_state *st, const ms_atom_columns *c)
+{
+    for (int f = 0; f < F_NFIELDS; f++) {
+        const uint32_t *x = c->str[f];
+        for (size_t i = 0; x && i < c->n; i++)
+            if (x[i] >= st->nstrings[f]) {
+                ms_error_set(st->err, "atom %zu: %s index %u is outside its table of %zu",
+                             st->m->atoms.n + i + 1, sink_field_name[f], (unsigned)x[i],
+                             st->nstrings[f]);
+                return -1;
+            }
+    }
+    return 0;
+}
+
+/* The string fields of atoms first.., interned atom by atom in the order add_atom would. */
+static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
+{
+    ms_atoms *a = &st->m->atoms;
+    ms_str *dst[F_NFIELDS] = {a->name + first, a->type + first, a->resname + first,
+                              a->segname + first, a->chain + first};
+    for (size_t i = 0; i < c->n; i++)
+        for (int f = 0; f < F_NFIELDS; f++) {
+            ms_str id;
+            if (!c->str[f]) {
+                id = sink_intern(st, f, "");
+            } else if ((id = st->interned[f][c->str[f][i]]) == MS_STR_NONE) {
+                id = ms_strtab_intern_cstr(st->m->strings, st->strings[f][c->str[f][i]]);
+                st->interned[f][c->str[f][i]] = id;
+            }
+            if (id == MS_STR_NONE) {
+                ms_error_set(st->err, "out of memory for atom names");
+                return -1;
+            }
+            dst[f][i] = id;
+        }
+    return 0;
+}
+
+/* The number columns of atoms first..; absent ones stay blank for the defaults. */
+static void bulk_numbers(ms_atoms *a, const ms_atom_columns *c, size_t first)
+{
+    size_t n = c->n;
+    if (c->resid) memcpy(a->resid + first, c->resid, n * sizeof *c->resid);
+    const float *src[] = {c->beta, c->occupancy, c->charge, c->mass, c->radius};
+    float *dst[] = {a->beta, a->occupancy, a->charge, a->mass, a->radius};
+    for (size_t k = 0; k < MS_COUNTOF(src); k++)
+        if (src[k]) memcpy(dst[k] + first, src[k], n * sizeof(float));
+    for (size_t i = 0; c->atomicnumber && i < n; i++) {
+        int32_t z = c->atomicnumber[i];
+        a->atomicnumber[first + i] = (uint8_t)(z > 0 && z < 119 ? z : 0);
+    }
+}
+
+static int sink_add_atoms(ms_struct_sink *s, const ms_atom_columns *c)
+{
+    sink_state *st = (sink_state *)s;
+    ms_molecule *m = st->m;
+    size_t n0 = m->atoms.n;
+    if (c->n > 0x7fffffffu - n0) {
+        ms_error_set(st->err, "more than 2^31 atoms");
+        return -1;
+    }
+    if (bulk_check(st, c) || ms_mol_add_blank_atoms(m, c->n, st->err) < 0) return -1;
+    if (bulk_strings(st, c, n0)) goto fail;
+    bulk_numbers(&m->atoms, c, n0);
+    ms_analysis_atoms_defaults(m, n0, c->n, c->mass != NULL, c->radius != NULL);
+    if (sink_put_xyz(&st->pos, &st->pos_cap, &st->any_pos, c->pos, n0, c->n, m->atoms.cap) ||
+        sink_put_xyz(&st->vel, &st->vel_cap, &st->any_vel, NULL, n0, c->n, m->atoms.cap)) {
+        ms_error_set(st->err, "out of memory for coordinates of %zu atoms", m->atoms.n);
+        goto fail;
+    }
+    return 0;
+fail:
+    m->atoms.n = n0;
+    return -1;
+}
+
+static int sink_add_bonds(ms_struct_sink *s, size_t n, const uint32_t *from, const uint32_t *to,
+                          const float *order)
+{
+    sink_state *st = (sink_state *)s;
+    size_t np = st->npairs;
+    if (n > SIZE_MAX / 2 - np ||
+        ms_grow((void **)&st->pairs, &st->pairs_cap, 2 * (np + n), sizeof(uint32_t)) ||
+        ms_grow((void **)&st->orders, &st->orders_cap, np + n, sizeof(float))) {
         ms_error_set(st->err, "out of memory for bonds");
         return -1;
     }
-    st->pairs[2 * st->npairs] = (uint32_t)i;
-    st->pairs[2 * st->npairs + 1] = (uint32_t)j;
-    st->orders[st->npairs] = order;
-    if (order != 1.0f) st->any_order = 1;
-    st->npairs++;
+    for (size_t k = 0; k < n; k++) {
+        st->pairs[2 * (np + k)] = from[k];
+        st->pairs[2 * (np + k) + 1] = to[k];
+        float o = order ? order[k] : 1.0f;
+        st->orders[np + k] = o;
+        if (o != 1.0f) st->any_order = 1;
+    }
+    st->npairs += n;
     return 0;
+}
+
+static int sink_add_bond(ms_struct_sink *s, size_t i, size_t j, float order)
+{
+    if (i > UINT32_MAX || j > UINT32_MAX) return 0;
+    uint32_t a = (uint32_t)i, b = (uint32_t)j;
+    return sink_add_bonds(s, 1, &a, &b, &order);
 }
 
 static int sink_add_typed_bond(ms_struct_sink *s, size_t i, size_t j, float order,
@@ -293,6 +411,9 @@ static void sink_init(sink_state *st, ms_molecule *m, ms_error *err)
     st->sink.add_assembly = sink_add_assembly;
     st->sink.add_typed_bond = sink_add_typed_bond;
     st->sink.add_term = sink_add_term;
+    st->sink.set_strings = sink_set_strings;
+    st->sink.add_atoms = sink_add_atoms;
+    st->sink.add_bonds = sink_add_bonds;
 }
 
 static void sink_free(sink_state *st)
@@ -304,6 +425,7 @@ static void sink_free(sink_state *st)
     free(st->btypes);
     free(st->ss);
     free(st->remarks);
+    for (int f = 0; f < F_NFIELDS; f++) free(st->interned[f]);
     ms_asm_plan_free(&st->asm_all);
 }
 

@@ -14,6 +14,10 @@
  *   name-based radius (H 1.0, C 1.5, N 1.4, O 1.3, F 1.2, S 1.9, others 1.5). */
 void ms_analysis_atom_defaults(ms_molecule *m, size_t i, int have_mass, int have_radius,
                                int have_element);
+/* The same for atoms first .. first+n-1 at once (a bulk load), each name and residue name
+ * pair looked at once: an atom has an element when its atomicnumber is set (not 0). */
+void ms_analysis_atoms_defaults(ms_molecule *m, size_t first, size_t n, int have_mass,
+                                int have_radius);
 
 /* Distance bonds for the given coordinates: d < 0.6 (r1 + r2), never H-H, never between
  * different non-blank altlocs. Pairs are appended to *pairs (2 uint32 each), *npairs counts

@@ -18,22 +18,64 @@ static int name_is_hydrogen(const char *name)
     return isdigit((unsigned char)name[0]) && name[1] == 'H';
 }
 
-void ms_analysis_atom_defaults(ms_molecule *m, size_t i, int have_mass, int have_radius,
-                               int have_element)
+/* What an atom's defaults take from its name and residue name. */
+typedef struct atom_guess {
+    ms_str name, resname;  /* MS_STR_NONE: an empty cache slot */
+    int z;                 /* the atomic number guessed from them; -1 until needed */
+    int hydrogen;
+    float name_radius;
+} atom_guess;
+
+static void guess_init(const ms_molecule *m, ms_str name, ms_str resname, atom_guess *g)
+{
+    const char *s = ms_mol_str(m, name);
+    g->name = name;
+    g->resname = resname;
+    g->z = -1;
+    g->hydrogen = name_is_hydrogen(s);
+    g->name_radius = ms_element_radius_from_name(s);
+}
+
+static void defaults_apply(ms_molecule *m, size_t i, atom_guess *g, int have_mass,
+                           int have_radius, int have_element)
 {
     ms_atoms *a = &m->atoms;
-    const char *name = ms_mol_str(m, a->name[i]);
-    if (!have_element)
-        a->atomicnumber[i] = (uint8_t)ms_element_guess(name, ms_mol_str(m, a->resname[i]));
+    if (!have_element) {
+        if (g->z < 0) g->z = ms_element_guess(ms_mol_str(m, g->name), ms_mol_str(m, g->resname));
+        a->atomicnumber[i] = (uint8_t)g->z;
+    }
     if (!have_mass) a->mass[i] = ms_element_mass(a->atomicnumber[i]);
     if (!have_radius)
         a->radius[i] = have_element && a->atomicnumber[i]
                            ? ms_element_vdw_radius(a->atomicnumber[i])
-                           : ms_element_radius_from_name(name);
-    if (name_is_hydrogen(name))
+                           : g->name_radius;
+    if (g->hydrogen)
         a->flags[i] |= MS_AF_HYDROGEN;
     else
         a->flags[i] &= (uint16_t)~MS_AF_HYDROGEN;
+}
+
+void ms_analysis_atom_defaults(ms_molecule *m, size_t i, int have_mass, int have_radius,
+                               int have_element)
+{
+    atom_guess g;
+    guess_init(m, m->atoms.name[i], m->atoms.resname[i], &g);
+    defaults_apply(m, i, &g, have_mass, have_radius, have_element);
+}
+
+void ms_analysis_atoms_defaults(ms_molecule *m, size_t first, size_t n, int have_mass,
+                                int have_radius)
+{
+    enum { SLOTS = 1024 };
+    atom_guess cache[SLOTS];
+    for (size_t k = 0; k < SLOTS; k++) cache[k].name = MS_STR_NONE;
+    const ms_atoms *a = &m->atoms;
+    for (size_t i = first; i < first + n; i++) {
+        ms_str name = a->name[i], res = a->resname[i];
+        atom_guess *g = &cache[(uint32_t)(name * 2654435761u + res * 40503u) >> 22];
+        if (g->name != name || g->resname != res) guess_init(m, name, res, g);
+        defaults_apply(m, i, g, have_mass, have_radius, a->atomicnumber[i] != 0);
+    }
 }
 
 /* ---------------------------------------------------------------- residues */

@@ -111,6 +111,7 @@ int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err)
             return -1;
         }
         *p = q;
+        ms_advise_huge(q, bytes);
     }
     m->atoms.cap = n;
     return 0;
@@ -145,6 +146,25 @@ long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err)
     return (long)i;
 }
 
+long ms_mol_add_blank_atoms(ms_molecule *m, size_t n, ms_error *err)
+{
+    ms_atoms *a = &m->atoms;
+    if (n > a->cap - a->n) {
+        size_t want = a->n + n, grown = a->cap + a->cap / 2;
+        if (want < a->n || ms_mol_reserve_atoms(m, want > grown ? want : grown, err)) {
+            if (want < a->n) ms_error_set(err, "out of memory for %zu more atoms", n);
+            return -1;
+        }
+    }
+    size_t first = a->n;
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++)
+        memset((char *)*atom_field(a, k) + first * atom_fields[k].elsize, 0,
+               n * atom_fields[k].elsize);
+    memset(a->ss + first, MS_SS_COIL_CODE, n);
+    a->n += n;
+    return (long)first;
+}
+
 void ms_mol_shrink(ms_molecule *m)
 {
     ms_atoms *a = &m->atoms;
@@ -173,6 +193,8 @@ ms_frame *ms_mol_add_frame(ms_molecule *m, int with_vel, ms_error *err)
         ms_error_set(err, "out of memory for frame %zu of %zu atoms", m->nframes, m->atoms.n);
         return NULL;
     }
+    ms_advise_huge(f->pos, m->atoms.n * 3 * sizeof(float));
+    ms_advise_huge(f->vel, with_vel ? m->atoms.n * 3 * sizeof(float) : 0);
     m->nframes++;
     return f;
 }

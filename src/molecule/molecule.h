@@ -149,6 +149,8 @@ void ms_mol_free_contents(ms_molecule *m);
 int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err);
 /* Append one blank atom (all fields zero / ""), returning its index, or -1. */
 long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err);
+/* Append n blank atoms at once, returning the first one's index, or -1. */
+long ms_mol_add_blank_atoms(ms_molecule *m, size_t n, ms_error *err);
 /* Release unused capacity of the per-atom arrays after loading. */
 void ms_mol_shrink(ms_molecule *m);
 

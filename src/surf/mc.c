@@ -69,7 +69,7 @@ int ms_qsurf_extract_begin(ms_qsurf_extract *mc, const int n[3], const float ori
     size_t plane = (size_t)n[0] * (size_t)n[1], planes = (size_t)maxlayers + 1;
     size_t rows = (size_t)n[1] * planes;
     mc->vbase = ms_alloc_array(plane * planes, sizeof(uint32_t));
-    ms_qsurf_advise_huge(mc->vbase, plane * planes * sizeof(uint32_t));
+    ms_advise_huge(mc->vbase, plane * planes * sizeof(uint32_t));
     mc->bits = ms_calloc_array(rows * (size_t)mc->words * 4, sizeof(uint64_t));
     mc->vrow = ms_alloc_array(rows + 1, sizeof(uint32_t));
     mc->trow = ms_alloc_array(rows + 1, sizeof(uint32_t));

@@ -1,21 +1,11 @@
 /* mesh.c: the QuickSurf mesh: exact-size growth (realloc, which for large blocks remaps
- * pages instead of copying; the vertex arrays keep one spare vertex, MS_QSURF_MESH_VCAP) within the surface's memory budget, release, memory and area; and the advice that large buffers
- * be backed by huge pages, which spares most of their page faults. */
+ * pages instead of copying; the vertex arrays keep one spare vertex, MS_QSURF_MESH_VCAP)
+ * within the surface's memory budget, release, memory and area. */
 #include "config.h"
 #include "surf/qsurf_impl.h"
 
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-
-void ms_qsurf_advise_huge(void *p, size_t bytes)
-{
-#ifdef MADV_HUGEPAGE
-    const uintptr_t huge = (uintptr_t)2 << 20;
-    uintptr_t a = ((uintptr_t)p + huge - 1) & ~(huge - 1), e = ((uintptr_t)p + bytes) & ~(huge - 1);
-    if (p && e > a) madvise((void *)a, e - a, MADV_HUGEPAGE);
-#endif
-}
 
 static int resize(void **p, size_t n, size_t elsize)
 {

@@ -132,10 +132,10 @@ int ms_qsurf_slab_alloc(ms_qsurf_slab *s, int nx, int ny, int planes, int colore
     size_t n = (size_t)nx * (size_t)ny * (size_t)planes;
     s->nx = nx, s->ny = ny;
     s->dens = ms_alloc_array(n, sizeof(float));
-    ms_qsurf_advise_huge(s->dens, n * sizeof(float));
+    ms_advise_huge(s->dens, n * sizeof(float));
     for (int k = 0; colored && k < 3; k++) {
         s->rgb[k] = ms_alloc_array(n, sizeof(float));
-        ms_qsurf_advise_huge(s->rgb[k], n * sizeof(float));
+        ms_advise_huge(s->rgb[k], n * sizeof(float));
     }
     if (!s->dens || (colored && (!s->rgb[0] || !s->rgb[1] || !s->rgb[2]))) {
         ms_qsurf_slab_free(s);

@@ -252,8 +252,6 @@ int ms_qsurf_mesh_resize(ms_qsurf_mesh *m, size_t nv, size_t nt);
 /* Can the extractor's mesh grow to nv vertices and nt triangles within mc->mesh_room? -1
  * (err naming the budget, mc->over_budget set) when not. */
 int ms_qsurf_mesh_fits(ms_qsurf_extract *mc, size_t nv, size_t nt, ms_error *err);
-/* Ask for huge pages under the 2 MB-aligned part of a large buffer (a hint; no error). */
-void ms_qsurf_advise_huge(void *p, size_t bytes);
 
 /* ---------------------------------------------------------------- OpenCL engine
  * One engine per process (built kernels on the device, context and queue of cl/cl.h, which
