@@ -11,7 +11,9 @@
  *
  * ABI history. 1: structures and frames. 2 (this header): volumetric data (read_volume_meta,
  * read_volume_data, write_volume and the MS_CAN_*_VOLUME bits, appended to ms_plugin) and
- * biological assemblies (add_assembly, appended to ms_struct_sink). The host still loads ABI
+ * biological assemblies (add_assembly, appended to ms_struct_sink). 3: terms and typed bonds
+ * (sink and view only). 4: seekable frames (tell_frame, seek_frame, appended to ms_plugin),
+ * for trajectories read on demand. The host still loads ABI
  * 1 plugins: it copies their shorter description into a zeroed ABI 2 one, so the new
  * members read as NULL; it fills every sink member, so an ABI 2 plugin may call any. */
 #ifndef MS_PLUGIN_H
@@ -25,7 +27,7 @@
 extern "C" {
 #endif
 
-#define MS_PLUGIN_ABI 3
+#define MS_PLUGIN_ABI 4
 #define MS_PLUGIN_ABI_MIN 1  /* the oldest ABI the host still loads */
 
 enum { MS_PLUGIN_OK = 0, MS_PLUGIN_EOF = 1, MS_PLUGIN_ERROR = -1 };
@@ -219,7 +221,18 @@ typedef struct ms_plugin {
     int (*read_volume_meta)(void *h, int k, ms_volume_meta *meta, ms_perr *err);
     int (*read_volume_data)(void *h, int k, float *data, ms_perr *err);
     int (*write_volume)(void *h, const ms_volume_meta *meta, const float *data, ms_perr *err);
+
+    /* ABI 4: seekable frames, NULL when the format cannot seek. tell_frame gives a token for
+     * the frame read_frame returns next (a byte offset, a frame number: only seek_frame
+     * reads it); seek_frame makes read_frame return that frame next. A host streaming a
+     * trajectory records each frame's token while it reads the file once, then reads any
+     * frame again later: seek_frame, read_frame. */
+    int (*tell_frame)(void *h, long long *token, ms_perr *err);
+    int (*seek_frame)(void *h, long long token, ms_perr *err);
 } ms_plugin;
+
+/* The size of an ABI 2 or 3 description: the members before tell_frame. */
+#define MS_PLUGIN_ABI3_SIZE offsetof(ms_plugin, tell_frame)
 
 /* The size of an ABI 1 description: the members before read_volume_meta. */
 #define MS_PLUGIN_ABI1_SIZE offsetof(ms_plugin, read_volume_meta)
