@@ -374,8 +374,12 @@ static int dcd_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
         r->buf = nb;
         r->buf_cap = bytes;
     }
-    if (pread_full(r->fd, r->buf, bytes, off) != bytes)
-        return ms_perr_set(err, "read error: %s", errno ? strerror(errno) : "short read");
+    errno = 0;
+    if (pread_full(r->fd, r->buf, bytes, off) != bytes) {
+        if (errno) return ms_perr_set(err, "read error: %s", strerror(errno));
+        return ms_perr_set(err, "the file ends before this frame: it is shorter than when it "
+                           "was opened");
+    }
     long n = k ? r->nfree : r->natoms;
     const unsigned char *xyz[3];
     if (check_frame(r, r->buf, n, xyz, err) != MS_PLUGIN_OK) return MS_PLUGIN_ERROR;
