@@ -601,9 +601,31 @@ static int stream_read(void *ud, long long token, float *pos, float *vel, ms_err
     return 0;
 }
 
+/* The memory frames may take before a trajectory streams: 80 % of what the system can
+ * still give, or MOLSCOPE_TRAJ_BUDGET (bytes, with an optional K, M or G) when that is
+ * less. 0 when neither is known. */
+static double frames_budget(const char **what)
+{
+    double budget = 0.8 * (double)ms_mem_available();
+    *what = "of memory available";
+    const char *env = getenv("MOLSCOPE_TRAJ_BUDGET");
+    char *end;
+    double v = env ? strtod(env, &end) : 0;
+    if (env && end != env && v > 0) {
+        int k = *end == 'K' || *end == 'k' ? 1 : *end == 'M' || *end == 'm' ? 2
+                : *end == 'G' || *end == 'g' ? 3 : 0;
+        v *= k == 1 ? 1e3 : k == 2 ? 1e6 : k == 3 ? 1e9 : 1;
+        if (budget <= 0 || v < budget) {
+            budget = v;
+            *what = "of MOLSCOPE_TRAJ_BUDGET";
+        }
+    }
+    return budget;
+}
+
 /* Whether the file's frames stream: asked (o->stream 1), or else when a file this size
- * would not fit in the memory left (frames in memory take about what a binary file holds),
- * the reason then in why. Refused (-1) when asked of a format that cannot seek. */
+ * would not fit in the budget (frames in memory take about what a binary file holds), the
+ * reason then in why. Refused (-1) when asked of a format that cannot seek. */
 static int wants_stream(const ms_plugin *p, const char *path, const ms_load_opts *o,
                         const ms_asm_plan *plan, char *why, size_t whylen, ms_error *err)
 {
@@ -616,10 +638,12 @@ static int wants_stream(const ms_plugin *p, const char *path, const ms_load_opts
     }
     if (o->stream != 0 || !can) return o->stream > 0;
     struct stat sb;
-    size_t avail = ms_mem_available();
-    if (stat(path, &sb) || !avail || (double)sb.st_size < 0.8 * (double)avail) return 0;
-    snprintf(why, whylen, "%s (%.2f GB) would not fit in the %.2f GB of memory available",
-             base_name(path), (double)sb.st_size / 1e9, (double)avail / 1e9);
+    const char *what;
+    double budget = frames_budget(&what);
+    if (stat(path, &sb) || budget <= 0 || (double)sb.st_size <= budget) return 0;
+    double size = (double)sb.st_size, gb = MS_MAX(size, budget) >= 1e9 ? 1e9 : 1e6;
+    snprintf(why, whylen, "%s (%.1f %s) would not fit in the %.1f %s %s", base_name(path),
+             size / gb, gb > 1e6 ? "GB" : "MB", budget / gb, gb > 1e6 ? "GB" : "MB", what);
     return 1;
 }
 
