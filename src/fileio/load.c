@@ -501,6 +501,29 @@ static void loader_adopt_vel(ms_loader *ld, ms_frame *f)
     ld->with_vel = 1;
 }
 
+/* The frame file frame idx goes to, and where the reader puts it (out's pos and vel): a new
+ * frame's arrays, or the loader's scratch for an assembly and for a streamed frame (read
+ * once for its cell and time, its place in the file recorded). NULL with err. */
+static ms_frame *frame_slot(ms_molecule *m, ms_loader *ld, long idx, ms_frame_out *out,
+                            ms_error *err)
+{
+    ms_frame *f = NULL;
+    if (ld->stream) {
+        ms_perr perr = {{0}};
+        long long token;
+        if (ld->p->tell_frame(ld->h, &token, &perr) != MS_PLUGIN_OK)
+            ms_error_set(err, "%s", perr.msg);
+        else f = ms_mol_add_streamed_frame(m, token, err);
+        out->pos = ld->scratch_pos;
+        out->vel = ld->scratch_vel;
+    } else if ((f = ms_mol_add_frame(m, ld->with_vel, err))) {
+        out->pos = ld->plan ? ld->scratch_pos : f->pos;
+        out->vel = ld->plan ? ld->scratch_vel : f->vel ? f->vel : loader_probe_vel(ld, m);
+    }
+    if (!f) ms_error_prefix(err, "frame %ld", idx);
+    return f;
+}
+
 /* Read up to max frames (max < 0: all). Returns 1 more remain, 0 done, -1 error. The frames
  * appended before an error stay; the caller decides whether to roll back. */
 static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
@@ -515,24 +538,7 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         memset(&out, 0, sizeof out);
         ms_frame *f = NULL;
         int keep = wants_frame(idx, ld->first, ld->last, ld->step);
-        if (keep && ld->stream) {
-            long long token;
-            if (ld->p->tell_frame(ld->h, &token, &perr) != MS_PLUGIN_OK ||
-                !(f = ms_mol_add_streamed_frame(m, token, err))) {
-                if (perr.msg[0]) ms_error_set(err, "%s", perr.msg);
-                ms_error_prefix(err, "frame %ld", idx);
-                return -1;
-            }
-            out.pos = ld->scratch_pos;   /* read once, for its cell and time, then dropped */
-            out.vel = ld->scratch_vel;
-        } else if (keep) {
-            if (!(f = ms_mol_add_frame(m, ld->with_vel, err))) {
-                ms_error_prefix(err, "frame %ld", idx);
-                return -1;
-            }
-            out.pos = ld->plan ? ld->scratch_pos : f->pos;
-            out.vel = ld->plan ? ld->scratch_vel : f->vel ? f->vel : loader_probe_vel(ld, m);
-        }
+        if (keep && !(f = frame_slot(m, ld, idx, &out, err))) return -1;
         int rc = ld->p->read_frame(ld->h, ld->natoms, &out, &perr);
         if (rc != MS_PLUGIN_OK) {
             if (keep) ms_mol_truncate_frames(m, m->nframes - 1);
