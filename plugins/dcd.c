@@ -374,8 +374,12 @@ static int dcd_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
         r->buf = nb;
         r->buf_cap = bytes;
     }
-    if (pread_full(r->fd, r->buf, bytes, off) != bytes)
-        return ms_perr_set(err, "read error: %s", errno ? strerror(errno) : "short read");
+    errno = 0;
+    if (pread_full(r->fd, r->buf, bytes, off) != bytes) {
+        if (errno) return ms_perr_set(err, "read error: %s", strerror(errno));
+        return ms_perr_set(err, "the file ends before this frame: it is shorter than when it "
+                           "was opened");
+    }
     long n = k ? r->nfree : r->natoms;
     const unsigned char *xyz[3];
     if (check_frame(r, r->buf, n, xyz, err) != MS_PLUGIN_OK) return MS_PLUGIN_ERROR;
@@ -502,6 +506,22 @@ static int dcd_close_write(void *h, ms_perr *err)
     return rc;
 }
 
+/* Frames are found by number: the token is one. */
+static int dcd_tell_frame(void *h, long long *token, ms_perr *err)
+{
+    (void)err;
+    *token = ((dcd_reader *)h)->next;
+    return MS_PLUGIN_OK;
+}
+
+static int dcd_seek_frame(void *h, long long token, ms_perr *err)
+{
+    dcd_reader *r = h;
+    if (token < 0 || token > r->nframes) return ms_perr_set(err, "no frame %lld", token);
+    r->next = (long)token;
+    return MS_PLUGIN_OK;
+}
+
 static const ms_plugin dcd_plugin = {
     .abi = MS_PLUGIN_ABI,
     .name = "dcd",
@@ -514,6 +534,8 @@ static const ms_plugin dcd_plugin = {
     .open_write = dcd_open_write,
     .write_frame = dcd_write_frame,
     .close_write = dcd_close_write,
+    .tell_frame = dcd_tell_frame,
+    .seek_frame = dcd_seek_frame,
 };
 
 const ms_plugin *ms_plugin_entry(void) { return &dcd_plugin; }

@@ -10,6 +10,7 @@
 #include "plugin_util.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -755,6 +756,21 @@ static int js_close_write(void *h, ms_perr *err)
     return ms_out_destroy(w, err);
 }
 
+/* Frames are found by number: the token is one. */
+static int js_tell_frame(void *h, long long *token, ms_perr *err)
+{
+    (void)err;
+    *token = ((js_reader *)h)->frame;
+    return MS_PLUGIN_OK;
+}
+
+static int js_seek_frame(void *h, long long token, ms_perr *err)
+{
+    if (token < 0 || token > LONG_MAX) return ms_perr_set(err, "no frame %lld", token);
+    ((js_reader *)h)->frame = (long)token;
+    return MS_PLUGIN_OK;
+}
+
 static const ms_plugin js_plugin = {
     .abi = MS_PLUGIN_ABI,
     .name = "js",
@@ -766,6 +782,8 @@ static const ms_plugin js_plugin = {
     .read_structure = js_read_structure,
     .read_frame = js_read_frame,
     .close_read = js_close_read,
+    .tell_frame = js_tell_frame,
+    .seek_frame = js_seek_frame,
     .open_write = js_open_write,
     .write_structure = js_write_structure,
     .write_frame = js_write_frame,

@@ -13,9 +13,11 @@
  * read_volume_data, write_volume and the MS_CAN_*_VOLUME bits, appended to ms_plugin) and
  * biological assemblies (add_assembly, appended to ms_struct_sink). 3: typed bonds, terms and
  * options (appended to the sink and the view). 4 (this header): atoms and bonds in bulk
- * (set_strings, add_atoms, add_bonds, appended to the sink). The host still loads ABI 1 to 3
- * plugins: it copies an ABI 1 description into a zeroed current one, so the new members read
- * as NULL; it fills every sink member, so a plugin may call any its ABI names. */
+ * (set_strings, add_atoms, add_bonds, appended to the sink) and seekable frames (tell_frame,
+ * seek_frame, appended to ms_plugin) for trajectories read on demand. The host still loads
+ * ABI 1 to 3 plugins: it copies their shorter description into a zeroed current one, so the
+ * new members read as NULL; it fills every sink member, so a plugin may call any its ABI
+ * names. */
 #ifndef MS_PLUGIN_H
 #define MS_PLUGIN_H
 
@@ -254,7 +256,18 @@ typedef struct ms_plugin {
     int (*read_volume_meta)(void *h, int k, ms_volume_meta *meta, ms_perr *err);
     int (*read_volume_data)(void *h, int k, float *data, ms_perr *err);
     int (*write_volume)(void *h, const ms_volume_meta *meta, const float *data, ms_perr *err);
+
+    /* ABI 4: seekable frames, NULL when the format cannot seek. tell_frame gives a token for
+     * the frame read_frame returns next (a byte offset, a frame number: only seek_frame
+     * reads it); seek_frame makes read_frame return that frame next. A host streaming a
+     * trajectory records each frame's token while it reads the file once, then reads any
+     * frame again later: seek_frame, read_frame. */
+    int (*tell_frame)(void *h, long long *token, ms_perr *err);
+    int (*seek_frame)(void *h, long long token, ms_perr *err);
 } ms_plugin;
+
+/* The size of an ABI 2 or 3 description: the members before tell_frame. */
+#define MS_PLUGIN_ABI3_SIZE offsetof(ms_plugin, tell_frame)
 
 /* The size of an ABI 1 description: the members before read_volume_meta. */
 #define MS_PLUGIN_ABI1_SIZE offsetof(ms_plugin, read_volume_meta)

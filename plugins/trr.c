@@ -256,6 +256,22 @@ static int trr_close_write(void *h, ms_perr *err)
     return rc;
 }
 
+/* Frames are found by their byte offset: the token is one. */
+static int trr_tell_frame(void *h, long long *token, ms_perr *err)
+{
+    off_t at = ftello(((trr_reader *)h)->fp);
+    if (at < 0) return ms_perr_set(err, "cannot tell the file position: %s", strerror(errno));
+    *token = (long long)at;
+    return MS_PLUGIN_OK;
+}
+
+static int trr_seek_frame(void *h, long long token, ms_perr *err)
+{
+    if (fseeko(((trr_reader *)h)->fp, (off_t)token, SEEK_SET) != 0)
+        return ms_perr_set(err, "cannot seek to byte %lld: %s", token, strerror(errno));
+    return MS_PLUGIN_OK;
+}
+
 static const ms_plugin trr_plugin = {
     .abi = MS_PLUGIN_ABI,
     .name = "trr",
@@ -265,6 +281,8 @@ static const ms_plugin trr_plugin = {
     .open_read = trr_open_read,
     .read_frame = trr_read_frame,
     .close_read = trr_close_read,
+    .tell_frame = trr_tell_frame,
+    .seek_frame = trr_seek_frame,
     .open_write = trr_open_write,
     .write_frame = trr_write_frame,
     .close_write = trr_close_write,

@@ -105,7 +105,10 @@ static int atom_pos(const ms_molset *mols, const ms_label *l, int k, long frame,
     if (!m || l->atom[k] >= m->atoms.n) return -1;
     long f = frame < 0 ? m->frame : frame;
     if (f < 0 || (size_t)f >= m->nframes) return -1;
-    const float *x = m->frames[f].pos + 3 * (size_t)l->atom[k];
+    ms_error err = {{0}};   /* a streamed frame is read into the window, a cache */
+    const ms_frame *fr = ms_mol_frame((ms_molecule *)m, (size_t)f, &err);
+    if (!fr) return -1;
+    const float *x = fr->pos + 3 * (size_t)l->atom[k];
     for (int i = 0; i < 3; i++) p[i] = x[i];
     return 0;
 }

@@ -339,8 +339,14 @@ static float *frame_pos(ms_app *app, Tcl_Interp *interp, ms_atomsel *s, const ch
         ms_atomsel_error(interp, s, method, "molecule %d has no coordinates", m->id);
         return NULL;
     }
+    ms_error err = {{0}};
+    ms_frame *fr = ms_mol_frame_pin(m, (size_t)f, &err);   /* moved: the frame stays */
+    if (!fr) {
+        ms_atomsel_error(interp, s, method, "%s", err.msg);
+        return NULL;
+    }
     *mol = m;
-    return m->frames[f].pos;
+    return fr->pos;
 }
 
 /* moveby / moveto {x y z}; lmoveby / lmoveto {{x y z} ...}, one vector per atom. */

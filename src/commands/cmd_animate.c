@@ -81,9 +81,12 @@ static int an_goto(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const obj
         return TCL_ERROR;
     int end = word == 1;
     anim_play(app, 0);
+    ms_error err = {{0}};
     for (size_t i = 0; i < app->mols.n; i++) {
         ms_molecule *m = app->mols.mols[i];
-        if (m->active) ms_molset_set_frame(&app->mols, m, end ? (long)m->nframes - 1 : target);
+        if (m->active &&
+            ms_molset_goto(&app->mols, m, end ? (long)m->nframes - 1 : target, &err))
+            return ms_cmd_error(interp, "animate goto: %s", err.msg);
     }
     return TCL_OK;
 }
@@ -276,6 +279,8 @@ static int an_dup(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const objv
                                 Tcl_GetString(objv[3]));
     }
     ms_error err = {{0}};
+    if (src >= 0 && !ms_mol_frame(m, (size_t)src, &err))
+        return ms_cmd_error(interp, "animate dup: %s", err.msg);
     int with_vel = src >= 0 && m->frames[src].vel != NULL;
     ms_frame *f = ms_mol_add_frame(m, with_vel, &err);
     if (!f) return ms_cmd_error(interp, "animate dup: %s", err.msg);

@@ -114,7 +114,10 @@ static int atom_pos(Tcl_Interp *interp, const geom_atom *a, const ms_molecule *d
     long frame = m == def ? f : m->frame;
     if (frame < 0 || (size_t)frame >= m->nframes)
         return ms_cmd_error(interp, "%s: molecule %d has no frames", cmd, m->id);
-    const float *x = m->frames[frame].pos + 3 * (size_t)a->index;
+    ms_error err = {{0}};
+    const float *x = ms_mol_frame_pos(m, (size_t)frame, &err);
+    if (!x) return ms_cmd_error(interp, "%s: %s", cmd, err.msg);
+    x += 3 * (size_t)a->index;
     p[0] = x[0], p[1] = x[1], p[2] = x[2];
     return TCL_OK;
 }

@@ -319,7 +319,9 @@ static int set_keyword(ms_app *app, Tcl_Interp *interp, ms_molecule *m, const ch
     switch ((keyword)i) {
     case K_FRAME:
         if (ms_arg_int(interp, v, k, INT_MIN, INT_MAX, &b)) return TCL_ERROR;
-        ms_molset_set_frame(&app->mols, m, b);
+        ms_error err = {{0}};
+        if (ms_molset_goto(&app->mols, m, b, &err))
+            return ms_cmd_error(interp, "%s: %s", ms_args_where(), err.msg);
         return TCL_OK;
     case K_NAME: {
         char *n = ms_strdup(Tcl_GetString(v));

@@ -47,7 +47,10 @@ static int gettimestep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     ms_molecule *m = ms_cmd_mol(app, interp, objv[1], "gettimestep");
     long f;
     if (!m || frame_word(interp, m, objv[2], 0, &f)) return TCL_ERROR;
-    Tcl_SetObjResult(interp, Tcl_NewByteArrayObj((const unsigned char *)m->frames[f].pos,
+    ms_error err = {{0}};
+    const float *pos = ms_mol_frame_pos(m, (size_t)f, &err);
+    if (!pos) return ms_cmd_error(interp, "gettimestep: %s", err.msg);
+    Tcl_SetObjResult(interp, Tcl_NewByteArrayObj((const unsigned char *)pos,
                                                  (int)(m->atoms.n * 3 * sizeof(float))));
     return TCL_OK;
 }
@@ -60,6 +63,7 @@ typedef struct raw_args {
 /* A new frame: a copy of the last one's coordinates and cell, or all zero. */
 static ms_frame *new_frame(ms_molecule *m, ms_error *err)
 {
+    if (m->nframes && !ms_mol_frame(m, m->nframes - 1, err)) return NULL;
     ms_frame *f = ms_mol_add_frame(m, 0, err);
     if (!f) return NULL;
     size_t bytes = m->atoms.n * 3 * sizeof(float);
@@ -93,7 +97,7 @@ static int rawtimestep(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
                             "atoms, 12 bytes (x y z as 32-bit floats) each", len, a.start,
                             m->id, m->atoms.n);
     ms_error err = {{0}};
-    ms_frame *fr = f >= 0 ? &m->frames[f] : new_frame(m, &err);
+    ms_frame *fr = f >= 0 ? ms_mol_frame_pin(m, (size_t)f, &err) : new_frame(m, &err);
     if (!fr) return ms_cmd_error(interp, "rawtimestep: %s", err.msg);
     memcpy(fr->pos + 3 * a.start, bytes, n * 3 * sizeof(float));
     if (f < 0) {

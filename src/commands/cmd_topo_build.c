@@ -110,7 +110,8 @@ static int guess_impropers(ms_topo_sel *t, double tol, ms_error *err)
         ms_error_set(err, "molecule %d has no coordinates", t->m->id);
         return -1;
     }
-    const float *pos = t->m->frames[t->frame].pos;
+    const float *pos = ms_mol_frame_pos(t->m, (size_t)t->frame, err);
+    if (!pos) return -1;
     uint32_t buf[MAX_NB];
     for (size_t q = 0; q < t->n; q++) {
         uint32_t c = t->atoms[q];

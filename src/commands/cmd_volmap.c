@@ -89,17 +89,21 @@ static int get_weights(Tcl_Interp *interp, const ms_molecule *m, Tcl_Obj *wobj,
     return TCL_OK;
 }
 
-/* The bounding box of the selected atoms over every frame. */
-static void frames_box(const ms_molecule *m, const uint32_t *atoms, size_t n, float lo[3],
-                       float hi[3])
+/* The bounding box of the selected atoms over every frame (-1: a streamed frame unread). */
+static int frames_box(const ms_molecule *m, const uint32_t *atoms, size_t n, float lo[3],
+                      float hi[3], ms_error *err)
 {
     for (int d = 0; d < 3; d++) lo[d] = INFINITY, hi[d] = -INFINITY;
-    for (size_t f = 0; f < m->nframes; f++)
+    for (size_t f = 0; f < m->nframes; f++) {
+        const float *pos = ms_mol_frame_pos(m, f, err);
+        if (!pos) return -1;
         for (size_t k = 0; k < n; k++) {
-            const float *p = m->frames[f].pos + 3 * (size_t)atoms[k];
+            const float *p = pos + 3 * (size_t)atoms[k];
             for (int d = 0; d < 3; d++)
                 if (isfinite(p[d])) lo[d] = fminf(lo[d], p[d]), hi[d] = fmaxf(hi[d], p[d]);
         }
+    }
+    return 0;
 }
 
 /* Combine one frame's map into the accumulator (sums for avg and stdev). */
@@ -119,15 +123,15 @@ static int compute(const ms_molecule *m, long frame, const uint32_t *atoms, size
 {
     ms_volmap_in in = {n, NULL, m->atoms.radius, w, atoms};
     if (!o->allframes) {
-        in.pos = m->frames[frame].pos;
+        if (!(in.pos = ms_mol_frame_pos(m, (size_t)frame, err))) return -1;
         return ms_volmap_density(&in, &o->p, vol, err);
     }
-    frames_box(m, atoms, n, o->p.box_lo, o->p.box_hi);
+    if (frames_box(m, atoms, n, o->p.box_lo, o->p.box_hi, err)) return -1;
     o->p.use_box = isfinite(o->p.box_lo[0]);
     float *acc2 = NULL;
     for (size_t f = 0; f < m->nframes; f++) {
         ms_qsurf_volume one;
-        in.pos = m->frames[f].pos;
+        if (!(in.pos = ms_mol_frame_pos(m, f, err))) goto fail;
         if (ms_volmap_density(&in, &o->p, f ? &one : vol, err)) goto fail;
         size_t np = (size_t)vol->n[0] * (size_t)vol->n[1] * (size_t)vol->n[2];
         if (f == 0) {

@@ -285,6 +285,9 @@ static const ms_opt load_options[] = {
     {"volsets", MS_OPT_IGNORE, 0, 0, 0, 0, NULL},   /* every data set of a volume file is read */
     {"assembly", MS_OPT_STRING, LOFF(o.assembly), 0, 0, 0, NULL},
     {"bcast", MS_OPT_BOOL, LOFF(o.bcast), 0, 0, 0, NULL},
+    /* molscope's own: frames read on demand through a window of -window frames */
+    {"-stream", MS_OPT_FLAG, LOFF(o.stream), 0, 0, 0, NULL},
+    {"-window", MS_OPT_LONG, LOFF(o.window), 2, 100000, MS_OPT_MIN | MS_OPT_MAX, NULL},
     {NULL, 0, 0, 0, 0, 0, NULL}};
 
 int ms_cmd_parse_load_opts(Tcl_Interp *interp, const char *cmd, int objc, Tcl_Obj *const objv[],
@@ -320,6 +323,16 @@ static int use_bcast(Tcl_Interp *interp, const char *cmd, const ms_load_opts *o)
     return 1;
 }
 
+/* Say once why a molecule's frames stream when it was not asked (they would not fit). */
+static void announce_stream(ms_molecule *m)
+{
+    if (!m->stream || !m->stream->why[0]) return;
+    printf("Info) molecule %d: %s: its frames are read from the file when needed, %zu at "
+           "most kept in memory\n", m->id, m->stream->why, m->stream->window);
+    fflush(stdout);
+    m->stream->why[0] = '\0';
+}
+
 /* Remember the options the molecule's last file was read with (molinfo filespec). */
 static void keep_spec(ms_molecule *m, const ms_load_opts *o)
 {
@@ -347,6 +360,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
             return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
         }
         keep_spec(m, o);
+        announce_stream(m);
         if (m->nframes) ms_molset_set_frame(&app->mols, m, (long)m->nframes - 1);
         if (m->atoms.n) ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, m, NULL);
         if (m->nvolumes) ms_molset_emit(&app->mols, MS_EV_VOLUMES, m, NULL);
@@ -368,6 +382,7 @@ int ms_cmd_load(ms_app *app, Tcl_Interp *interp, const char *cmd, const char *pa
               : ms_load_add(&app->plugins, into, path, o, &err))
         return ms_cmd_error(interp, "%s: %s: %s", cmd, path, err.msg);
     keep_spec(into, o);
+    announce_stream(into);
     if (atoms_before == 0 && into->atoms.n > 0) {
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE, into, NULL);
         ms_molset_emit(&app->mols, MS_EV_STRUCTURE_LOADED, into, NULL);

@@ -25,6 +25,7 @@ typedef struct ms_loader {
     float *scratch_pos, *scratch_vel;
     float *probe_vel;         /* offered to a reader of frames alone while with_vel is 0 */
     long nread;               /* frames of this file added to the molecule so far */
+    int stream;               /* frames are indexed, not kept: the handle is the stream's */
 } ms_loader;
 
 void ms_load_opts_default(ms_load_opts *o)
@@ -539,6 +540,7 @@ static int take_first_frame(ms_molecule *m, sink_state *st, const ms_load_opts *
     }
     ms_frame *f = &m->frames[m->nframes];
     memset(f, 0, sizeof *f);
+    f->spos = -1;
     size_t bytes = m->atoms.n * 3 * sizeof(float);
     f->pos = realloc(st->pos, bytes ? bytes : 1);
     if (!f->pos) f->pos = st->pos;
@@ -593,7 +595,7 @@ static ms_loader *loader_new(const ms_plugin *p, void *h, const char *path, long
 static void loader_free(ms_loader *ld)
 {
     if (!ld) return;
-    if (ld->h) ld->p->close_read(ld->h);
+    if (ld->h && !ld->stream) ld->p->close_read(ld->h);
     if (ld->plan) {
         ms_asm_plan_free(ld->plan);
         free(ld->plan);
@@ -621,6 +623,29 @@ static void loader_adopt_vel(ms_loader *ld, ms_frame *f)
     ld->with_vel = 1;
 }
 
+/* The frame file frame idx goes to, and where the reader puts it (out's pos and vel): a new
+ * frame's arrays, or the loader's scratch for an assembly and for a streamed frame (read
+ * once for its cell and time, its place in the file recorded). NULL with err. */
+static ms_frame *frame_slot(ms_molecule *m, ms_loader *ld, long idx, ms_frame_out *out,
+                            ms_error *err)
+{
+    ms_frame *f = NULL;
+    if (ld->stream) {
+        ms_perr perr = {{0}};
+        long long token;
+        if (ld->p->tell_frame(ld->h, &token, &perr) != MS_PLUGIN_OK)
+            ms_error_set(err, "%s", perr.msg);
+        else f = ms_mol_add_streamed_frame(m, token, err);
+        out->pos = ld->scratch_pos;
+        out->vel = ld->scratch_vel;
+    } else if ((f = ms_mol_add_frame(m, ld->with_vel, err))) {
+        out->pos = ld->plan ? ld->scratch_pos : f->pos;
+        out->vel = ld->plan ? ld->scratch_vel : f->vel ? f->vel : loader_probe_vel(ld, m);
+    }
+    if (!f) ms_error_prefix(err, "frame %ld", idx);
+    return f;
+}
+
 /* Read up to max frames (max < 0: all). Returns 1 more remain, 0 done, -1 error. The frames
  * appended before an error stay; the caller decides whether to roll back. */
 static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
@@ -635,14 +660,7 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         memset(&out, 0, sizeof out);
         ms_frame *f = NULL;
         int keep = wants_frame(idx, ld->first, ld->last, ld->step);
-        if (keep) {
-            if (!(f = ms_mol_add_frame(m, ld->with_vel, err))) {
-                ms_error_prefix(err, "frame %ld", idx);
-                return -1;
-            }
-            out.pos = ld->plan ? ld->scratch_pos : f->pos;
-            out.vel = ld->plan ? ld->scratch_vel : f->vel ? f->vel : loader_probe_vel(ld, m);
-        }
+        if (keep && !(f = frame_slot(m, ld, idx, &out, err))) return -1;
         int rc = ld->p->read_frame(ld->h, ld->natoms, &out, &perr);
         if (rc != MS_PLUGIN_OK) {
             if (keep) ms_mol_truncate_frames(m, m->nframes - 1);
@@ -652,8 +670,9 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         }
         ld->next_index++;
         if (!keep) continue;
-        if (!ld->plan && !f->vel && out.has_vel && out.vel) loader_adopt_vel(ld, f);
-        if (ld->plan) {
+        if (ld->stream && out.has_vel) m->stream->with_vel = 1;
+        if (!ld->plan && !ld->stream && !f->vel && out.has_vel && out.vel) loader_adopt_vel(ld, f);
+        if (ld->plan && !ld->stream) {
             ms_asm_expand_xyz(ld->plan, ld->scratch_pos, f->pos, 0);
             if (f->vel && out.has_vel) ms_asm_expand_xyz(ld->plan, ld->scratch_vel, f->vel, 1);
         }
@@ -665,6 +684,133 @@ static int loader_read(ms_molecule *m, ms_loader *ld, long max, ms_error *err)
         ld->nread++;
     }
     return 1;
+}
+
+/* ---------------------------------------------------------------- streamed frames */
+
+/* A streamed file's reader: the loader's handle, kept open after the index pass. */
+typedef struct stream_src {
+    const ms_plugin *p;
+    void *h;
+    long natoms;
+} stream_src;
+
+static void stream_src_free(void *ud)
+{
+    stream_src *s = ud;
+    s->p->close_read(s->h);
+    free(s);
+}
+
+/* Read the frame at token into pos and vel, then put the handle back where it was (the
+ * index pass may still be going on in the background). */
+static int stream_read(void *ud, long long token, float *pos, float *vel, ms_error *err)
+{
+    stream_src *s = ud;
+    ms_perr perr = {{0}}, ignored = {{0}};
+    ms_frame_out out;
+    memset(&out, 0, sizeof out);
+    out.pos = pos;
+    out.vel = vel;
+    long long back;
+    int rc = s->p->tell_frame(s->h, &back, &perr);
+    if (rc == MS_PLUGIN_OK) rc = s->p->seek_frame(s->h, token, &perr);
+    if (rc == MS_PLUGIN_OK) {
+        rc = s->p->read_frame(s->h, s->natoms, &out, &perr);
+        s->p->seek_frame(s->h, back, &ignored);
+    }
+    if (rc == MS_PLUGIN_EOF)
+        ms_perr_set(&perr, "the file ends before this frame: it changed since it was read");
+    if (rc != MS_PLUGIN_OK) {
+        ms_error_set(err, "%s", perr.msg[0] ? perr.msg : "read error");
+        return -1;
+    }
+    if (vel && !out.has_vel) memset(vel, 0, (size_t)s->natoms * 3 * sizeof(float));
+    return 0;
+}
+
+/* The memory frames may take before a trajectory streams: 80 % of what the system can
+ * still give, or MOLSCOPE_TRAJ_BUDGET (bytes, with an optional K, M or G) when that is
+ * less. 0 when neither is known. */
+static double frames_budget(const char **what)
+{
+    double budget = 0.8 * (double)ms_mem_available();
+    *what = "of memory available";
+    const char *env = getenv("MOLSCOPE_TRAJ_BUDGET");
+    char *end;
+    double v = env ? strtod(env, &end) : 0;
+    if (env && end != env && v > 0) {
+        int k = *end == 'K' || *end == 'k' ? 1 : *end == 'M' || *end == 'm' ? 2
+                : *end == 'G' || *end == 'g' ? 3 : 0;
+        v *= k == 1 ? 1e3 : k == 2 ? 1e6 : k == 3 ? 1e9 : 1;
+        if (budget <= 0 || v < budget) {
+            budget = v;
+            *what = "of MOLSCOPE_TRAJ_BUDGET";
+        }
+    }
+    return budget;
+}
+
+/* Whether the file's frames stream: asked (o->stream 1), or else when a file this size
+ * would not fit in the budget (frames in memory take about what a binary file holds), the
+ * reason then in why. Refused (-1) when asked of a format that cannot seek. */
+static int wants_stream(const ms_plugin *p, const char *path, const ms_load_opts *o,
+                        const ms_asm_plan *plan, char *why, size_t whylen, ms_error *err)
+{
+    int can = p->tell_frame && p->seek_frame && !plan;
+    why[0] = '\0';
+    if (o->stream > 0 && !can) {
+        ms_error_set(err, "-stream: the %s format %s", p->name,
+                     plan ? "cannot stream an assembly" : "cannot seek frames");
+        return -1;
+    }
+    if (o->stream != 0 || !can) return o->stream > 0;
+    struct stat sb;
+    const char *what;
+    double budget = frames_budget(&what);
+    if (stat(path, &sb) || budget <= 0 || (double)sb.st_size <= budget) return 0;
+    double size = (double)sb.st_size, gb = MS_MAX(size, budget) >= 1e9 ? 1e9 : 1e6;
+    snprintf(why, whylen, "%s (%.1f %s) would not fit in the %.1f %s %s", base_name(path),
+             size / gb, gb > 1e6 ? "GB" : "MB", budget / gb, gb > 1e6 ? "GB" : "MB", what);
+    return 1;
+}
+
+/* Make the loader index its frames for the molecule's stream. */
+static int stream_begin(ms_molecule *m, ms_loader *ld, const ms_load_opts *o, const char *why,
+                        ms_error *err)
+{
+    stream_src *s = calloc(1, sizeof *s);
+    ms_frame_source src = {s, stream_read, stream_src_free, ms_strdup(ld->path)};
+    ld->scratch_pos = ms_alloc_array(3 * m->atoms.n, sizeof(float));
+    ld->scratch_vel = ms_alloc_array(3 * m->atoms.n, sizeof(float));
+    if (!s || !src.path || !ld->scratch_pos || !ld->scratch_vel) {
+        free(s);
+        free(src.path);
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    *s = (stream_src){ld->p, ld->h, ld->natoms};
+    size_t window = o->window > 0 ? (size_t)o->window : MS_STREAM_WINDOW;
+    if (ms_mol_stream_start(m, &src, window, 0, err)) {
+        free(s);
+        free(src.path);
+        return -1;
+    }
+    snprintf(m->stream->why, sizeof m->stream->why, "%s", why);
+    ld->stream = 1;
+    return 0;
+}
+
+/* Undo a stream no frame uses any more (a load that failed after stream_begin). */
+static void stream_drop(ms_molecule *m, size_t nframes_before)
+{
+    if (!m->stream) return;
+    for (size_t f = 0; f < MS_MIN(nframes_before, m->nframes); f++)
+        if (m->frames[f].spos >= 0) return;
+    if (m->stream->src.free) m->stream->src.free(m->stream->src.ud);
+    free(m->stream->src.path);
+    free(m->stream);
+    m->stream = NULL;
 }
 
 /* Open a frame reader on an already-open plugin handle and read the first `waitfor` frames
@@ -682,6 +828,13 @@ static int read_frames(ms_molecule *m, const ms_plugin *p, void *h, const char *
         }
         p->close_read(h);
         ms_error_set(err, "out of memory");
+        return -1;
+    }
+    char why[256];
+    int stream = p->read_frame ? wants_stream(p, path, o, plan, why, sizeof why, err) : 0;
+    if (stream > 0 && m->stream && o->stream <= 0) stream = 0;  /* auto: it streams a file */
+    if (stream < 0 || (stream > 0 && stream_begin(m, ld, o, why, err))) {
+        loader_free(ld);
         return -1;
     }
     long now = o->waitfor < 0 ? -1 : MS_MAX(0, o->waitfor - already);
@@ -939,7 +1092,8 @@ ms_molecule *ms_load_new(const ms_registry *r, const char *path, const ms_load_o
     if (read_frames(m, p, h, path, next_index, already, o, with_vel, plan, err))
         goto fail_nosink;
     if (ms_load_finish_bonds(m, err)) goto fail_nosink;
-    m->frame = m->nframes ? (int)m->nframes - 1 : -1;
+    m->frame = -1;
+    if (m->nframes && ms_mol_goto(m, m->nframes - 1, err)) goto fail_nosink;
     return m;
 fail:
     sink_free(&st);
@@ -1102,19 +1256,15 @@ int ms_load_add(const ms_registry *r, ms_molecule *m, const char *path, const ms
     }
     size_t before = m->nframes;
     int frame_before = m->frame;
-    if (add_frames(p, m, path, o, err)) {
+    if (add_frames(p, m, path, o, err) || ms_mol_add_file(m, path, p->name, err) ||
+        ms_load_finish_bonds(m, err) ||
+        (m->nframes > before && ms_mol_goto(m, m->nframes - 1, err))) {
         ms_loader_cancel(m);
         ms_mol_truncate_frames(m, before);
+        stream_drop(m, before);
         m->frame = frame_before;
         return -1;
     }
-    if (ms_mol_add_file(m, path, p->name, err) || ms_load_finish_bonds(m, err)) {
-        ms_loader_cancel(m);
-        ms_mol_truncate_frames(m, before);
-        m->frame = frame_before;
-        return -1;
-    }
-    if (m->nframes > before) m->frame = (int)m->nframes - 1;
     return 0;
 }
 
@@ -1160,7 +1310,8 @@ int ms_load_finish_bonds(ms_molecule *m, ms_error *err)
                 npairs++;
             }
     }
-    if (ms_bond_search(m, m->frames[0].pos, &pairs, &npairs, &cap, err) ||
+    const float *pos0 = ms_mol_frame_pos(m, 0, err);
+    if (!pos0 || ms_bond_search(m, pos0, &pairs, &npairs, &cap, err) ||
         ms_mol_set_bonds(m, npairs, pairs, NULL, err)) {
         free(pairs);
         return -1;

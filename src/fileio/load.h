@@ -22,6 +22,10 @@ typedef struct ms_load_opts {
                            * PDB REMARK 350 biomolecule number) instead of the asymmetric
                            * unit; NULL = the file's atoms as they are */
     const char *options;  /* reader options for the plugin (ms_struct_sink.options) */
+    int stream;           /* frames: 1 read on demand through a window (molscope's -stream),
+                           * 0 kept in memory unless they would not fit (then streamed, with
+                           * the reason in m->stream->why), -1 always kept */
+    long window;          /* frames a stream keeps (0: MS_STREAM_WINDOW) */
 } ms_load_opts;
 
 void ms_load_opts_default(ms_load_opts *o);

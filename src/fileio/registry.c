@@ -52,10 +52,10 @@ const ms_plugin *ms_registry_upgrade(const ms_plugin *p, void **copy)
 {
     *copy = NULL;
     if (!p || p->abi < MS_PLUGIN_ABI_MIN || p->abi > MS_PLUGIN_ABI) return NULL;
-    if (p->abi >= 2) return p; /* ABI 3 and 4 added only to the sink and the view */
-    ms_plugin *c = calloc(1, sizeof *c);
+    if (p->abi >= 4) return p;
+    ms_plugin *c = calloc(1, sizeof *c);   /* ABI 3 added only to the sink and the view */
     if (!c) return NULL;
-    memcpy(c, p, MS_PLUGIN_ABI1_SIZE);
+    memcpy(c, p, p->abi >= 2 ? MS_PLUGIN_ABI3_SIZE : MS_PLUGIN_ABI1_SIZE);
     *copy = c;
     return c;
 }

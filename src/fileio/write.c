@@ -214,7 +214,7 @@ static int finish_output(ms_ofile *out, const char *path, int prc, int crc, cons
     return -1;
 }
 
-long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
+long ms_write_file(const ms_registry *r, ms_molecule *m, const char *path,
                    const ms_write_opts *o, ms_error *err)
 {
     const ms_plugin *p = NULL;
@@ -267,7 +267,12 @@ long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
     }
     int rc = can_struct ? p->write_structure(h, &w.view, &perr) : MS_PLUGIN_OK;
     for (long f = first; rc == MS_PLUGIN_OK && can_frames && f <= last; f += step) {
-        const ms_frame *fr = &m->frames[f];
+        ms_error ferr = {{0}};
+        const ms_frame *fr = ms_mol_frame(m, (size_t)f, &ferr);   /* streamed: read now */
+        if (!fr) {
+            rc = ms_perr_set(&perr, "%s", ferr.msg);
+            break;
+        }
         ms_frame_in in;
         memset(&in, 0, sizeof in);
         in.pos = gather(&w, fr->pos, buf, n);

@@ -18,7 +18,7 @@ typedef struct ms_write_opts {
 void ms_write_opts_default(ms_write_opts *o);
 
 /* Returns the number of frames written, or -1 with err set. */
-long ms_write_file(const ms_registry *r, const ms_molecule *m, const char *path,
+long ms_write_file(const ms_registry *r, ms_molecule *m, const char *path,
                    const ms_write_opts *o, ms_error *err);
 
 /* Write one volume through a plugin that writes volumes (type NULL: from the extension),

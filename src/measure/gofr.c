@@ -385,9 +385,11 @@ int ms_gofr_add_frame(ms_gofr *g, const ms_molecule *m, size_t frame, const uint
         g->skipped++;
         return 0;
     }
+    const float *pos = ms_mol_frame_pos(m, frame, err);
+    if (!pos) return -1;
     size_t hmax = usable_bins(g, &cg);
     uint64_t *hist = ms_calloc_array(hmax, sizeof *hist);
-    count_ctx c = {.g = g, .pos = m->frames[frame].pos, .a = a, .b = b, .hmax = hmax,
+    count_ctx c = {.g = g, .pos = pos, .a = a, .b = b, .hmax = hmax,
                    .rc2 = (double)hmax * g->delta * (double)hmax * g->delta};
     if (!hist || (hmax && histogram(g, &c, &cg, na, nb, hist, err))) {
         if (!hist) ms_error_set(err, "out of memory for g(r)");

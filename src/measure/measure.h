@@ -24,7 +24,8 @@ typedef struct ms_atomset {
     size_t n;
 } ms_atomset;
 
-/* Check that the frame exists; -1 with "molecule N has no frame F" otherwise. */
+/* Check that the frame exists and has its coordinates in memory (a streamed frame is read);
+ * -1 with "molecule N has no frame F" or the read error otherwise. */
 int ms_atomset_check(const ms_atomset *s, ms_error *err);
 /* Coordinates of the set's frame (x y z per atom of the molecule). */
 static inline const float *ms_atomset_pos(const ms_atomset *s)

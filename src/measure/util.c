@@ -14,7 +14,8 @@ int ms_atomset_check(const ms_atomset *s, ms_error *err)
                      s->mol->nframes);
         return -1;
     }
-    return 0;
+    /* A streamed frame is read into the window, a cache: the molecule does not change. */
+    return ms_mol_frame((ms_molecule *)s->mol, s->frame, err) ? 0 : -1;
 }
 
 /* ---------------------------------------------------------------- per-atom values */

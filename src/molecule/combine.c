@@ -122,6 +122,13 @@ static long part_frame(const ms_mol_part *p, size_t f, int all)
     return fr >= 0 && (size_t)fr < p->m->nframes ? fr : -1;
 }
 
+/* Frame fr of a part, in memory (a streamed one read into its window, a cache), or NULL
+ * with err. */
+static const ms_frame *part_src(const ms_mol_part *part, long fr, ms_error *err)
+{
+    return ms_mol_frame((ms_molecule *)part->m, (size_t)fr, err);
+}
+
 /* Frames: every one (all) or one, the parts' coordinates placed copy after copy. */
 static int copy_frames(ms_molecule *m, const ms_mol_part *parts, size_t nparts, size_t ncopies,
                        const float (*shift)[3], int all, ms_error *err)
@@ -131,8 +138,10 @@ static int copy_frames(ms_molecule *m, const ms_mol_part *parts, size_t nparts, 
         int any = 0, vel = 1;
         for (size_t p = 0; p < nparts; p++) {
             long fr = part_frame(&parts[p], f, all);
+            const ms_frame *src = fr >= 0 ? part_src(&parts[p], fr, err) : NULL;
+            if (fr >= 0 && !src) return -1;
             any |= fr >= 0;
-            vel &= fr >= 0 && parts[p].m->frames[fr].vel != NULL;
+            vel &= src && src->vel != NULL;
         }
         if (!any) return 0;
         ms_frame *out = ms_mol_add_frame(m, vel, err);
@@ -142,7 +151,8 @@ static int copy_frames(ms_molecule *m, const ms_mol_part *parts, size_t nparts, 
         for (size_t c = 0; c < ncopies; c++)
             for (size_t p = 0; p < nparts; p++) {
                 long fr = part_frame(&parts[p], f, all);
-                const ms_frame *src = fr >= 0 ? &parts[p].m->frames[fr] : NULL;
+                const ms_frame *src = fr >= 0 ? part_src(&parts[p], fr, err) : NULL;
+                if (fr >= 0 && !src) return -1;
                 if (src && c == 0 && p == 0) {
                     memcpy(out->cell, src->cell, sizeof out->cell);
                     out->time = src->time;

@@ -83,6 +83,11 @@ void ms_mol_free_contents(ms_molecule *m)
     for (int k = 0; k < MS_TERM_KINDS; k++) ms_terms_clear(&m->terms[k]);
     for (size_t f = 0; f < m->nframes; f++) free_frame(m, &m->frames[f]);
     free(m->frames);
+    if (m->stream) {
+        if (m->stream->src.free) m->stream->src.free(m->stream->src.ud);
+        free(m->stream->src.path);
+        free(m->stream);
+    }
     for (size_t i = 0; i < m->nfiles; i++) {
         free(m->files[i].path);
         free(m->files[i].type);
@@ -185,6 +190,7 @@ ms_frame *ms_mol_add_frame(ms_molecule *m, int with_vel, ms_error *err)
     }
     ms_frame *f = &m->frames[m->nframes];
     memset(f, 0, sizeof *f);
+    f->spos = -1;
     f->pos = ms_alloc_array(m->atoms.n * 3, sizeof(float));
     f->vel = with_vel ? ms_alloc_array(m->atoms.n * 3, sizeof(float)) : NULL;
     if (!f->pos || (with_vel && !f->vel)) {
@@ -229,6 +235,138 @@ const float *ms_mol_pos(const ms_molecule *m)
 {
     if (m->frame < 0 || (size_t)m->frame >= m->nframes) return NULL;
     return m->frames[m->frame].pos;
+}
+
+/* ---------------------------------------------------------------- streamed frames */
+
+size_t ms_mol_resident_frames(const ms_molecule *m)
+{
+    size_t n = 0;
+    for (size_t f = 0; f < m->nframes; f++) n += m->frames[f].pos != NULL;
+    return n;
+}
+
+/* The least recently used frame of the window that may leave it (not the current one), or
+ * -1; *n counts the window's frames. */
+static long window_victim(const ms_molecule *m, size_t *n)
+{
+    long victim = -1;
+    *n = 0;
+    for (size_t f = 0; f < m->nframes; f++) {
+        const ms_frame *fr = &m->frames[f];
+        if (!fr->pos || fr->spos < 0) continue;
+        (*n)++;
+        if ((long)f != m->frame && (victim < 0 || fr->used < m->frames[victim].used))
+            victim = (long)f;
+    }
+    return victim;
+}
+
+/* Arrays for a frame about to be read: a leaving frame's when the window is full (one
+ * buffer goes round), new ones otherwise. */
+static int window_take(ms_molecule *m, ms_frame *to, ms_error *err)
+{
+    size_t n;
+    long v = window_victim(m, &n);
+    if (v >= 0 && n >= m->stream->window) {
+        ms_frame *old = &m->frames[v];
+        if (!(m->keep_pos && m->keep_pos(m->keep_pos_ud, old->pos))) {
+            to->pos = old->pos;
+            to->vel = old->vel;
+            old->pos = old->vel = NULL;
+            return 0;
+        }
+        old->pos = NULL;
+        free(old->vel);
+        old->vel = NULL;
+    }
+    to->pos = ms_alloc_array(m->atoms.n * 3, sizeof(float));
+    to->vel = m->stream->with_vel ? ms_alloc_array(m->atoms.n * 3, sizeof(float)) : NULL;
+    if (!to->pos || (m->stream->with_vel && !to->vel)) {
+        free_frame(m, to);
+        ms_error_set(err, "out of memory for a frame of %zu atoms", m->atoms.n);
+        return -1;
+    }
+    return 0;
+}
+
+ms_frame *ms_mol_frame(ms_molecule *m, size_t f, ms_error *err)
+{
+    ms_frame *fr = &m->frames[f];
+    if (m->stream) fr->used = ++m->stream->clock;
+    if (fr->pos) return fr;
+    if (!m->stream || fr->spos < 0) {
+        ms_error_set(err, "molecule %d: frame %zu has no coordinates", m->id, f);
+        return NULL;
+    }
+    if (window_take(m, fr, err)) return NULL;
+    const ms_frame_source *s = &m->stream->src;
+    if (s->read(s->ud, fr->spos, fr->pos, fr->vel, err)) {
+        free_frame(m, fr);
+        ms_error_prefix(err, "%s: frame %zu", s->path, f);
+        return NULL;
+    }
+    return fr;
+}
+
+ms_frame *ms_mol_frame_pin(ms_molecule *m, size_t f, ms_error *err)
+{
+    ms_frame *fr = ms_mol_frame(m, f, err);
+    if (fr) fr->spos = -1;
+    return fr;
+}
+
+const float *ms_mol_frame_pos(const ms_molecule *m, size_t f, ms_error *err)
+{
+    const ms_frame *fr = ms_mol_frame((ms_molecule *)m, f, err);
+    return fr ? fr->pos : NULL;
+}
+
+int ms_mol_pin_frames(ms_molecule *m, size_t first, size_t last, ms_error *err)
+{
+    if (!m->stream) return 0;
+    for (size_t f = first; f <= last; f++)
+        if (!ms_mol_frame_pin(m, f, err)) return -1;
+    return 0;
+}
+
+int ms_mol_goto(ms_molecule *m, size_t f, ms_error *err)
+{
+    if (!ms_mol_frame(m, f, err)) return -1;
+    m->frame = (int)f;
+    return 0;
+}
+
+int ms_mol_stream_start(ms_molecule *m, const ms_frame_source *src, size_t window,
+                        int with_vel, ms_error *err)
+{
+    if (m->stream) {
+        ms_error_set(err, "molecule %d already streams %s: one streamed file a molecule",
+                     m->id, m->stream->src.path);
+        return -1;
+    }
+    ms_stream *s = calloc(1, sizeof *s);
+    if (!s) {
+        ms_error_set(err, "out of memory");
+        return -1;
+    }
+    s->src = *src;
+    s->window = window < 2 ? 2 : window;
+    s->with_vel = with_vel;
+    m->stream = s;
+    return 0;
+}
+
+ms_frame *ms_mol_add_streamed_frame(ms_molecule *m, long long spos, ms_error *err)
+{
+    if (ms_grow((void **)&m->frames, &m->frames_cap, m->nframes + 1, sizeof *m->frames)) {
+        ms_error_set(err, "out of memory for frame %zu", m->nframes);
+        return NULL;
+    }
+    ms_frame *f = &m->frames[m->nframes++];
+    memset(f, 0, sizeof *f);
+    f->spos = spos;
+    return f;
 }
 
 int ms_cell_vectors(const float cell[6], double v[3][3])
@@ -327,7 +465,8 @@ void ms_mol_memory_of(const ms_molecule *m, ms_mol_memory *out)
     out->bonds = bond_bytes(m);
     out->topology = topology_bytes(m);
     for (size_t f = 0; f < m->nframes; f++)
-        out->frames += 3 * m->atoms.n * sizeof(float) * (m->frames[f].vel ? 2 : 1);
+        if (m->frames[f].pos)
+            out->frames += 3 * m->atoms.n * sizeof(float) * (m->frames[f].vel ? 2 : 1);
     for (int k = 0; k < 4; k++)
         if (m->user[k]) out->other += m->atoms.cap * sizeof(float);
     for (size_t v = 0; v < m->nvolumes; v++)

@@ -81,7 +81,32 @@ typedef struct ms_frame {
     float cell[6];     /* a b c alpha beta gamma; zeros when unknown */
     double time;       /* physical time */
     float energy[MS_EN_KINDS];
+    long long spos;    /* streamed (ms_stream): the frame's place in its file, the source's
+                        * token; -1 for a frame kept in memory (loaded, made or pinned) */
+    unsigned long used;/* streamed: when it was last asked for (the window's LRU clock) */
 } ms_frame;
+
+/* A streamed molecule's frames (molscope's `mol new ... -stream`): every frame keeps its
+ * cell, time and place in the file; only a window of the most recently used ones holds
+ * coordinates, read again on demand through the source (fileio sets it). Frames the script
+ * changes are pinned: their spos becomes -1 and they stay in memory like VMD's. */
+typedef struct ms_frame_source {
+    void *ud;
+    /* Read the frame at token spos into pos (3 natoms floats) and vel (NULL: not wanted). */
+    int (*read)(void *ud, long long spos, float *pos, float *vel, ms_error *err);
+    void (*free)(void *ud);
+    char *path;           /* the file, for messages */
+} ms_frame_source;
+
+typedef struct ms_stream {
+    ms_frame_source src;
+    size_t window;        /* frames read from the file kept at most (>= 2) */
+    unsigned long clock;
+    int with_vel;
+    char why[256];        /* why it streams, said once by whoever loaded it ("" when asked) */
+} ms_stream;
+
+#define MS_STREAM_WINDOW 4
 
 /* A file that contributed to the molecule (for molinfo filename/filetype). */
 typedef struct ms_molfile {
@@ -127,6 +152,7 @@ typedef struct ms_molecule {
     float *user[4];           /* user, user2, user3, user4: allocated on first set */
     int32_t *pfrag, *nfrag;   /* computed on first use (ms_mol_polymer_fragments) */
     struct ms_loader *pending;/* frames still to read in the background */
+    ms_stream *stream;        /* NULL unless frames are read on demand (see ms_stream) */
     void *ext[8];             /* per-module attachments (reps, selections...), see molset.h */
     /* Someone else holding a frame's coordinates (Python's numpy views): asked before a
      * frame's pos is freed; when it answers 1 it has taken the array and frees it itself. */
@@ -161,8 +187,32 @@ ms_frame *ms_mol_add_frame(ms_molecule *m, int with_vel, ms_error *err);
 void ms_mol_truncate_frames(ms_molecule *m, size_t first);
 /* Delete frames first..last step `step` (inclusive), keeping the others in order. */
 void ms_mol_delete_frames(ms_molecule *m, size_t first, size_t last, size_t step);
-/* Current frame's coordinates, or NULL. */
+/* Current frame's coordinates, or NULL. The current frame of a streamed molecule is always
+ * in memory (ms_mol_goto reads it). */
 const float *ms_mol_pos(const ms_molecule *m);
+
+/* Frame f with its coordinates in memory (a streamed frame is read into the window, the
+ * least recently used one leaving it; the current frame never leaves), or NULL with err
+ * naming the file and frame. The pointers stay valid until window - 1 other frames are
+ * read. f must be < nframes. */
+ms_frame *ms_mol_frame(ms_molecule *m, size_t f, ms_error *err);
+/* Frame f's coordinates, read as ms_mol_frame does, for code given a const molecule (the
+ * window is a cache: reading into it does not change the molecule); NULL with err. */
+const float *ms_mol_frame_pos(const ms_molecule *m, size_t f, ms_error *err);
+/* Read and pin frames first..last (< nframes; a change to all of them: wrap, unwrap,
+ * join); -1 with err. */
+int ms_mol_pin_frames(ms_molecule *m, size_t first, size_t last, ms_error *err);
+/* ms_mol_frame, and the frame is pinned: it stays in memory from now on (for changes). */
+ms_frame *ms_mol_frame_pin(ms_molecule *m, size_t f, ms_error *err);
+/* Make frame f (< nframes) current, reading it when streamed; on error nothing changes. */
+int ms_mol_goto(ms_molecule *m, size_t f, ms_error *err);
+/* Start streaming: the molecule owns the source from now (freed with the molecule). */
+int ms_mol_stream_start(ms_molecule *m, const ms_frame_source *src, size_t window,
+                        int with_vel, ms_error *err);
+/* Append a streamed frame (no coordinates in memory) at file token spos. */
+ms_frame *ms_mol_add_streamed_frame(ms_molecule *m, long long spos, ms_error *err);
+/* Frames holding coordinates now (of a streamed molecule: the window and the pinned). */
+size_t ms_mol_resident_frames(const ms_molecule *m);
 
 /* The cell vectors A, B, C (rows of v) of a frame's cell a b c alpha beta gamma (degrees), in
  * VMD's orientation: A along x, B in the xy plane. Returns 1, or 0 (v untouched) when the

@@ -69,16 +69,23 @@ void ms_molset_delete(ms_molset *s, int id)
     molset_free_one(s, m);
 }
 
-void ms_molset_set_frame(ms_molset *s, ms_molecule *m, long frame)
+int ms_molset_goto(ms_molset *s, ms_molecule *m, long frame, ms_error *err)
 {
     if (m->nframes == 0) {
         m->frame = -1;
-        return;
+        return 0;
     }
     if (frame < 0) frame = 0;
     if (frame >= (long)m->nframes) frame = (long)m->nframes - 1;
-    m->frame = (int)frame;
+    if (ms_mol_goto(m, (size_t)frame, err)) return -1;
     ms_molset_emit(s, MS_EV_FRAME, m, NULL);
+    return 0;
+}
+
+void ms_molset_set_frame(ms_molset *s, ms_molecule *m, long frame)
+{
+    ms_error err = {{0}};
+    ms_molset_goto(s, m, frame, &err);
 }
 
 void ms_molset_emit(ms_molset *s, ms_mol_event ev, ms_molecule *m, const char *arg)

@@ -53,7 +53,10 @@ ms_molecule *ms_molset_top(const ms_molset *s);
 /* Position (0-based, creation order) of a molecule id, or -1. */
 int ms_molset_index_of(const ms_molset *s, int id);
 
-/* Set the current frame (clamped to the frames that exist) and tell listeners. */
+/* Set the current frame (clamped to the frames that exist) and tell listeners. A streamed
+ * frame is read first: ms_molset_goto returns -1 with err when it cannot be (nothing
+ * changes); ms_molset_set_frame then keeps the frame it had. */
+int ms_molset_goto(ms_molset *s, ms_molecule *m, long frame, ms_error *err);
 void ms_molset_set_frame(ms_molset *s, ms_molecule *m, long frame);
 /* Tell every listener of an event of m, in order; when one deletes m (a Tcl trace callback
  * can), the rest are not told. */

@@ -492,6 +492,11 @@ int ms_molser_pack_frames(const ms_molecule *m, size_t first, size_t count, ms_m
         ms_error_set(err, "frames %zu..%zu do not exist", first, first + count);
         return -1;
     }
+    if (m->stream) {   /* the blocks point at every frame at once */
+        ms_error_set(err, "molecule %d streams its frames from %s: they cannot be sent",
+                     m->id, m->stream->src.path);
+        return -1;
+    }
     size_t bytes = m->atoms.n * 3 * sizeof(float);
     wbuf w = {0};
     blist b = {.s = out};

@@ -48,7 +48,8 @@ static void unwrap_range(void *ctx, size_t begin, size_t end, int thread)
 int ms_pbc_unwrap(ms_molecule *m, size_t first, size_t last, const uint32_t *atoms, size_t n,
                   ms_error *err)
 {
-    if (ms_pbc_check_frames(m, first, last, err)) return -1;
+    if (ms_pbc_check_frames(m, first, last, err) || ms_mol_pin_frames(m, first, last, err))
+        return -1;
     ms_pbc_cell *cells = ms_alloc_array(last - first + 1, sizeof *cells);
     ms_pbc_runs runs = {0, NULL};
     if (!cells || ms_pbc_runs_make(atoms, n, RUN_ATOMS, &runs)) {
@@ -140,7 +141,8 @@ static void join_range(void *ctx, size_t begin, size_t end, int thread)
 int ms_pbc_join(ms_molecule *m, size_t first, size_t last, const ms_pbc_groups *g,
                 const uint8_t *ref, int bondlist, ms_error *err)
 {
-    if (ms_pbc_check_frames(m, first, last, err)) return -1;
+    if (ms_pbc_check_frames(m, first, last, err) || ms_mol_pin_frames(m, first, last, err))
+        return -1;
     join_plan p;
     if (plan_make(m, g, ref, bondlist, &p)) {
         free(p.order);

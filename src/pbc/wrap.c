@@ -110,7 +110,8 @@ static void wrap_range(void *ctx, size_t begin, size_t end, int thread)
 int ms_pbc_wrap(ms_molecule *m, size_t first, size_t last, const ms_pbc_wrap_opts *o,
                 ms_error *err)
 {
-    if (ms_pbc_check_frames(m, first, last, err)) return -1;
+    if (ms_pbc_check_frames(m, first, last, err) || ms_mol_pin_frames(m, first, last, err))
+        return -1;
     const ms_pbc_groups *g = o->groups;
     ms_pbc_runs runs = {0, NULL};
     if (g->n == g->start[g->n] && ms_pbc_runs_make(g->atoms, g->n, RUN_ATOMS, &runs)) {

@@ -93,8 +93,11 @@ static float *frame_pos(ms_app *app, int molid, long frame, ms_molecule **out)
     if (frame < 0 || (size_t)frame >= m->nframes)
         return PyErr_Format(PyExc_ValueError, "vmdnumpy: molecule %d has no frame %ld (it has %zu)",
                             m->id, frame, m->nframes), NULL;
+    ms_error err = {{0}};   /* numpy keeps a view of it: a streamed frame is pinned */
+    ms_frame *fr = ms_mol_frame_pin(m, (size_t)frame, &err);
+    if (!fr) return PyErr_Format(PyExc_ValueError, "vmdnumpy: %s", err.msg), NULL;
     *out = m;
-    return m->frames[frame].pos;
+    return fr->pos;
 }
 
 PyObject *ms_py_frame_buffer(PyObject *self, PyObject *args)

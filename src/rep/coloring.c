@@ -234,7 +234,7 @@ static int scale_data(const ms_molecule *m, ms_colmethod meth, long frame, float
 {
     size_t n = m->atoms.n;
     const ms_frame *f = frame >= 0 && (size_t)frame < m->nframes ? &m->frames[frame] : NULL;
-    if (!f) return 1;
+    if (!f || !f->pos) return 1;   /* a streamed frame not read (the builders read theirs) */
     const float *src = NULL;
     double c[3] = {0, 0, 0};
     switch (meth) {
@@ -343,7 +343,7 @@ static int by_volume(ctx *x, int k, long frame, int recompute, float *min, float
         *min = v ? v->min : 0.0f;
         *max = v ? v->max : 0.0f;
     }
-    if (!v || frame < 0 || (size_t)frame >= m->nframes) {
+    if (!v || frame < 0 || (size_t)frame >= m->nframes || !m->frames[frame].pos) {
         fill(x, 8);
         return 0;
     }

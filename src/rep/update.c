@@ -242,7 +242,15 @@ static int frame_specific(ms_rep_state *reps, ms_molecule *m, ms_rep *r, long f,
 
 static const float *frame_pos(ms_molecule *m, ms_rep *r, long f, ms_error *err)
 {
-    if (r->smooth <= 0) return m->frames[f].pos;
+    if (r->smooth <= 0) {
+        const ms_frame *fr = ms_mol_frame(m, (size_t)f, err);   /* streamed: read now */
+        return fr ? fr->pos : NULL;
+    }
+    if (m->stream) {
+        ms_error_set(err, "trajectory smoothing needs every frame in memory: molecule %d "
+                     "streams %s (load it without -stream)", m->id, m->stream->src.path);
+        return NULL;
+    }
     ms_rep_cache *c = r->cache;
     if (ms_grow((void **)&c->pos, &c->poscap, 3 * m->atoms.n + 1, sizeof *c->pos)) {
         ms_error_set(err, "out of memory smoothing coordinates");

@@ -105,7 +105,8 @@ static float *float_target(const ms_selkw *k, ms_molecule *m, long frame, size_t
         ms_error_set(err, "cannot set %s: molecule %d has no frames", nm, m->id);
         return NULL;
     }
-    ms_frame *fr = &m->frames[f];
+    ms_frame *fr = ms_mol_frame_pin(m, (size_t)f, err);   /* a changed frame stays */
+    if (!fr) return NULL;
     *stride = 3;
     if (nm[0] != 'v') return fr->pos + (nm[0] - 'x');
     if (!fr->vel && !(fr->vel = ms_calloc_array(a->n * 3, sizeof(float)))) {

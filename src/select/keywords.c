@@ -146,7 +146,8 @@ int ms_selctx_init(ms_selctx *c, ms_molecule *m, long frame, ms_error *err)
     c->err = err;
     c->frame = ms_sel_resolve_frame(m, frame);
     if (c->frame >= 0) {
-        const ms_frame *f = &m->frames[c->frame];
+        const ms_frame *f = ms_mol_frame(m, (size_t)c->frame, err);   /* streamed: read now */
+        if (!f) return -1;
         c->pos = f->pos;
         c->vel = f->vel;
         c->cell = f->cell;

@@ -140,7 +140,8 @@ int ms_ss_compute(ms_molecule *m, long frame, ms_error *err)
     }
     backbone b = {0, NULL, NULL, NULL, NULL};
     char *codes = NULL;
-    int rc = gather(m, m->frames[frame].pos, &b, err);
+    const float *pos = ms_mol_frame_pos(m, (size_t)frame, err);
+    int rc = pos ? gather(m, pos, &b, err) : -1;
     if (rc == 0 && !(codes = malloc(b.n ? b.n : 1))) {
         ms_error_set(err, "out of memory for the secondary structure of %zu residues", b.n);
         rc = -1;

@@ -268,7 +268,7 @@ static void test_dcd_variants(const float *pdb)
 }
 
 /* Write a molecule's frames as DCD, read them back, compare exactly. */
-static void test_dcd_round_trip(const ms_molecule *m)
+static void test_dcd_round_trip(ms_molecule *m)
 {
     ms_error err = {{0}};
     const char *dir = getenv("MS_TEST_OUT");
@@ -481,7 +481,7 @@ static void test_gro(const float *pdb)
 }
 
 /* Write a molecule through a plugin and read it back. */
-static ms_molecule *round_trip(const ms_molecule *m, const char *ext, ms_error *err)
+static ms_molecule *round_trip(ms_molecule *m, const char *ext, ms_error *err)
 {
     const char *dir = getenv("MS_TEST_OUT");
     char out[4096];
