@@ -1,6 +1,7 @@
 /* frames.c: the images of the live view (live.h): the change check (scene version, scene
  * builds by others, colours, materials, display size), a rasterized image at once when a GL
- * display runs, then TachyonInternal passes at idle time, each encoded as a PNG that
+ * display runs (while the page drags, a coarse one of decimated meshes), then
+ * TachyonInternal passes at idle time, each encoded as a PNG that
  * replaces the last; and the view changes the page sends, checked and applied. */
 #include "config.h"
 #include "live/live.h"
@@ -96,6 +97,19 @@ static void rt_settings(ms_live_frames *f, ms_rt_options *o)
     f->max_passes = o->aasamples + 1;
 }
 
+/* A coarse image draws the scene's meshes decimated (made at the drag's first image and
+ * kept while their lists do not change); a whole image draws them as they are, and the
+ * decimated ones are dropped. */
+static int lighten(ms_live_frames *f, ms_error *err)
+{
+    if (!f->coarse) {
+        ms_scene_lod_free(&f->lod);
+        f->triangles = ms_scene_triangles(&f->scene);
+        return 0;
+    }
+    return ms_scene_lod_apply(&f->lod, &f->scene, MS_LIVE_LOD_TRIS, &f->triangles, err);
+}
+
 /* A new scene, and its raster image when a GL display runs; the ray tracer starts on it at
  * the next step (so the raster image is sent first). */
 static void restart(ms_live_frames *f)
@@ -128,7 +142,7 @@ static void restart(ms_live_frames *f)
             f->scene.height /= 2;
             f->rt_pending = 0;
         }
-        if (ms_gl_render(gl, &f->scene, &img, &t, &err) == 0) {
+        if (lighten(f, &err) == 0 && ms_gl_render(gl, &f->scene, &img, &t, &err) == 0) {
             double t2 = ms_now();
             if (publish(f, &img, 0, &err)) snprintf(f->error, sizeof f->error, "%.200s", err.msg);
             ms_image_free(&img);
@@ -229,6 +243,7 @@ void ms_live_frames_stop(ms_live_frames *f)
     if (f->timer) Tcl_DeleteTimerHandler((Tcl_TimerToken)f->timer);
     if (f->idle_queued) Tcl_CancelIdleCall(on_idle, f);
     drop_scene(f);
+    ms_scene_lod_free(&f->lod);
     free(f->png);
     memset(f, 0, sizeof *f);
 }
