@@ -110,6 +110,35 @@ static int lighten(ms_live_frames *f, ms_error *err)
     return ms_scene_lod_apply(&f->lod, &f->scene, MS_LIVE_LOD_TRIS, &f->triangles, err);
 }
 
+/* The raster image of the scene (coarse while the page drags), published with its timing
+ * (seconds since t0, when the scene was begun). */
+static void raster_image(ms_live_frames *f, ms_gl *gl, double t0)
+{
+    ms_error err = {{0}};
+    ms_image img;
+    ms_gl_times t = {0, 0, 0};
+    /* while the page drags, a coarse image (half the size each way), and no passes */
+    f->coarse = ms_now() < f->interact_until && f->scene.width >= 64 && f->scene.height >= 64;
+    if (f->coarse) {
+        f->scene.width /= 2;
+        f->scene.height /= 2;
+        f->rt_pending = 0;
+    }
+    int rc = lighten(f, &err);
+    double t1 = ms_now();         /* the scene's time includes its decimation */
+    if (rc == 0 && ms_gl_render(gl, &f->scene, &img, &t, &err) == 0) {
+        double t2 = ms_now();
+        if (publish(f, &img, 0, &err)) snprintf(f->error, sizeof f->error, "%.200s", err.msg);
+        ms_image_free(&img);
+        f->timing[0] = t1 - t0;
+        f->timing[1] = t.upload;
+        f->timing[2] = t.draw + t.readback;
+        f->timing[3] = ms_now() - t2;
+    } else {
+        snprintf(f->error, sizeof f->error, "snapshot: %.200s", err.msg);
+    }
+}
+
 /* A new scene, and its raster image when a GL display runs; the ray tracer starts on it at
  * the next step (so the raster image is sent first). */
 static void restart(ms_live_frames *f)
@@ -131,29 +160,7 @@ static void restart(ms_live_frames *f)
     f->scene.ao_samples = o.aosamples;
     ms_gl *gl = ms_gl_display_current();
     f->rt_pending = ms_rt_available() && !(gl && f->raster_only);
-    if (gl) {
-        ms_image img;
-        ms_gl_times t = {0, 0, 0};
-        double t1 = ms_now();
-        /* while the page drags, a coarse image (half the size each way), and no passes */
-        f->coarse = t1 < f->interact_until && f->scene.width >= 64 && f->scene.height >= 64;
-        if (f->coarse) {
-            f->scene.width /= 2;
-            f->scene.height /= 2;
-            f->rt_pending = 0;
-        }
-        if (lighten(f, &err) == 0 && ms_gl_render(gl, &f->scene, &img, &t, &err) == 0) {
-            double t2 = ms_now();
-            if (publish(f, &img, 0, &err)) snprintf(f->error, sizeof f->error, "%.200s", err.msg);
-            ms_image_free(&img);
-            f->timing[0] = t1 - t0;
-            f->timing[1] = t.upload;
-            f->timing[2] = t.draw + t.readback;
-            f->timing[3] = ms_now() - t2;
-        } else {
-            snprintf(f->error, sizeof f->error, "snapshot: %.200s", err.msg);
-        }
-    }
+    if (gl) raster_image(f, gl, t0);
     if (!gl && !ms_rt_available())
         snprintf(f->error, sizeof f->error, "no renderer: no GL display runs and molscope was "
                  "built without Embree (TachyonInternal)");
