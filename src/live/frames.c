@@ -98,16 +98,21 @@ static void rt_settings(ms_live_frames *f, ms_rt_options *o)
 }
 
 /* A coarse image draws the scene's meshes decimated (made at the drag's first image and
- * kept while their lists do not change); a whole image draws them as they are, and the
- * decimated ones are dropped. */
+ * kept while their lists do not change) to MS_LIVE_LOD_TRIS triangles, or to
+ * MOLSCOPE_LIVE_LOD's number (0: not decimated; for comparisons); a whole image draws them
+ * as they are, and the decimated ones are dropped. */
 static int lighten(ms_live_frames *f, ms_error *err)
 {
-    if (!f->coarse) {
+    const char *v = getenv("MOLSCOPE_LIVE_LOD");   /* the budget; 0: no decimation */
+    char *end = NULL;
+    long budget = v && *v ? strtol(v, &end, 10) : MS_LIVE_LOD_TRIS;
+    if (end && (*end || budget < 0)) budget = MS_LIVE_LOD_TRIS;
+    if (!f->coarse || budget == 0) {
         ms_scene_lod_free(&f->lod);
         f->triangles = ms_scene_triangles(&f->scene);
         return 0;
     }
-    return ms_scene_lod_apply(&f->lod, &f->scene, MS_LIVE_LOD_TRIS, &f->triangles, err);
+    return ms_scene_lod_apply(&f->lod, &f->scene, (size_t)budget, &f->triangles, err);
 }
 
 /* The raster image of the scene (coarse while the page drags), published with its timing
