@@ -1,7 +1,9 @@
 /* test_scene.c: unit tests of the scene module: display list growth and bounds, normal
  * quantization (OpenGL 1.2.1 table 2.6), VMD's colour scale formula and default colours,
  * materials' shininess scale, matrices, the camera projection, tessellation, the stroke
- * font, and user graphics ids (VMD's replace and delete rules). Expected values are worked
+ * font, user graphics ids (VMD's replace and delete rules), and the level of detail
+ * (lod.h: triangle bound, bounding box within a cell, mean colours and normals, no
+ * degenerate triangle, the scene's cache). Expected values are worked
  * out by hand from the formulas in doc/vmd-behaviour.md. */
 #include "config.h"
 #include "ms_test.h"
