@@ -9,6 +9,7 @@
 #include <string.h>
 
 #define MAX_DIM 1048576.0          /* cubes along one axis at most (keys fit 60 bits) */
+#define MS_LOD_SMALL 4096          /* a mesh of this many triangles or fewer is kept whole */
 
 static int oom(ms_error *err)
 {
@@ -335,13 +336,21 @@ int ms_scene_lod_apply(ms_scene_lod *l, ms_scene *s, size_t max_tris, size_t *tr
         prune(l);
         return 0;
     }
+    /* small meshes (axes, a ligand's surface) stay whole when they leave most of the budget */
+    size_t small = 0;
+    for (size_t i = 0; i < s->nitems; i++)
+        if (s->items[i].dl->mesh.ntris <= MS_LOD_SMALL) small += s->items[i].dl->mesh.ntris;
+    size_t keep = small <= max_tris / 2 ? MS_LOD_SMALL : 0;
+    if (!keep) small = 0;
     const ms_displaylist **lists = malloc((s->nitems ? s->nitems : 1) * sizeof *lists);
     if (!lists) return oom(err);
     for (size_t i = 0; i < s->nitems; i++) {
         const ms_displaylist *dl = s->items[i].dl;
-        size_t budget = (size_t)((double)max_tris * (double)dl->mesh.ntris / (double)total);
-        ms_lod_entry *e = dl->mesh.ntris ? entry_for(l, dl, budget, err) : NULL;
-        if (dl->mesh.ntris && !e) {
+        size_t budget = (size_t)((double)(max_tris - small) * (double)dl->mesh.ntris /
+                                 (double)(total - small));
+        int lighter = dl->mesh.ntris > keep;
+        ms_lod_entry *e = lighter ? entry_for(l, dl, budget, err) : NULL;
+        if (lighter && !e) {
             free(lists);
             return -1;
         }

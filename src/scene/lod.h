@@ -34,7 +34,8 @@ void ms_scene_lod_init(ms_scene_lod *l);
 void ms_scene_lod_free(ms_scene_lod *l);
 
 /* When the scene's meshes hold more than max_tris triangles, point its items at lists whose
- * meshes are decimated (each to its share of max_tris; the other primitives are the
+ * meshes are decimated (each to its share of max_tris, meshes of 4096 triangles or fewer
+ * kept whole when they hold half the budget or less; the other primitives are the
  * original's, shared), made now or taken from l when their list has not changed since
  * (same list, generation and counts). The lists l holds must outlive the scene's use; the
  * entries of lists no longer in the scene are freed. Returns 0 and the triangles the scene

@@ -497,8 +497,18 @@ static void test_lod_scene(void)
     ms_scene_lod_apply(&lod, &s, 3000, &tris, &err);
     t_ok(s.items[0].dl->mesh.xyz == xyz && s.items[1].dl->mesh.ntris > 0 && tris <= 3000 &&
          lod.n == 2, "a rebuilt list is decimated again, the other kept (%zu)", tris);
+    ms_displaylist small;
+    ms_dl_init(&small);
+    lod_sphere(&small, c2, 1.0f, 20, 20);              /* 800 triangles: kept whole */
+    ms_scene_add(&s, &small, id, mats, &err);
+    s.items[0].dl = &a;
+    s.items[1].dl = &b;
+    ms_scene_lod_apply(&lod, &s, 3000, &tris, &err);
+    t_ok(s.items[2].dl == &small && tris <= 3000 && s.items[0].dl->mesh.ntris < a.mesh.ntris,
+         "a small mesh is kept whole, the large ones share the rest (%zu)", tris);
     ms_scene_lod_free(&lod);
     ms_scene_free(&s);
+    ms_dl_free(&small);
     ms_dl_free(&a);
     ms_dl_free(&b);
     ms_materials_free(mats);
