@@ -50,7 +50,8 @@
  *               molscope::parallel Tcl package, ../tcl/parallel)
  *   movie/      movies: frame files and resuming, frames handed out across ranks, the
  *               ffmpeg encoder fed in frame order, progress (the command: ../tcl/movie.tcl)
- *   scene/      display lists, colours, materials, user graphics, the Scene devices draw
+ *   scene/      display lists, colours, materials, user graphics, the Scene devices draw,
+ *               its lighter level of detail (lod.h)
  *  reps
  *   rep/        representations: selection + drawing method + colouring + material, cached
  *               display lists; one file per drawing method (lines.c ... newcartoon.c)
@@ -117,6 +118,7 @@
 #include "scene/material.h"
 #include "scene/graphics.h"
 #include "scene/scene.h"
+#include "scene/lod.h"
 /* reps */
 #include "rep/rep.h"
 /* devices */

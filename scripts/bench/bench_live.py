@@ -12,7 +12,9 @@ unless a GPU is there):
 
 Each is run in raster-only and progressive modes (display live mode); molscope's CPU time
 over the run (from /proc) is given beside the wall time.
-    /usr/bin/python3 scripts/bench/bench_live.py BIG.pdb SMALL.pdb
+    /usr/bin/python3 scripts/bench/bench_live.py BIG.pdb SMALL.pdb [--drag]
+(--drag: the drag alone.) The drag's images draw the meshes decimated to 150 000 triangles
+(scene/lod.h); MOLSCOPE_LIVE_LOD=0 draws them whole, as before the level of detail.
 """
 import os
 import statistics
@@ -103,10 +105,14 @@ def bench_drag(drv, s, mode):
     c0 = cpu_seconds(s.p.pid)
     r = drv.execute_async_script(DRAG_JS)
     c1 = cpu_seconds(s.p.pid)
+    st = s.cmd("display live status")      # within 0.3 s of the last move: a drag's image
+    last = s.cmd("list [dict get {%s} coarse] [dict get {%s} triangles] [dict get {%s} timing]"
+                 % (st, st, st))
     fps = r["images"] / r["seconds"]
     print("drag   %-11s 100k NewCartoon 1024x768: %5.1f images/s (%d in %.1f s, %d moves), "
           "molscope CPU %.1f s  target >= 10/s: %s"
           % (mode, fps, r["images"], r["seconds"], r["moves"], c1 - c0, "met" if fps >= 10 else "MISSED"))
+    print("       last image: coarse, triangles drawn, ms for scene+lod, upload, draw, PNG: %s" % last)
 
 
 def bench_latency(drv, s, mode, what, values, settle, target):
@@ -124,6 +130,16 @@ def bench_latency(drv, s, mode, what, values, settle, target):
              "met" if med <= target else "MISSED"))
 
 
+def latencies(drv, small):
+    s = session(small, "NewCartoon")
+    try:
+        for mode in ["raster", "progressive"]:
+            bench_latency(drv, s, mode, "view", ["wheel"] * 15, 0.4, 100)
+            bench_latency(drv, s, mode, "param", ["0.3", "0.4"] * 6, 0.4, 300)
+    finally:
+        s.quit()
+
+
 def main():
     big, small = sys.argv[1], sys.argv[2]
     drv, why = browser()
@@ -133,13 +149,8 @@ def main():
     drv.set_script_timeout(120)
     drv.set_window_size(1400, 1000)
     try:
-        s = session(small, "NewCartoon")
-        try:
-            for mode in ["raster", "progressive"]:
-                bench_latency(drv, s, mode, "view", ["wheel"] * 15, 0.4, 100)
-                bench_latency(drv, s, mode, "param", ["0.3", "0.4"] * 6, 0.4, 300)
-        finally:
-            s.quit()
+        if "--drag" not in sys.argv:
+            latencies(drv, small)
         s = session(big, "NewCartoon")
         try:
             for mode in ["raster", "progressive"]:

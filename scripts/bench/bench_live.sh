@@ -2,7 +2,8 @@
 # bench_live.sh: issue 24's benchmark of the live page (bench_live.py): a drag on a 100k-atom
 # NewCartoon at 1024x768 (target 10 images/s), a view change on 1tii (100 ms) and a rep
 # parameter typed in the page (300 ms), in headless chromium, with raster-only and
-# progressive images; then the same with molscope on one thread (MOLSCOPE_THREADS=1).
+# progressive images; then the same with molscope on one thread (MOLSCOPE_THREADS=1); then
+# the drag with its meshes drawn whole (MOLSCOPE_LIVE_LOD=0), as before the level of detail.
 #   scripts/bench/bench_live.sh [natoms]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -18,3 +19,6 @@ echo "## all threads"
 /usr/bin/python3 scripts/bench/bench_live.py "$pdb" tests/data/1tii.pdb
 echo "## one thread (MOLSCOPE_THREADS=1)"
 MOLSCOPE_THREADS=1 /usr/bin/python3 scripts/bench/bench_live.py "$pdb" tests/data/1tii.pdb
+echo "## the drag without the level of detail (MOLSCOPE_LIVE_LOD=0), all threads, then one"
+MOLSCOPE_LIVE_LOD=0 /usr/bin/python3 scripts/bench/bench_live.py "$pdb" tests/data/1tii.pdb --drag
+MOLSCOPE_LIVE_LOD=0 MOLSCOPE_THREADS=1 /usr/bin/python3 scripts/bench/bench_live.py "$pdb" tests/data/1tii.pdb --drag

@@ -5,7 +5,9 @@
  *   display live off                       stop serving
  *   display live status                    "off", or a dict: url port images passes error
  *                                          timing (the last raster image's milliseconds:
- *                                          scene, upload, draw and readback, PNG)
+ *                                          scene, upload, draw and readback, PNG),
+ *                                          triangles (mesh triangles it drew) and coarse
+ *                                          (1: a drag's image, decimated meshes, half size)
  *   display live mode ?raster|progressive? the page's images: the raster image alone, or
  *                                          refined by ray-traced passes (the default)
  *
@@ -75,6 +77,9 @@ static int live_status(ms_app *app, Tcl_Interp *interp, int objc, Tcl_Obj *const
     Tcl_Obj *t = Tcl_NewListObj(0, NULL);
     for (int i = 0; i < 4; i++) Tcl_ListObjAppendElement(NULL, t, Tcl_NewDoubleObj(st.timing[i] * 1e3));
     Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("timing", -1), t);
+    Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("triangles", -1),
+                   Tcl_NewWideIntObj((Tcl_WideInt)st.triangles));
+    Tcl_DictObjPut(NULL, d, Tcl_NewStringObj("coarse", -1), Tcl_NewBooleanObj(st.coarse));
     Tcl_SetObjResult(interp, d);
     return TCL_OK;
 }

@@ -1,6 +1,7 @@
 /* frames.c: the images of the live view (live.h): the change check (scene version, scene
  * builds by others, colours, materials, display size), a rasterized image at once when a GL
- * display runs, then TachyonInternal passes at idle time, each encoded as a PNG that
+ * display runs (while the page drags, a coarse one of decimated meshes), then
+ * TachyonInternal passes at idle time, each encoded as a PNG that
  * replaces the last; and the view changes the page sends, checked and applied. */
 #include "config.h"
 #include "live/live.h"
@@ -96,6 +97,53 @@ static void rt_settings(ms_live_frames *f, ms_rt_options *o)
     f->max_passes = o->aasamples + 1;
 }
 
+/* A coarse image draws the scene's meshes decimated (made at the drag's first image and
+ * kept while their lists do not change) to MS_LIVE_LOD_TRIS triangles, or to
+ * MOLSCOPE_LIVE_LOD's number (0: not decimated; for comparisons); a whole image draws them
+ * as they are, and the decimated ones are dropped. */
+static int lighten(ms_live_frames *f, ms_error *err)
+{
+    const char *v = getenv("MOLSCOPE_LIVE_LOD");   /* the budget; 0: no decimation */
+    char *end = NULL;
+    long budget = v && *v ? strtol(v, &end, 10) : MS_LIVE_LOD_TRIS;
+    if (end && (*end || budget < 0)) budget = MS_LIVE_LOD_TRIS;
+    if (!f->coarse || budget == 0) {
+        ms_scene_lod_free(&f->lod);
+        f->triangles = ms_scene_triangles(&f->scene);
+        return 0;
+    }
+    return ms_scene_lod_apply(&f->lod, &f->scene, (size_t)budget, &f->triangles, err);
+}
+
+/* The raster image of the scene (coarse while the page drags), published with its timing
+ * (seconds since t0, when the scene was begun). */
+static void raster_image(ms_live_frames *f, ms_gl *gl, double t0)
+{
+    ms_error err = {{0}};
+    ms_image img;
+    ms_gl_times t = {0, 0, 0};
+    /* while the page drags, a coarse image (half the size each way), and no passes */
+    f->coarse = ms_now() < f->interact_until && f->scene.width >= 64 && f->scene.height >= 64;
+    if (f->coarse) {
+        f->scene.width /= 2;
+        f->scene.height /= 2;
+        f->rt_pending = 0;
+    }
+    int rc = lighten(f, &err);
+    double t1 = ms_now();         /* the scene's time includes its decimation */
+    if (rc == 0 && ms_gl_render(gl, &f->scene, &img, &t, &err) == 0) {
+        double t2 = ms_now();
+        if (publish(f, &img, 0, &err)) snprintf(f->error, sizeof f->error, "%.200s", err.msg);
+        ms_image_free(&img);
+        f->timing[0] = t1 - t0;
+        f->timing[1] = t.upload;
+        f->timing[2] = t.draw + t.readback;
+        f->timing[3] = ms_now() - t2;
+    } else {
+        snprintf(f->error, sizeof f->error, "snapshot: %.200s", err.msg);
+    }
+}
+
 /* A new scene, and its raster image when a GL display runs; the ray tracer starts on it at
  * the next step (so the raster image is sent first). */
 static void restart(ms_live_frames *f)
@@ -117,29 +165,7 @@ static void restart(ms_live_frames *f)
     f->scene.ao_samples = o.aosamples;
     ms_gl *gl = ms_gl_display_current();
     f->rt_pending = ms_rt_available() && !(gl && f->raster_only);
-    if (gl) {
-        ms_image img;
-        ms_gl_times t = {0, 0, 0};
-        double t1 = ms_now();
-        /* while the page drags, a coarse image (half the size each way), and no passes */
-        f->coarse = t1 < f->interact_until && f->scene.width >= 64 && f->scene.height >= 64;
-        if (f->coarse) {
-            f->scene.width /= 2;
-            f->scene.height /= 2;
-            f->rt_pending = 0;
-        }
-        if (ms_gl_render(gl, &f->scene, &img, &t, &err) == 0) {
-            double t2 = ms_now();
-            if (publish(f, &img, 0, &err)) snprintf(f->error, sizeof f->error, "%.200s", err.msg);
-            ms_image_free(&img);
-            f->timing[0] = t1 - t0;
-            f->timing[1] = t.upload;
-            f->timing[2] = t.draw + t.readback;
-            f->timing[3] = ms_now() - t2;
-        } else {
-            snprintf(f->error, sizeof f->error, "snapshot: %.200s", err.msg);
-        }
-    }
+    if (gl) raster_image(f, gl, t0);
     if (!gl && !ms_rt_available())
         snprintf(f->error, sizeof f->error, "no renderer: no GL display runs and molscope was "
                  "built without Embree (TachyonInternal)");
@@ -229,6 +255,7 @@ void ms_live_frames_stop(ms_live_frames *f)
     if (f->timer) Tcl_DeleteTimerHandler((Tcl_TimerToken)f->timer);
     if (f->idle_queued) Tcl_CancelIdleCall(on_idle, f);
     drop_scene(f);
+    ms_scene_lod_free(&f->lod);
     free(f->png);
     memset(f, 0, sizeof *f);
 }

@@ -23,9 +23,12 @@
 #include "app/app.h"
 #include "base/base.h"
 #include "rt/rt.h"
+#include "scene/lod.h"
 #include "scene/scene.h"
 
 /* ---------------------------------------------------------------- frames (frames.c) */
+
+#define MS_LIVE_LOD_TRIS 150000   /* mesh triangles a drag's coarse image draws at most */
 
 typedef struct ms_live_frames {
     ms_app *app;
@@ -48,6 +51,8 @@ typedef struct ms_live_frames {
     double timing[4];             /* the last raster image's seconds: scene, upload, draw, PNG */
     double interact_until;        /* view changes from the page: coarse images until then */
     int coarse;                   /* the image is a coarse one (redrawn whole after the drag) */
+    ms_scene_lod lod;             /* the decimated meshes coarse images draw (kept for a drag) */
+    size_t triangles;             /* mesh triangles the last raster image drew */
     void (*on_image)(void *ud);   /* called after each new image (may be NULL) */
     void *ud;
 } ms_live_frames;
@@ -58,7 +63,9 @@ void ms_live_frames_stop(ms_live_frames *f);
 /* Render at the next idle turn, not at the next change check (after a view change). */
 void ms_live_frames_kick(ms_live_frames *f);
 /* A view change from the page: while they come (0.3 s apart at most) the raster images are
- * drawn at half the size each way and not ray traced, then the whole image follows. */
+ * drawn at half the size each way, from meshes decimated to MS_LIVE_LOD_TRIS triangles in
+ * all (scene/lod.h, made once per drag and list), and not ray traced; then the whole image
+ * follows. */
 void ms_live_frames_interact(ms_live_frames *f);
 /* Show the raster image only (1) or refine it with ray-traced passes (0); the next image
  * follows the choice. */
@@ -99,6 +106,8 @@ typedef struct ms_live_status {
     int passes;
     char error[256];
     double timing[4];             /* ms_live_frames.timing */
+    size_t triangles;             /* ms_live_frames.triangles */
+    int coarse;                   /* the current image is a drag's coarse one */
 } ms_live_status;
 
 /* Whether this build has the server; when not, why is written in why. */

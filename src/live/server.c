@@ -690,6 +690,8 @@ void ms_live_get_status(ms_app *app, ms_live_status *st)
     st->passes = sv->frames.passes;
     snprintf(st->error, sizeof st->error, "%s", sv->frames.error);
     memcpy(st->timing, sv->frames.timing, sizeof st->timing);
+    st->triangles = sv->frames.triangles;
+    st->coarse = sv->frames.coarse;
 }
 
 int ms_live_mode(ms_app *app, int set, int *raster_only)

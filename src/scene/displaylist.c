@@ -4,8 +4,13 @@
 #include "scene/displaylist.h"
 #include "vecmath/vecf.h"
 
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+
+static atomic_ulong next_gen = 1;
+
+static unsigned long new_gen(void) { return atomic_fetch_add(&next_gen, 1); }
 
 /* A set of parallel arrays sharing one count and capacity. */
 typedef struct column {
@@ -101,6 +106,7 @@ void ms_dl_init(ms_displaylist *dl)
     memset(dl, 0, sizeof *dl);
     dl->lit = 1;
     ms_mat4_identity(dl->model);
+    dl->gen = new_gen();
 }
 
 void ms_dl_free(ms_displaylist *dl)
@@ -139,6 +145,7 @@ void ms_dl_clear(ms_displaylist *dl)
     dl->lines.n = dl->points.n = dl->texts.n = 0;
     dl->texts.nchars = 0;
     dl->mesh.nverts = dl->mesh.ntris = 0;
+    dl->gen = new_gen();
 }
 
 static int oom(ms_error *err)
@@ -162,6 +169,7 @@ void ms_dl_mesh_adopt(ms_displaylist *dl, float *xyz, int8_t *normal, ms_rgba8 *
     m->nverts = nverts;
     m->vcap = MS_MAX(vcap, nverts);
     m->ntris = m->tcap = ntris;
+    dl->gen = new_gen();
 }
 
 int ms_dl_reserve(ms_displaylist *dl, ms_dl_kind kind, size_t n, ms_error *err)

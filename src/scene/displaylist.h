@@ -115,6 +115,8 @@ typedef struct ms_displaylist {
     ms_dl_points points;
     ms_dl_texts texts;
     ms_dl_mesh mesh;
+    unsigned long gen;   /* a number no other list state had: new at init, clear, free and
+                          * adopt (a rebuild); appends change only the counts */
 } ms_displaylist;
 
 /* An empty list: material 0, lit, identity model matrix. */

@@ -22,6 +22,8 @@ session holds through molscope's own prompt (molinfo, mol, animate, display, col
   - two browser sessions see each other's changes and the terminal's
   - the display follows the window's size and its device pixel ratio (a 2x screen gets a
     2x image laid out at the viewport's size); screenshots at three sizes show a molecule
+  - a drag on a scene of over 150 000 triangles draws decimated meshes, still showing the
+    molecule, and the whole image after it is the same as before any drag
 """
 import io
 import json
@@ -566,6 +568,88 @@ def page_session():
         R.report(code == 0, "quit ends molscope", str(code))
 
 
+# ---------------------------------------------------------------- drag frames: level of detail
+
+def live(s, key):
+    return s.cmd("dict get [display live status] %s" % key)
+
+
+def png_of(base, token):
+    """The session's current image (PIL, RGB) from the page's own endpoint."""
+    from PIL import Image
+    st, body = http("%s/image.png?token=%s" % (base, token))
+    return Image.open(io.BytesIO(body)).convert("RGB") if st == 200 else None
+
+
+def lit_fraction(img):
+    px = list(img.getdata())
+    return sum(1 for p in px if sum(p) > 60) / float(len(px))
+
+
+def differs_from_snapshot(s, img, name):
+    """Pixels of img unlike `render snapshot` of the session now (-1: not the same size)."""
+    from PIL import Image
+    snap = os.path.join(OUT, "live_lod_%s.png" % name)
+    s.cmd("render snapshot %s" % snap)
+    ref = Image.open(snap).convert("RGB")
+    if img is None or img.size != ref.size:
+        return -1
+    return sum(1 for a, b in zip(ref.getdata(), img.getdata()) if a != b)
+
+
+def drag_samples(s, base, token, moves):
+    """Turn the view as the page does while it drags (POST /view), and after each move the
+    status and image of the drag's frame: [(coarse, triangles, image)]."""
+    out = []
+    for _ in range(moves):
+        before = int(live(s, "images"))
+        http("%s/view?token=%s" % (base, token), "ry=4")
+        if wait_for(lambda: int(live(s, "images")) > before and live(s, "coarse") == "1", timeout=5):
+            out.append((live(s, "coarse"), int(live(s, "triangles")), png_of(base, token)))
+    return out
+
+
+def lod_session():
+    """A drag on a scene of more than 150 000 mesh triangles (1tii, NewCartoon at resolution 20)
+    draws its coarse images from decimated meshes (display live status: coarse 1, at most
+    150 000 triangles) that still show the molecule; the whole image after the drag draws
+    every triangle and is, pixel for pixel, what `render snapshot` (never decimated) draws of
+    the same view, as the image before the drag is."""
+    s = Session("opengl")
+    try:
+        s.cmd("mol new %s/1tii.pdb" % DATA)
+        s.cmd("mol modstyle 0 0 NewCartoon 0.3 20 4.1 0")
+        s.cmd("display resize 480 360")
+        base, token = split(s.url())
+        s.cmd("display live mode raster")
+        full = wait_for(lambda: live(s, "coarse") == "0" and int(live(s, "images")) > 0 and
+                        live(s, "triangles"), timeout=60)
+        R.report(full and int(full) > 150000, "lod: the whole scene has over 150 000 triangles",
+                 str(full))
+        time.sleep(0.5)
+        first = png_of(base, token)
+        differ = differs_from_snapshot(s, first, "before")
+        R.report(differ == 0, "lod: before a drag the page's image is render snapshot's",
+                 "%d pixels differ" % differ)
+        samples = drag_samples(s, base, token, 8)
+        coarse = [(t, im) for c, t, im in samples if c == "1" and im is not None and im.size == (240, 180)]
+        R.report(coarse and all(t <= 150000 for t, _ in coarse) and min(t for t, _ in coarse) > 5000,
+                 "lod: a drag's frames draw the decimated scene (150 000 triangles at most)",
+                 str([t for t, _ in coarse]) + " of " + str(full))
+        lit0 = lit_fraction(first)
+        R.report(coarse and all(lit_fraction(im) > 0.6 * lit0 for _, im in coarse),
+                 "lod: the drag's frames show the molecule (lit pixels as in the whole image)",
+                 "%s vs %.3f" % ([round(lit_fraction(im), 3) for _, im in coarse], lit0))
+        after = wait_for(lambda: live(s, "coarse") == "0" and live(s, "triangles") == full, timeout=20)
+        R.report(bool(after), "lod: after the drag the whole image draws every triangle",
+                 live(s, "triangles"))
+        differ = differs_from_snapshot(s, png_of(base, token), "after")
+        R.report(differ == 0, "lod: the whole image after a drag is the full-quality image "
+                 "(render snapshot of that view, pixel for pixel)", "%d pixels differ" % differ)
+    finally:
+        R.report(s.quit() == 0, "lod: quit ends molscope")
+
+
 def main():
     probe = __import__("subprocess").run([EXE, "-dispdev", "text"],
                                          input="catch {display live on 0} m; puts $m\n",
@@ -574,6 +658,7 @@ def main():
         R.skip("all", "molscope was built without libmicrohttpd")
         return 0
     page_session()
+    lod_session()
     return 1 if R.failures else 0
 
 

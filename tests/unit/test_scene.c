@@ -1,7 +1,9 @@
 /* test_scene.c: unit tests of the scene module: display list growth and bounds, normal
  * quantization (OpenGL 1.2.1 table 2.6), VMD's colour scale formula and default colours,
  * materials' shininess scale, matrices, the camera projection, tessellation, the stroke
- * font, and user graphics ids (VMD's replace and delete rules). Expected values are worked
+ * font, user graphics ids (VMD's replace and delete rules), and the level of detail
+ * (lod.h: triangle bound, bounding box within a cell, mean colours and normals, no
+ * degenerate triangle, the scene's cache). Expected values are worked
  * out by hand from the formulas in doc/vmd-behaviour.md. */
 #include "config.h"
 #include "ms_test.h"
@@ -9,6 +11,7 @@
 #include "scene/color.h"
 #include "scene/displaylist.h"
 #include "scene/graphics.h"
+#include "scene/lod.h"
 #include "vecmath/vecf.h"
 #include "scene/material.h"
 #include "scene/scene.h"
@@ -331,6 +334,186 @@ static void test_ugraphics(void)
     ms_ugraphics_free(g);
 }
 
+/* ---------------------------------------------------------------- level of detail */
+
+/* A UV sphere of radius r at c: nu x nv quads, red above z = c[2], blue below. */
+static void lod_sphere(ms_displaylist *dl, const float c[3], float r, int nu, int nv)
+{
+    for (int j = 0; j <= nv; j++)
+        for (int i = 0; i <= nu; i++) {
+            float th = (float)M_PI * (float)j / (float)nv, ph = 2.0f * (float)M_PI * (float)i / (float)nu;
+            float n[3] = {sinf(th) * cosf(ph), sinf(th) * sinf(ph), cosf(th)};
+            float p[3] = {c[0] + r * n[0], c[1] + r * n[1], c[2] + r * n[2]};
+            ms_rgba8 col = n[2] >= 0 ? (ms_rgba8){255, 0, 0, 255} : (ms_rgba8){0, 0, 255, 255};
+            ms_dl_vertex(dl, p, n, col);
+        }
+    for (int j = 0; j < nv; j++)
+        for (int i = 0; i < nu; i++) {
+            uint32_t a = (uint32_t)(j * (nu + 1) + i), b = a + 1, d = a + (uint32_t)nu + 1;
+            ms_dl_tri(dl, a, b, d + 1);
+            ms_dl_tri(dl, a, d + 1, d);
+        }
+}
+
+static void mesh_bounds(const ms_dl_mesh *m, float lo[3], float hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (size_t v = 0; v < m->nverts; v++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], m->xyz[3 * v + k]);
+            hi[k] = fmaxf(hi[k], m->xyz[3 * v + k]);
+        }
+}
+
+/* Every triangle has three different vertices at three different places. */
+static int no_degenerate(const ms_dl_mesh *m)
+{
+    for (size_t t = 0; t < m->ntris; t++) {
+        const uint32_t *v = m->tri + 3 * t;
+        if (v[0] >= m->nverts || v[1] >= m->nverts || v[2] >= m->nverts) return 0;
+        for (int e = 0; e < 3; e++) {
+            const float *p = m->xyz + 3 * v[e], *q = m->xyz + 3 * v[(e + 1) % 3];
+            if (v[e] == v[(e + 1) % 3] || (p[0] == q[0] && p[1] == q[1] && p[2] == q[2])) return 0;
+        }
+    }
+    return 1;
+}
+
+static void test_lod_decimate(void)
+{
+    t_suite = "lod";
+    ms_error err = {{0}};
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float c[3] = {1, 2, 3};
+    lod_sphere(&dl, c, 10.0f, 200, 100);
+    ms_dl_mesh out;
+    float cell = 0;
+    int rc = ms_mesh_decimate(&dl.mesh, 2000, &out, &cell, &err);
+    t_ok(rc == 0 && out.ntris <= 2000 && out.ntris >= 500, "40000 triangles to at most 2000: %zu "
+         "(cell %g)", out.ntris, cell);
+    t_ok(no_degenerate(&out), "no degenerate triangle");
+    float lo[3], hi[3], olo[3], ohi[3];
+    mesh_bounds(&dl.mesh, lo, hi);
+    mesh_bounds(&out, olo, ohi);
+    int box = 1;
+    for (int k = 0; k < 3; k++)
+        box &= olo[k] >= lo[k] - 1e-4f && olo[k] <= lo[k] + cell && ohi[k] <= hi[k] + 1e-4f &&
+               ohi[k] >= hi[k] - cell;
+    t_ok(box, "bounding box kept within a cell: x %g..%g of %g..%g", olo[0], ohi[0], lo[0], hi[0]);
+    int normals = 1, colours = 1;
+    for (size_t v = 0; v < out.nverts; v++) {
+        float d[3], n[3];
+        for (int k = 0; k < 3; k++) {
+            d[k] = out.xyz[3 * v + k] - c[k];
+            n[k] = ms_normal_dequantize(out.normal[3 * v + k]);
+        }
+        normals &= ms_v3f_dot(d, n) > 0.9f * sqrtf(ms_v3f_dot(d, d));
+        ms_rgba8 col = out.color[v];
+        if (d[2] > cell) colours &= col.r == 255 && col.b == 0;
+        if (d[2] < -cell) colours &= col.r == 0 && col.b == 255;
+        colours &= col.r + col.b >= 254 && col.r + col.b <= 256 && col.a == 255;
+    }
+    t_ok(normals, "mean normals point out of the sphere");
+    t_ok(colours, "colours are means: red above, blue below, mixed only at the equator");
+    ms_mesh_free(&out);
+    t_ok(ms_mesh_decimate(&dl.mesh, 0, &out, NULL, &err) == 0 && out.ntris == 0,
+         "a budget of 0 triangles leaves none");
+    ms_mesh_free(&out);
+    t_ok(ms_mesh_cluster(&dl.mesh, 0.0f, &out, &err) == -1 && strstr(err.msg, "cell size"),
+         "a cell of 0 is refused: %s", err.msg);
+    ms_dl_free(&dl);
+}
+
+static void test_lod_cluster(void)
+{
+    ms_error err = {{0}};
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    /* two vertices in the cube [0,1)^3, one in each of two others: one triangle of 2 kept */
+    float p[4][3] = {{0.1f, 0.1f, 0.1f}, {0.5f, 0.3f, 0.1f}, {1.5f, 0.2f, 0.2f}, {0.2f, 1.5f, 0.2f}};
+    float n[3] = {0, 0, 1};
+    ms_rgba8 col[4] = {{0, 0, 0, 255}, {200, 100, 51, 255}, {9, 9, 9, 255}, {7, 7, 7, 255}};
+    for (int i = 0; i < 4; i++) ms_dl_vertex(&dl, p[i], n, col[i]);
+    ms_dl_tri(&dl, 0, 1, 2);       /* two corners in one cube: dropped */
+    ms_dl_tri(&dl, 1, 2, 3);
+    ms_dl_mesh out;
+    int rc = ms_mesh_cluster(&dl.mesh, 1.0f, &out, &err);
+    t_ok(rc == 0 && out.nverts == 3 && out.ntris == 1, "3 cubes, 1 triangle kept (%zu, %zu)",
+         out.nverts, out.ntris);
+    if (rc == 0 && out.nverts == 3) {
+        uint32_t a = out.tri[0];
+        t_ok(near(out.xyz[3 * a], 0.3f, 1e-6f) && near(out.xyz[3 * a + 1], 0.2f, 1e-6f) &&
+             out.color[a].r == 100 && out.color[a].g == 50 && out.color[a].b == 26,
+             "the shared cube's vertex is the mean of its two (colour %d %d %d)",
+             out.color[a].r, out.color[a].g, out.color[a].b);
+    }
+    ms_mesh_free(&out);
+    ms_dl_free(&dl);
+}
+
+static void test_lod_scene(void)
+{
+    ms_error err = {{0}};
+    ms_materials *mats = ms_materials_new(&err);
+    ms_displaylist a, b;
+    ms_dl_init(&a);
+    ms_dl_init(&b);
+    float c1[3] = {0, 0, 0}, c2[3] = {30, 0, 0}, id[16];
+    lod_sphere(&a, c1, 10.0f, 100, 50);               /* 10000 triangles */
+    lod_sphere(&b, c2, 5.0f, 50, 50);                 /* 5000 */
+    ms_dl_sphere(&a, c1, 1.0f, (ms_rgba8){1, 2, 3, 255}, 12);
+    ms_mat4_identity(id);
+    ms_scene s;
+    ms_scene_init(&s);
+    ms_scene_add(&s, &a, id, mats, &err);
+    ms_scene_add(&s, &b, id, mats, &err);
+    ms_scene_lod lod;
+    ms_scene_lod_init(&lod);
+    size_t tris = 0;
+    t_ok(ms_scene_lod_apply(&lod, &s, 20000, &tris, &err) == 0 && tris == 15000 &&
+         s.items[0].dl == &a, "under the budget the scene is left as it is");
+    int rc = ms_scene_lod_apply(&lod, &s, 3000, &tris, &err);
+    const ms_displaylist *la = s.items[0].dl, *lb = s.items[1].dl;
+    t_ok(rc == 0 && tris <= 3000 && tris >= 1000 && la != &a && lb != &b &&
+         la->mesh.ntris <= 2000 && lb->mesh.ntris <= 1000,
+         "15000 triangles to %zu (%zu + %zu), shared in proportion", tris, la->mesh.ntris,
+         lb->mesh.ntris);
+    t_ok(la->spheres.n == 1 && la->spheres.xyz == a.spheres.xyz && la->material == a.material,
+         "the other primitives are the list's own");
+    const ms_dl_mesh *kept = &la->mesh;
+    float *xyz = kept->xyz;
+    s.items[0].dl = &a;
+    s.items[1].dl = &b;
+    ms_scene_lod_apply(&lod, &s, 3000, &tris, &err);
+    t_ok(s.items[0].dl->mesh.xyz == xyz, "the next frame takes the cached mesh");
+    ms_dl_clear(&b);
+    lod_sphere(&b, c2, 5.0f, 60, 60);
+    s.items[0].dl = &a;
+    s.items[1].dl = &b;
+    ms_scene_lod_apply(&lod, &s, 3000, &tris, &err);
+    t_ok(s.items[0].dl->mesh.xyz == xyz && s.items[1].dl->mesh.ntris > 0 && tris <= 3000 &&
+         lod.n == 2, "a rebuilt list is decimated again, the other kept (%zu)", tris);
+    ms_displaylist small;
+    ms_dl_init(&small);
+    lod_sphere(&small, c2, 1.0f, 20, 20);              /* 800 triangles: kept whole */
+    ms_scene_add(&s, &small, id, mats, &err);
+    s.items[0].dl = &a;
+    s.items[1].dl = &b;
+    ms_scene_lod_apply(&lod, &s, 3000, &tris, &err);
+    t_ok(s.items[2].dl == &small && tris <= 3000 && s.items[0].dl->mesh.ntris < a.mesh.ntris,
+         "a small mesh is kept whole, the large ones share the rest (%zu)", tris);
+    ms_scene_lod_free(&lod);
+    ms_scene_free(&s);
+    ms_dl_free(&small);
+    ms_dl_free(&a);
+    ms_dl_free(&b);
+    ms_materials_free(mats);
+}
+
 int main(void)
 {
     test_displaylist();
@@ -342,5 +525,8 @@ int main(void)
     test_tessellation();
     test_numfmt();
     test_ugraphics();
+    test_lod_decimate();
+    test_lod_cluster();
+    test_lod_scene();
     return t_done();
 }
