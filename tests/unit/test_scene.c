@@ -490,13 +490,23 @@ static void test_lod_scene(void)
     s.items[1].dl = &b;
     ms_scene_lod_apply(&lod, &s, 3000, &tris, &err);
     t_ok(s.items[0].dl->mesh.xyz == xyz, "the next frame takes the cached mesh");
+    /* b rebuilt with as many triangles (so a's share of the budget is unchanged) but a
+     * larger radius: its decimated copy must be made again from the new mesh */
     ms_dl_clear(&b);
-    lod_sphere(&b, c2, 5.0f, 60, 60);
+    lod_sphere(&b, c2, 6.0f, 50, 50);
     s.items[0].dl = &a;
     s.items[1].dl = &b;
     ms_scene_lod_apply(&lod, &s, 3000, &tris, &err);
-    t_ok(s.items[0].dl->mesh.xyz == xyz && s.items[1].dl->mesh.ntris > 0 && tris <= 3000 &&
-         lod.n == 2, "a rebuilt list is decimated again, the other kept (%zu)", tris);
+    const ms_dl_mesh *nb = &s.items[1].dl->mesh;
+    float far = 0;
+    for (size_t v = 0; v < nb->nverts; v++) {
+        float dx = nb->xyz[3 * v] - c2[0], dy = nb->xyz[3 * v + 1] - c2[1],
+              dz = nb->xyz[3 * v + 2] - c2[2];
+        far = fmaxf(far, sqrtf(dx * dx + dy * dy + dz * dz));
+    }
+    t_ok(s.items[0].dl->mesh.xyz == xyz && nb->ntris > 0 && far > 5.3f && tris <= 3000 &&
+         lod.n == 2, "a rebuilt list is decimated again, the other kept (%zu, radius %.2f)",
+         tris, far);
     ms_displaylist small;
     ms_dl_init(&small);
     lod_sphere(&small, c2, 1.0f, 20, 20);              /* 800 triangles: kept whole */
