@@ -13,6 +13,7 @@
 #include "plugin_util.h"
 #include "lammps_util.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -53,6 +54,8 @@ typedef struct dump_reader {
     long idmin, idspan;
     unsigned *stamp;       /* frame number that last filled each atom */
     unsigned nframe;
+    long long *marks;      /* (offset, line number) of each frame told, offsets rising */
+    size_t nmarks, capmarks;
 } dump_reader;
 
 static void *dump_open_read(const char *path, long *natoms, ms_perr *err)
@@ -69,6 +72,7 @@ static void dump_close_read(void *h)
     free(r->ids);
     free(r->lookup);
     free(r->stamp);
+    free(r->marks);
     ms_lines_destroy(r);
 }
 
@@ -476,6 +480,49 @@ static int dump_read_frame(void *h, long natoms, ms_frame_out *out, ms_perr *err
     return MS_PLUGIN_OK;
 }
 
+/* ---------------------------------------------------------------- seeking */
+
+/* Frames are found by the byte offset of the line after the last one read (the frame's
+ * ITEM: TIMESTEP line, or blank lines before it). Each offset told is remembered with its
+ * line number, so that messages after a seek still name the file's true lines. */
+static int dump_tell_frame(void *h, long long *token, ms_perr *err)
+{
+    dump_reader *r = h;
+    long long at = ms_lines_tell_next(&r->in);
+    if (!r->nmarks || at > r->marks[2 * (r->nmarks - 1)]) {
+        if (r->nmarks == r->capmarks) {
+            size_t cap = r->capmarks ? 2 * r->capmarks : 64;
+            long long *m = realloc(r->marks, cap * 2 * sizeof *m);
+            if (!m) return ms_perr_set(err, "out of memory for the frame offsets");
+            r->marks = m, r->capmarks = cap;
+        }
+        r->marks[2 * r->nmarks] = at;
+        r->marks[2 * r->nmarks++ + 1] = r->in.line_no;
+    }
+    *token = at;
+    return MS_PLUGIN_OK;
+}
+
+/* The line number before offset at, as told; 0 when it was never told. */
+static long line_before(const dump_reader *r, long long at)
+{
+    size_t lo = 0, hi = r->nmarks;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (r->marks[2 * mid] < at) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo < r->nmarks && r->marks[2 * lo] == at ? (long)r->marks[2 * lo + 1] : 0;
+}
+
+static int dump_seek_frame(void *h, long long token, ms_perr *err)
+{
+    dump_reader *r = h;
+    if (token < 0 || ms_lines_seek(&r->in, token, line_before(r, token)) != 0)
+        return ms_perr_set(err, "cannot seek to byte %lld: %s", token, strerror(errno));
+    return MS_PLUGIN_OK;
+}
+
 /* ---------------------------------------------------------------- writing */
 
 typedef struct dump_writer {
@@ -532,6 +579,8 @@ static const ms_plugin dump_plugin = {
     .read_structure = dump_read_structure,
     .read_frame = dump_read_frame,
     .close_read = dump_close_read,
+    .tell_frame = dump_tell_frame,
+    .seek_frame = dump_seek_frame,
     .open_write = dump_open_write,
     .write_frame = dump_write_frame,
     .close_write = dump_close_write,

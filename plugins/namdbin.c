@@ -81,6 +81,24 @@ static int nb_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
     return MS_PLUGIN_OK;
 }
 
+/* The one frame's token is 0; after it, 1 (the end). */
+static int nb_tell_frame(void *h, long long *token, ms_perr *err)
+{
+    (void)err;
+    *token = ((nb_reader *)h)->done;
+    return MS_PLUGIN_OK;
+}
+
+static int nb_seek_frame(void *h, long long token, ms_perr *err)
+{
+    nb_reader *r = h;
+    if (token != 0 && token != 1) return ms_perr_set(err, "no frame %lld", token);
+    if (fseeko(r->fp, 4, SEEK_SET) != 0)
+        return ms_perr_set(err, "cannot seek to the coordinates: %s", strerror(errno));
+    r->done = (int)token;
+    return MS_PLUGIN_OK;
+}
+
 typedef struct nb_writer {
     ms_out out;
     long natoms;
@@ -128,6 +146,8 @@ static const ms_plugin namdbin_plugin = {
     .open_read = nb_open_read,
     .read_frame = nb_read_frame,
     .close_read = nb_close_read,
+    .tell_frame = nb_tell_frame,
+    .seek_frame = nb_seek_frame,
     .open_write = nb_open_write,
     .write_frame = nb_write_frame,
     .close_write = nb_close_write,

@@ -22,6 +22,8 @@ typedef struct nc_reader {
     int restart;               /* AMBERRESTART: no frame dimension */
     size_t natoms, nframes, next;
     long long held;            /* whole frames in the file; -1 when the library knows */
+    char *path;                /* for seeks: the file is checked again when its size changed */
+    long long size;
     int v_coord, v_vel, v_len, v_ang, v_time;  /* -1 when absent */
     double vel_scale;
 } nc_reader;
@@ -36,6 +38,7 @@ static void ncr_close(void *h)
     nc_reader *r = h;
     if (!r) return;
     if (r->nc >= 0) nc_close(r->nc);
+    free(r->path);
     free(r);
 }
 
@@ -342,6 +345,12 @@ static void *ncr_open(const char *path, long *natoms, ms_perr *err)
         ncr_close(r);
         return NULL;
     }
+    r->size = size;
+    if (!(r->path = strdup(path))) {
+        ncr_close(r);
+        ms_perr_set(err, "out of memory");
+        return NULL;
+    }
     *natoms = (long)r->natoms;
     return r;
 }
@@ -405,6 +414,30 @@ static int ncr_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
     int st = get_atoms(r, r->v_coord, k, fr->pos);
     if (st) return nc_fail(err, st, "coordinates");
     return read_extras(r, k, fr, err);
+}
+
+/* Frames are found by number: the token is one. A classic file whose size changed since it
+ * was opened has its whole records counted again (the library reads a cut record as
+ * zeros), so that a frame cut off gives an error. */
+static int ncr_tell_frame(void *h, long long *token, ms_perr *err)
+{
+    (void)err;
+    *token = (long long)((nc_reader *)h)->next;
+    return MS_PLUGIN_OK;
+}
+
+static int ncr_seek_frame(void *h, long long token, ms_perr *err)
+{
+    nc_reader *r = h;
+    if (token < 0 || (unsigned long long)token > r->nframes)
+        return ms_perr_set(err, "no frame %lld", token);
+    struct stat sb;
+    if (r->held >= 0 && stat(r->path, &sb) == 0 && (long long)sb.st_size != r->size) {
+        r->size = (long long)sb.st_size;
+        if (check_classic_header(r->path, r->size, &r->held, err)) return MS_PLUGIN_ERROR;
+    }
+    r->next = (size_t)token;
+    return MS_PLUGIN_OK;
 }
 
 /* ---------------------------------------------------------------- writing */
@@ -561,6 +594,8 @@ static const ms_plugin netcdf_plugin = {
     .open_read = ncr_open,
     .read_frame = ncr_read_frame,
     .close_read = ncr_close,
+    .tell_frame = ncr_tell_frame,
+    .seek_frame = ncr_seek_frame,
     .open_write = ncw_open,
     .write_frame = ncw_write_frame,
     .close_write = ncw_close,

@@ -77,6 +77,7 @@ typedef struct xtc_frame {
     size_t buf_cap;
     float plain[27];
     /* frames read ahead */
+    long long at;          /* the frame's file offset */
     int state;             /* S_READ, S_BUSY, S_DONE */
     long natoms;
     float *pos;            /* decoded coordinates */
@@ -589,6 +590,7 @@ static void ahead_fill(xtc_reader *r)
         xtc_frame *f = &a->slot[a->tail % a->nslots];
         f->natoms = a->natoms;
         f->err.msg[0] = '\0';
+        f->at = (long long)ftello(r->fp);
         f->rc = read_raw(r, f, a->natoms, 1, &f->err);
         if (f->rc != MS_PLUGIN_OK) a->ended = 1;
         pthread_mutex_lock(&a->mu);
@@ -660,6 +662,32 @@ static int xtc_read_frame(void *h, long natoms, ms_frame_out *fr, ms_perr *err)
     /* The host reads consecutive frames: read ahead from now on. */
     if (!r->ahead && !(r->ahead = ahead_start(natoms))) r->no_ahead = 1;
     if (r->ahead) ahead_fill(r);
+    return MS_PLUGIN_OK;
+}
+
+/* Frames are found by their byte offset: the token is one. While frames are read ahead,
+ * the next frame is the first of them, not where the file stands. */
+static int xtc_tell_frame(void *h, long long *token, ms_perr *err)
+{
+    xtc_reader *r = h;
+    xtc_ahead *a = r->ahead;
+    off_t at = a && a->head < a->tail ? (off_t)a->slot[a->head % a->nslots].at : ftello(r->fp);
+    if (at < 0) return ms_perr_set(err, "cannot tell the file position: %s", strerror(errno));
+    *token = (long long)at;
+    return MS_PLUGIN_OK;
+}
+
+/* A seek drains the reading ahead first: its threads finish the frame they decode and are
+ * joined, the frames read ahead dropped; it starts again when the host next reads
+ * consecutive frames. */
+static int xtc_seek_frame(void *h, long long token, ms_perr *err)
+{
+    xtc_reader *r = h;
+    if (r->ahead) ahead_stop(r->ahead);
+    r->ahead = NULL;
+    r->kept = 0;
+    if (token < 0 || fseeko(r->fp, (off_t)token, SEEK_SET) != 0)
+        return ms_perr_set(err, "cannot seek to byte %lld: %s", token, strerror(errno));
     return MS_PLUGIN_OK;
 }
 
@@ -1056,6 +1084,8 @@ static const ms_plugin xtc_plugin = {
     .open_read = xtc_open_read,
     .read_frame = xtc_read_frame,
     .close_read = xtc_close_read,
+    .tell_frame = xtc_tell_frame,
+    .seek_frame = xtc_seek_frame,
     .open_write = xtc_open_write,
     .write_frame = xtc_write_frame,
     .close_write = xtc_close_write,
