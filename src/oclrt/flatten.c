@@ -62,7 +62,6 @@ static int alloc_arrays(orc_world *w, size_t nsrc, ms_error *err)
 typedef struct placer {
     orc_world *w;
     rt_xform ri;
-    float scale;                /* the transform's (uniform) scale */
     uint32_t item;
     int nclip;                  /* the item's clip planes */
 } placer;
@@ -98,7 +97,7 @@ static void put_quadric(placer *pl, uint32_t kind, uint32_t g, const float a[4],
 static void world_point(const placer *pl, const float p[3], float r, float out[4])
 {
     ms_mat4_point(pl->ri.xf, p, out);
-    out[3] = r * pl->scale;
+    out[3] = r * pl->ri.scale;
 }
 
 static void place_spheres(placer *pl, const source *s)
@@ -204,16 +203,12 @@ static void place_source(orc_world *w, const source *s)
 {
     placer pl;
     memset(&pl, 0, sizeof pl);
-    pl.w = w, pl.scale = 1.0f, pl.item = (uint32_t)w->nitems;
+    pl.w = w, pl.item = (uint32_t)w->nitems;
     if (rt_xform_make(&pl.ri, s->xform)) return;
-    const float *x = pl.ri.xf;
-    float det = x[0] * (x[5] * x[10] - x[6] * x[9]) - x[1] * (x[4] * x[10] - x[6] * x[8]) +
-                x[2] * (x[4] * x[9] - x[5] * x[8]);
-    pl.scale = cbrtf(fabsf(det));
     float *it = w->item + 4 * ORC_ITEM * w->nitems++;
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 3; c++) it[4 * r + c] = pl.ri.nm[3 * r + c];
-    it[3] = det < 0 ? -1.0f : 1.0f;
+    it[3] = pl.ri.sign;
     pl.nclip = put_clips(it, s->item);
     w->nclipped += pl.nclip > 0;
     place_spheres(&pl, s);

@@ -39,7 +39,7 @@ void rt_material_terms(const ms_material *m, int lit, rt_material *t)
     t->r3d = m->transmode != 0;
 }
 
-/* xf, its inverse and its normal matrix; -1 when xf is singular (nothing to see). */
+/* xf, its inverse, its normal matrix and its scale; -1 when xf is singular (nothing to see). */
 int rt_xform_make(rt_xform *out, const float x[16])
 {
     double a[3][3], inv[3][3];
@@ -57,6 +57,11 @@ int rt_xform_make(rt_xform *out, const float x[16])
         out->xf[4 * r + 3] = x[4 * r + 3];
         out->inv[4 * r + 3] = (float)t;
     }
+    const float *m = out->xf;
+    float det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+                m[2] * (m[4] * m[9] - m[5] * m[8]);
+    out->scale = cbrtf(fabsf(det));
+    out->sign = det < 0 ? -1.0f : 1.0f;
     return 0;
 }
 

@@ -6,7 +6,7 @@ src_libmscore_la_SOURCES += src/rt/rt.h src/rt/options.c src/rt/tachyon_internal
 	src/rt/rt_common.h src/rt/common.c src/rt/camera.c src/rt/strokes.c
 if HAVE_EMBREE
 src_libmscore_la_SOURCES += \
-	src/rt/rt_internal.h src/rt/device.c src/rt/world.c src/rt/user.c \
+	src/rt/rt_internal.h src/rt/device.c src/rt/world.c src/rt/place.c src/rt/user.c \
 	src/rt/sphere.c src/rt/cylinder.c src/rt/cone.c src/rt/ring.c src/rt/mesh.c \
 	src/rt/sample.c src/rt/shade.c src/rt/frame.c src/rt/raydump.c
 src_libmscore_la_LIBADD += $(EMBREE_LIBS)

@@ -48,15 +48,6 @@ void rt_raybuf_add(rt_raybuf *b, int kind, unsigned mask, const float org[3], co
     r->info = (uint32_t)kind | (mask & 0xffu) << 8;
 }
 
-/* The radius scale of a list-to-world transform (uniform in VMD's scenes): the cube root
- * of its determinant's magnitude. */
-static float xf_scale(const float xf[12])
-{
-    float det = xf[0] * (xf[5] * xf[10] - xf[6] * xf[9]) - xf[1] * (xf[4] * xf[10] - xf[6] * xf[8]) +
-                xf[2] * (xf[4] * xf[9] - xf[5] * xf[8]);
-    return cbrtf(fabsf(det));
-}
-
 static void count_prims(const rt_world *w, uint64_t *spheres, uint64_t *other)
 {
     *spheres = *other = 0;
@@ -66,19 +57,14 @@ static void count_prims(const rt_world *w, uint64_t *spheres, uint64_t *other)
     }
 }
 
+/* The world's spheres (in world coordinates, place.c), in the order of its geometries. */
 static int write_spheres(rt_raydump *d, const rt_world *w)
 {
-    for (size_t it = 0; it < w->nitems; it++) {
-        const rt_item *ri = &w->items[it];
-        float s = xf_scale(ri->xf);
-        for (int k = 0; k < ri->ngeoms; k++) {
-            const rt_geom *g = &ri->geoms[k];
-            for (size_t i = 0; g->kind == RT_SPHERE && i < g->n; i++) {
-                float v[4];
-                ms_mat4_point(ri->xf, g->a + 3 * i, v);
-                v[3] = g->ra[i] * s;
-                if (ms_ofile_write(d->out, v, sizeof v, &d->err)) return -1;
-            }
+    for (size_t k = 0; k < w->ngeoms; k++) {
+        const rt_geom *g = &w->geoms[k];
+        for (size_t i = 0; g->kind == RT_SPHERE && i < g->n; i++) {
+            float v[4] = {g->a[3 * i], g->a[3 * i + 1], g->a[3 * i + 2], g->ra[i]};
+            if (ms_ofile_write(d->out, v, sizeof v, &d->err)) return -1;
         }
     }
     return 0;

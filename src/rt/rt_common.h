@@ -27,10 +27,13 @@ typedef struct rt_material {
  * shaded; unlit lists are ambient only). */
 void rt_material_terms(const ms_material *m, int lit, rt_material *t);
 
-/* A placed list's transform: list to world (3x4 row-major), world to list, and the normal
- * matrix (inverse transpose of the 3x3). */
+/* A placed list's transform: list to world (3x4 row-major), world to list, the normal
+ * matrix (inverse transpose of the 3x3), the scale of radii (the cube root of the
+ * determinant's magnitude: VMD's transforms are rotations, translations and uniform
+ * scales) and the determinant's sign (-1: a mirror image, which turns a mesh's winding). */
 typedef struct rt_xform {
     float xf[12], inv[12], nm[9];
+    float scale, sign;
 } rt_xform;
 /* The transform of a 4x4 row-major matrix; -1 when it is singular (nothing to see). */
 int rt_xform_make(rt_xform *t, const float x[16]);

@@ -1,6 +1,6 @@
 /* rt_internal.h: what the files of the ray tracer share, and only they include: the traced
- * world (per transform, an Embree instance of its opaque and one of its transparent
- * geometries; per placed display list, one Embree geometry per primitive kind), the
+ * world (two flat Embree scenes, the opaque and the transparent geometries of every placed
+ * display list moved to world space; per list, one Embree geometry per primitive kind), the
  * primitive method tables (one file per primitive, as Tachyon has them), the camera, the
  * shading settings and the per-thread state of the integrator. */
 #ifndef MS_RT_INTERNAL_H
@@ -36,13 +36,9 @@ void rt_fpu_restore(unsigned state);
 
 /* ---------------------------------------------------------------- world (world.c) */
 
-/* Instance masks: the opaque and the transparent geometry of each transform. */
-#define RT_MASK_OPAQUE 1u
-#define RT_MASK_TRANS 2u
-
 typedef enum rt_kind { RT_SPHERE, RT_CYLINDER, RT_CONE, RT_RING, RT_MESH, RT_NKINDS } rt_kind;
 
-/* The primitives of one kind of one placed list, in the list's own coordinates. The arrays
+/* The primitives of one kind of one placed list, in world coordinates (place.c). The arrays
  * are the display list's where its layout serves, else arrays the world made. */
 typedef struct rt_geom {
     rt_kind kind;
@@ -71,29 +67,39 @@ typedef struct rt_geom {
     const ms_dl_spheres *spheres;  /* the spheres the cylinders may take (world.c sets it) */
     uint8_t *taken;             /* per sphere: 1 when a cylinder took it (cylinder.c sets it) */
     const ms_scene_item *item;  /* the scene item (its clip planes, in world coordinates) */
-    const float *xf;            /* its instance's list-to-world transform (rt_item's xf) */
+    const float *nm;            /* meshes: the normal matrix of the list's normals (NULL:
+                                 * already in world space) */
+    float sign;                 /* meshes: -1 when the list's transform mirrors (the winding
+                                 * of the moved triangles turns), else 1 */
 } rt_geom;
 
-/* The lists placed by one transform (a molecule's representations share its transform): an
- * Embree instance of a scene of all their opaque geometries, and another of their
- * transparent ones. */
-typedef struct rt_item {
-    float xf[12];               /* list to world, 3x4 row-major */
-    float inv[12];              /* world to list */
-    float nm[9];                /* normals to world: inverse transpose of xf's 3x3 */
-    rt_geom *geoms;             /* by Embree geometry id in the item's scene */
-    int ngeoms;
-} rt_item;
+/* A source's list with its primitives in world space (place.c): the list's arrays, or copies
+ * moved by its transform. */
+typedef struct rt_placed {
+    ms_displaylist dl;          /* a shallow copy: positions and radii replaced when moved */
+    rt_discs discs;
+    rt_xform x;
+    int moved;                  /* 0: the identity, the list's own arrays */
+    int skip;                   /* a singular transform: nothing to see */
+} rt_placed;
+
+/* The placed list of src into p; 0, 1 when its transform is singular (nothing to trace), or
+ * -1 with err set when memory runs out. */
+int rt_place(struct rt_world *w, const rt_source *src, rt_placed *p, ms_error *err);
+
+/* The scenes of the world: the opaque geometries, and the transparent ones (walked by a
+ * shadow or occlusion ray only when the opaque ones let it through). */
+enum { RT_OPAQUE, RT_TRANS };
 
 typedef struct rt_world {
     RTCDevice dev;
-    RTCScene top;
-    rt_item *items;             /* by instance id */
-    size_t nitems;
+    RTCScene scene[2];          /* RT_OPAQUE, RT_TRANS; scene[RT_TRANS] NULL when empty */
+    rt_geom *part[2];           /* each scene's geometries, by Embree geometry id */
+    size_t npart[2];
     rt_geom *geoms;             /* every geometry (made in one block: Embree keeps pointers) */
     size_t ngeoms;
+    rt_placed *placed;          /* per source */
     int has_trans;              /* some geometry is transparent */
-    int split;                  /* shadow rays test opaque, then transparent instances */
     double samples;             /* camera rays to trace (0: unknown) */
     float eps;                  /* secondary ray offset, from the scene's size */
     void **owned;               /* arrays made for the build */
@@ -109,8 +115,6 @@ int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err
 /* A lower bound of the bytes Embree will hold for s (its triangles, and its other
  * primitives), to refuse a scene that cannot fit before building it. */
 size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother);
-/* The matrices of an item from a 4x4 row-major transform; -1 when singular. */
-int rt_item_matrices(rt_item *ri, const float x[16]);
 void rt_world_free(rt_world *w);
 /* Memory the world owns: the helper of the primitive files. NULL with err set. */
 void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err);
@@ -122,8 +126,8 @@ typedef struct rt_prim {
     const char *name;
     /* The Embree geometry of g (not committed; it may add data to g); NULL with err set. */
     RTCGeometry (*geometry)(rt_world *w, rt_geom *g, ms_error *err);
-    /* At a hit (p: the hit point in the list's coordinates): the shading normal n and the
-     * geometric normal ng (both in the list's coordinates, any length) and the colour. */
+    /* At a hit (p: the hit point): the shading normal n and the geometric normal ng (both in
+     * world coordinates, any length) and the colour. */
     void (*surface)(const rt_geom *g, const struct RTCHit *h, const float p[3], float n[3],
                     float ng[3], ms_rgba8 *c);
 } rt_prim;
@@ -135,7 +139,7 @@ extern const rt_prim *const rt_prims[RT_NKINDS];
 
 /* The context of every ray query: Embree's, and for occlusion queries the light each ray
  * (by its id) still carries through the transparent surfaces it crossed. A shadow or
- * occlusion ray walks the opaque instances (a hit ends it), then the transparent ones, where
+ * occlusion ray walks the opaque scene (a hit ends it), then the transparent one, where
  * each crossing filters it (Tachyon counts each: a sphere's two, a triangle's one) and lets
  * it pass, unless the primitive is opaque after all. */
 typedef struct rt_ctx {
@@ -145,8 +149,7 @@ typedef struct rt_ctx {
 
 /* Opacity of primitive prim at a hit (u, v: a mesh's barycentric coordinates). */
 float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v);
-/* Does one of g's clip planes cut away the point at t along the ray o + t d (in the list's
- * coordinates)? */
+/* Does one of g's clip planes cut away the point at t along the ray o + t d? */
 int rt_geom_clipped(const rt_geom *g, const float o[3], const float d[3], float t);
 /* The occlusion filter of built-in geometries (spheres, meshes) that are transparent or
  * clipped: a crossing a clip plane cut away is passed, as is a transparent one (filtering

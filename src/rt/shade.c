@@ -51,12 +51,6 @@ typedef struct surface {
     const rt_material *mat;
 } surface;
 
-static const rt_geom *hit_geom(const rt_world *w, const struct RTCHit *h, const rt_item **item)
-{
-    *item = &w->items[h->instID[0]];
-    return &(*item)->geoms[h->geomID];
-}
-
 /* The inside of a surface seen through a cut of a solid clip plane (VMD's status 2) takes
  * the plane's colour and faces the viewer as the plane does. */
 static void solid_cut(const ms_scene_item *it, const float d[3], surface *s)
@@ -72,20 +66,15 @@ static void solid_cut(const ms_scene_item *it, const float d[3], surface *s)
     }
 }
 
-/* Position, normal facing the ray's origin, colour and material at a hit. */
-static void surface_at(const rt_world *w, const struct RTCRayHit *rh, surface *s)
+/* Position, normal facing the ray's origin, colour and material at a hit of g. */
+static void surface_at(const rt_geom *g, const struct RTCRayHit *rh, surface *s)
 {
-    const rt_item *it;
-    const rt_geom *g = hit_geom(w, &rh->hit, &it);
     float o[3] = {rh->ray.org_x, rh->ray.org_y, rh->ray.org_z};
-    float d[3] = {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z}, po[3], n[3], ng[3];
+    float d[3] = {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z}, ng[3];
     ms_rgba8 c;
     s->t = rh->ray.tfar;
     for (int k = 0; k < 3; k++) s->p[k] = o[k] + s->t * d[k];
-    ms_mat4_point(it->inv, s->p, po);
-    rt_prims[g->kind]->surface(g, &rh->hit, po, n, ng, &c);
-    rt_m3_vec(it->nm, n, s->n);
-    rt_m3_vec(it->nm, ng, ng);
+    rt_prims[g->kind]->surface(g, &rh->hit, s->p, s->n, ng, &c);
     /* Tachyon's rule: the geometric normal decides the side seen (for a mesh, its winding),
      * and the shading normal turns with it */
     float side = ms_v3f_dot(ng, d) > 0.0f ? -1.0f : 1.0f;
@@ -124,7 +113,7 @@ static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], f
 /* ---------------------------------------------------------------- shadow and occlusion */
 
 /* Visibility of the sky along d from p: 0 blocked, 1 open, between through glass (one
- * visibility ray, in two traversals when the scene has transparent geometry). */
+ * visibility ray: the opaque scene, then the transparent one when it got through). */
 static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], const float d[3],
                         int kind)
 {
@@ -135,14 +124,11 @@ static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], co
     th->ctx.filter = &f;
     th->rays[kind]++;
     if (th->dump) rt_raybuf_add(th->dump, kind, 0xffu, p, d, r.tnear);
-    if (sh->w->split) {         /* opaque first: a blocked ray never walks the glass */
-        r.mask = RT_MASK_OPAQUE;
-        rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
-        if (r.tfar < 0.0f) return 0.0f;
-        r.tfar = INFINITY;
-        r.mask = RT_MASK_TRANS;
-    }
-    rtcOccluded1(sh->w->top, &th->ctx.ec, &r);
+    rtcOccluded1(sh->w->scene[RT_OPAQUE], &th->ctx.ec, &r);
+    if (r.tfar < 0.0f) return 0.0f;
+    if (!sh->w->scene[RT_TRANS]) return 1.0f;
+    r.tfar = INFINITY;
+    rtcOccluded1(sh->w->scene[RT_TRANS], &th->ctx.ec, &r);
     return r.tfar < 0.0f ? 0.0f : f;
 }
 
@@ -241,26 +227,38 @@ static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const fl
     if (sh->fog) fog(sh, primary ? s->t * ms_v3f_dot(dir, sh->cam.dir) : s->t, out);
 }
 
+/* The nearest hit in the opaque scene, then in the transparent one (up to the opaque hit):
+ * its geometry, or NULL for none. */
+static const rt_geom *nearest(const rt_world *w, rt_thread *th, struct RTCRayHit *rh)
+{
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(w->scene[RT_OPAQUE], &th->ctx.ec, rh);
+    unsigned id = rh->hit.geomID;
+    const rt_geom *g = id == RTC_INVALID_GEOMETRY_ID ? NULL : &w->part[RT_OPAQUE][id];
+    if (!w->scene[RT_TRANS]) return g;
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(w->scene[RT_TRANS], &th->ctx.ec, rh);
+    if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) return &w->part[RT_TRANS][rh->hit.geomID];
+    rh->hit.geomID = id;        /* a miss leaves the opaque hit's record as it was */
+    return g;
+}
+
 /* The nearest hit that no clip plane of its item cuts away: a cut hit is passed and the ray
- * goes on beyond it (a bound on the passes keeps a pathological scene finite). */
-static void intersect_unclipped(const rt_shader *sh, rt_thread *th, struct RTCRayHit *rh)
+ * goes on beyond it (a bound on the passes keeps a pathological scene finite). Its geometry,
+ * or NULL for none. */
+static const rt_geom *intersect_unclipped(const rt_shader *sh, rt_thread *th, struct RTCRayHit *rh)
 {
     for (int pass = 0; pass < 256; pass++) {
-        rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(sh->w->top, &th->ctx.ec, rh);
-        if (rh->hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
-        const rt_item *it;
-        const rt_geom *g = hit_geom(sh->w, &rh->hit, &it);
-        if (!g->item || !g->item->nclip) return;
+        const rt_geom *g = nearest(sh->w, th, rh);
+        if (!g || !g->item || !g->item->nclip) return g;
         float t = rh->ray.tfar;
         float p[3] = {rh->ray.org_x + t * rh->ray.dir_x, rh->ray.org_y + t * rh->ray.dir_y,
                       rh->ray.org_z + t * rh->ray.dir_z};
-        if (!ms_scene_clipped(g->item, p)) return;
+        if (!ms_scene_clipped(g->item, p)) return g;
         rh->ray.tnear = t + MS_MAX(sh->w->eps * 1e-3f, t * 1e-6f);
         rh->ray.tfar = INFINITY;
     }
-    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    return NULL;
 }
 
 void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
@@ -274,13 +272,13 @@ void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const floa
     int kind = primary ? MS_RT_PRIMARY : MS_RT_SECONDARY;
     ray_init(&rh.ray, org, dir, primary ? 0.0f : sh->w->eps);
     if (th->dump) rt_raybuf_add(th->dump, kind, 0xffu, org, dir, rh.ray.tnear);
-    intersect_unclipped(sh, th, &rh);
+    const rt_geom *g = intersect_unclipped(sh, th, &rh);
     th->rays[kind]++;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    if (!g) {
         background(sh, org, dir, out);
         return;
     }
     surface s;
-    surface_at(sh->w, &rh, &s);
+    surface_at(g, &rh, &s);
     shade(sh, th, &s, org, dir, depth, primary, out);
 }

@@ -67,13 +67,11 @@ float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v)
 int rt_geom_clipped(const rt_geom *g, const float o[3], const float d[3], float t)
 {
     if (!g->item || !g->item->nclip) return 0;
-    float p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]}, w[3];
-    ms_mat4_point(g->xf, p, w);
-    return ms_scene_clipped(g->item, w);
+    float p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
+    return ms_scene_clipped(g->item, p);
 }
 
-/* Embree calls the filter with the ray in the instance's (the list's) coordinates and its
- * tfar at the crossing. */
+/* Embree calls the filter with the ray (world coordinates) and its tfar at the crossing. */
 void rt_occlusion_filter(const struct RTCFilterFunctionNArguments *args)
 {
     const rt_geom *g = args->geometryUserPtr;

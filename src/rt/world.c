@@ -1,12 +1,13 @@
-/* world.c: the traced world built from a scene. The placed display lists are grouped by
- * transform (a molecule's lists share one); each group becomes two Embree scenes, its opaque
- * and its transparent geometries, instanced with the transform and masked so shadow rays can
- * take them in turn. Each list gives one geometry per primitive kind (spheres, cylinders,
- * cones, cap discs, the mesh) in its own coordinates, its cylinders made first since they
- * take the spheres on their ends (cylinder.c); its lines, points and text (as world-space
- * cylinders and spheres) and its cap discs come from the pass both tracers share
- * (rt_sources_make, common.c); materials become Tachyon's texture terms as
- * the Tachyon exporter writes them (common.c), so the two devices agree. */
+/* world.c: the traced world built from a scene: two flat Embree scenes, one of the opaque
+ * and one of the transparent geometries of every placed display list, their primitives
+ * moved to world space (place.c; no instances: the instance each transform was placed by
+ * cost 4-6% of the tracing on ambient occlusion), so that shadow rays can take the opaque
+ * scene first and the transparent one only when they got through. Each list gives one
+ * geometry per primitive kind (spheres, cylinders, cones, cap discs, the mesh), its
+ * cylinders made first since they take the spheres on their ends (cylinder.c); its lines,
+ * points and text (as world-space cylinders and spheres) and its cap discs come from the
+ * pass both tracers share (rt_sources_make, common.c); materials become Tachyon's texture
+ * terms as the Tachyon exporter writes them (common.c), so the two devices agree. */
 #include "config.h"
 #include "rt/rt_internal.h"
 
@@ -17,9 +18,6 @@ const rt_prim *const rt_prims[RT_NKINDS] = {&rt_sphere_prim, &rt_cylinder_prim, 
                                             &rt_ring_prim, &rt_mesh_prim};
 
 /* ---------------------------------------------------------------- helpers */
-
-
-
 
 void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err)
 {
@@ -35,16 +33,6 @@ void *rt_world_alloc(rt_world *w, size_t n, size_t elsize, ms_error *err)
 }
 
 
-
-int rt_item_matrices(rt_item *ri, const float x[16])
-{
-    rt_xform t;
-    if (rt_xform_make(&t, x)) return -1;
-    memcpy(ri->xf, t.xf, sizeof t.xf);
-    memcpy(ri->inv, t.inv, sizeof t.inv);
-    memcpy(ri->nm, t.nm, sizeof t.nm);
-    return 0;
-}
 
 static int any_translucent(const ms_rgba8 *c, size_t n)
 {
@@ -62,12 +50,13 @@ static void disc_geom(const rt_discs *d, rt_geom *g)
     g->color = d->color;
 }
 
-/* The geometry of one kind of a list (g->n == 0: none). */
-static int fill_geom(const rt_source *src, rt_kind kind, rt_geom *g)
+/* The geometry of one kind of a placed list (g->n == 0: none). */
+static int fill_geom(const rt_placed *p, rt_kind kind, rt_geom *g)
 {
-    const ms_displaylist *dl = src->dl;
+    const ms_displaylist *dl = &p->dl;
     memset(g, 0, sizeof *g);
     g->kind = kind;
+    g->sign = 1.0f;
     switch (kind) {
     case RT_SPHERE:
         g->n = dl->spheres.n, g->a = dl->spheres.xyz, g->ra = dl->spheres.radius;
@@ -83,13 +72,14 @@ static int fill_geom(const rt_source *src, rt_kind kind, rt_geom *g)
         g->ra = dl->cones.rbase, g->rb = dl->cones.rapex, g->color = dl->cones.color;
         break;
     case RT_RING:
-        disc_geom(&src->discs, g);
+        disc_geom(&p->discs, g);
         break;
     default:
         if (!dl->mesh.nverts) return 0;
         g->n = dl->mesh.ntris, g->xyz = dl->mesh.xyz, g->normal = dl->mesh.normal;
         g->color = dl->mesh.color, g->tri = dl->mesh.tri;
         g->nverts = dl->mesh.nverts, g->vcap = dl->mesh.vcap;
+        if (p->moved) g->nm = p->x.nm, g->sign = p->x.sign;
         break;
     }
     return 0;
@@ -103,25 +93,8 @@ static int no_scene(rt_world *w, ms_error *err)
 
 /* ---------------------------------------------------------------- the world */
 
-
 /* A display list to trace: its transform and texture terms. */
 typedef rt_source source;
-
-/* Group the sources by transform; returns the number of groups. */
-static size_t group_sources(source *src, size_t n)
-{
-    size_t ngroups = 0;
-    for (size_t i = 0; i < n; i++) {
-        src[i].group = ngroups;
-        for (size_t j = 0; j < i; j++)
-            if (!memcmp(src[j].xform, src[i].xform, 16 * sizeof(float))) {
-                src[i].group = src[j].group;
-                break;
-            }
-        if (src[i].group == ngroups) ngroups++;
-    }
-    return ngroups;
-}
 
 /* Whether a kind of a list may let light through: its material or a colour's alpha. */
 static int kind_translucent(const ms_displaylist *dl, const rt_material *mat, rt_kind kind)
@@ -167,20 +140,19 @@ static int keep_spheres(rt_world *w, rt_geom *g, const uint8_t *taken, ms_error 
     return 0;
 }
 
-/* The geometry of a source's kind into scene sub, when its transparency is trans; user:
- * spheres join the user geometries' tree, and the cylinders take the spheres on their ends
- * (*taken: which, for the spheres that follow). */
-static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, int trans,
-                    int user, uint8_t **taken, rt_item *ri, ms_error *err)
+/* The geometry of a source's kind (placed as p) into the world's scene trans, when its
+ * transparency is trans; user: spheres join the user geometries' tree, and the cylinders
+ * take the spheres on their ends (*taken: which, for the spheres that follow). */
+static int add_geom(rt_world *w, const source *src, const rt_placed *p, rt_kind kind, int trans,
+                    int user, uint8_t **taken, ms_error *err)
 {
     if (kind_translucent(src->dl, &src->mat, kind) != trans) return 0;
     rt_geom *g = &w->geoms[w->ngeoms];
-    fill_geom(src, kind, g);
+    fill_geom(p, kind, g);
     g->user = user;
     g->item = src->item;
-    g->xf = ri->xf;
     if (kind == RT_CYLINDER && user && kind_translucent(src->dl, &src->mat, RT_SPHERE) == trans)
-        g->spheres = &src->dl->spheres;
+        g->spheres = &p->dl.spheres;
     if (kind == RT_SPHERE && *taken && keep_spheres(w, g, *taken, err)) return -1;
     if (!g->n) return 0;
     if (g->n > 0xffffffffu) {
@@ -203,76 +175,60 @@ static int add_geom(rt_world *w, RTCScene sub, const source *src, rt_kind kind, 
     if (trans && kind == RT_MESH && w->samples > 0 && w->samples < 2.0 * (double)g->n)
         rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_LOW);
     rtcCommitGeometry(geom);
-    rtcAttachGeometryByID(sub, geom, (unsigned)ri->ngeoms++);
+    rtcAttachGeometryByID(w->scene[trans], geom, (unsigned)w->npart[trans]++);
     rtcReleaseGeometry(geom);
     w->ngeoms++;
     w->has_trans |= trans;
     return 0;
 }
 
-/* Mesh triangles of the group of src[first]. */
-static size_t group_triangles(const source *src, size_t n, size_t first)
+/* Mesh triangles of the scene. */
+static size_t scene_triangles(const ms_scene *s)
 {
     size_t tris = 0;
-    for (size_t i = first; i < n && src[i].group == src[first].group; i++) tris += src[i].dl->mesh.ntris;
+    for (size_t i = 0; i < s->nitems; i++) tris += s->items[i].dl->mesh.ntris;
     return tris;
 }
 
-/* From this many triangles in a group its Embree scenes are built compact (Triangle4i
+/* From this many triangles in a scene its Embree scenes are built compact (Triangle4i
  * leaves that index the list's own vertices instead of copying them, and smaller nodes): on
  * the scale benchmark's 1M-atom QuickSurf (2.9M triangles) Embree's peak went from 342 to
  * 147 MB, the trace time unchanged within the noise, the image identical. (A low-quality,
  * Morton-code build of the same scene peaked at 248 MB.) */
 #define COMPACT_TRIS ((size_t)1 << 20)
 
-/* The Embree scene of a group's opaque or transparent geometries, placed by the group's
- * transform as the next instance (masked, so that shadow rays can skip the transparent ones
- * until the opaque ones have let them through). */
-static int add_instance(rt_world *w, const source *src, size_t n, size_t first, int trans,
-                        ms_error *err)
+/* The Embree scene of every placed list's opaque or transparent geometries. */
+static int add_scene(rt_world *w, const ms_scene *s, int trans, ms_error *err)
 {
-    rt_item *ri = &w->items[w->nitems];
-    memset(ri, 0, sizeof *ri);
-    if (rt_item_matrices(ri, src[first].xform)) return 0;      /* singular: nothing to see */
-    ri->geoms = w->geoms + w->ngeoms;
-    RTCScene sub = rtcNewScene(w->dev);
-    if (!sub) return no_scene(w, err);
+    RTCScene sc = w->scene[trans] = rtcNewScene(w->dev);
+    if (!sc) return no_scene(w, err);
     /* the transparent part is walked only by rays the opaque part let through: a quick build
      * traced as fast there (measured on a 1M-triangle surface: 0.3 s of CPU saved) */
-    rtcSetSceneBuildQuality(sub, trans ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
-    if (group_triangles(src, n, first) >= COMPACT_TRIS) rtcSetSceneFlags(sub, RTC_SCENE_FLAG_COMPACT);
+    rtcSetSceneBuildQuality(sc, trans ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
+    if (scene_triangles(s) >= COMPACT_TRIS) rtcSetSceneFlags(sc, RTC_SCENE_FLAG_COMPACT);
+    w->part[trans] = w->geoms + w->ngeoms;
     /* cylinders first: they may take the spheres on their ends */
     static const rt_kind order[RT_NKINDS] = {RT_CYLINDER, RT_SPHERE, RT_CONE, RT_RING, RT_MESH};
-    for (size_t i = first; i < n; i++) {
+    for (size_t i = 0; i < w->set.n; i++) {
+        const source *src = &w->set.src[i];
         uint8_t *taken = NULL;
-        for (int k = 0; k < RT_NKINDS && src[i].group == src[first].group; k++)
-            if (add_geom(w, sub, &src[i], order[k], trans, has_user_kinds(&src[i], trans), &taken, ri, err))
-                goto fail;
+        for (int k = 0; k < RT_NKINDS && !w->placed[i].skip; k++)
+            if (add_geom(w, src, &w->placed[i], order[k], trans, has_user_kinds(src, trans), &taken, err))
+                return -1;
     }
-    rtcCommitScene(sub);
-    if (rt_device_check(w->dev, "Embree build", err)) goto fail;
-    if (ri->ngeoms) {
-        RTCGeometry inst = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_INSTANCE);
-        rtcSetGeometryInstancedScene(inst, sub);
-        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, ri->xf);
-        rtcSetGeometryMask(inst, trans ? RT_MASK_TRANS : RT_MASK_OPAQUE);
-        rtcCommitGeometry(inst);
-        rtcAttachGeometryByID(w->top, inst, (unsigned)w->nitems++);
-        rtcReleaseGeometry(inst);
-    }
-    rtcReleaseScene(sub);
-    return rt_device_check(w->dev, "Embree instance", err);
-fail:
-    rtcReleaseScene(sub);
-    return -1;
+    rtcCommitScene(sc);
+    return rt_device_check(w->dev, "Embree build", err);
 }
 
-/* A group's geometries: opaque ones, then transparent ones. */
-static int add_group(rt_world *w, const source *src, size_t n, size_t group, ms_error *err)
+/* Every source's list in world space. */
+static int place_sources(rt_world *w, ms_error *err)
 {
-    size_t first = 0;
-    while (src[first].group != group) first++;
-    return add_instance(w, src, n, first, 0, err) || add_instance(w, src, n, first, 1, err) ? -1 : 0;
+    for (size_t i = 0; i < w->set.n; i++) {
+        int rc = rt_place(w, &w->set.src[i], &w->placed[i], err);
+        if (rc < 0) return -1;
+        w->placed[i].skip = rc > 0;
+    }
+    return 0;
 }
 
 /* Embree's bytes a primitive, taken low: the scale benchmark's QuickSurf triangles peaked at
@@ -284,17 +240,13 @@ static int add_group(rt_world *w, const source *src, size_t n, size_t group, ms_
 
 size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother)
 {
-    size_t bytes = 0;
-    *ntris = *nother = 0;
+    *ntris = scene_triangles(s);
+    *nother = 0;
     for (size_t i = 0; i < s->nitems; i++) {
         const ms_displaylist *dl = s->items[i].dl;
-        size_t t = dl->mesh.ntris;
-        size_t o = dl->spheres.n + dl->cylinders.n + dl->cones.n + dl->lines.n + dl->points.n;
-        bytes += t * (t >= COMPACT_TRIS ? EST_TRI_COMPACT : EST_TRI) + o * EST_OTHER;
-        *ntris += t;
-        *nother += o;
+        *nother += dl->spheres.n + dl->cylinders.n + dl->cones.n + dl->lines.n + dl->points.n;
     }
-    return bytes;
+    return *ntris * (*ntris >= COMPACT_TRIS ? EST_TRI_COMPACT : EST_TRI) + *nother * EST_OTHER;
 }
 
 int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err)
@@ -305,21 +257,15 @@ int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err
     if (!w->dev) return -1;
     w->eps = rt_world_eps(s);
     if (rt_sources_make(&w->set, s, err)) goto fail;
-    source *src = w->set.src;
-    size_t nsrc = w->set.n, ngroups = group_sources(src, nsrc);
-    w->items = rt_world_alloc(w, 2 * ngroups, sizeof *w->items, err);
-    w->geoms = rt_world_alloc(w, nsrc * RT_NKINDS, sizeof *w->geoms, err);
-    w->top = rtcNewScene(w->dev);
-    if (!w->items || !w->geoms || !w->top) {
-        if (!w->top) no_scene(w, err);
+    w->placed = rt_world_alloc(w, w->set.n, sizeof *w->placed, err);
+    w->geoms = rt_world_alloc(w, w->set.n * RT_NKINDS, sizeof *w->geoms, err);
+    if (!w->placed || !w->geoms || place_sources(w, err) || add_scene(w, s, RT_OPAQUE, err) ||
+        add_scene(w, s, RT_TRANS, err))
         goto fail;
+    if (!w->npart[RT_TRANS]) {          /* nothing transparent: shadow rays walk one scene */
+        rtcReleaseScene(w->scene[RT_TRANS]);
+        w->scene[RT_TRANS] = NULL;
     }
-    rtcSetSceneBuildQuality(w->top, RTC_BUILD_QUALITY_MEDIUM);
-    for (size_t g = 0; g < ngroups; g++)
-        if (add_group(w, src, nsrc, g, err)) goto fail;
-    rtcCommitScene(w->top);
-    if (rt_device_check(w->dev, "Embree build", err)) goto fail;
-    w->split = w->has_trans && rtcGetDeviceProperty(w->dev, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED);
     return 0;
 fail:
     rt_world_free(w);
@@ -328,7 +274,8 @@ fail:
 
 void rt_world_free(rt_world *w)
 {
-    if (w->top) rtcReleaseScene(w->top);
+    for (int k = 0; k < 2; k++)
+        if (w->scene[k]) rtcReleaseScene(w->scene[k]);
     for (size_t i = 0; i < w->nowned; i++) free(w->owned[i]);
     free(w->owned);
     rt_sources_free(&w->set);
