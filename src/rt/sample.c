@@ -56,7 +56,8 @@ void rt_hemisphere_init(rt_hemisphere *h, const float n[3], int count, uint32_t 
 float rt_hemisphere_next(rt_hemisphere *h, float d[3])
 {
     float u = ((float)h->i + h->r1) / (float)h->count;
-    float r = sqrtf(fmaxf(0.0f, 1.0f - u * u)), cs = h->cs, sn = h->sn;
+    float r2 = 1.0f - u * u;    /* (not fmaxf: a libm call here) */
+    float r = sqrtf(r2 > 0.0f ? r2 : 0.0f), cs = h->cs, sn = h->sn;
     for (int k = 0; k < 3; k++) d[k] = r * (cs * h->t[k] + sn * h->b[k]) + u * h->n[k];
     h->cs = cs * GOLDEN_COS - sn * GOLDEN_SIN;
     h->sn = sn * GOLDEN_COS + cs * GOLDEN_SIN;

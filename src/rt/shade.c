@@ -91,11 +91,14 @@ static void surface_at(const rt_geom *g, const struct RTCRayHit *rh, surface *s)
 
 /* Embree refuses rays beyond its float range (1.8e18) and non-numbers, and its checks abort:
  * a degenerate camera or primitive must not get that far. */
+static int point_ok(const float p[3])
+{
+    return fabsf(p[0]) <= 1e18f && fabsf(p[1]) <= 1e18f && fabsf(p[2]) <= 1e18f;
+}
+
 static int ray_ok(const float o[3], const float d[3])
 {
-    for (int k = 0; k < 3; k++)
-        if (!(fabsf(o[k]) <= 1e18f && fabsf(d[k]) <= 1e18f)) return 0;
-    return d[0] != 0 || d[1] != 0 || d[2] != 0;
+    return point_ok(o) && point_ok(d) && (d[0] != 0 || d[1] != 0 || d[2] != 0);
 }
 
 static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], float tnear)
@@ -113,13 +116,14 @@ static void ray_init(struct RTCRay *r, const float org[3], const float dir[3], f
 /* ---------------------------------------------------------------- shadow and occlusion */
 
 /* Visibility of the sky along d from p: 0 blocked, 1 open, between through glass (one
- * visibility ray: the opaque scene, then the transparent one when it got through). */
+ * visibility ray: the opaque scene, then the transparent one when it got through). The
+ * caller has checked p (point_ok); d is a light's direction or one of the hemisphere's, unit
+ * and finite. */
 static float visibility(const rt_shader *sh, rt_thread *th, const float p[3], const float d[3],
                         int kind)
 {
     struct RTCRay r;
     float f = 1.0f;
-    if (!ray_ok(p, d)) return 0.0f;
     ray_init(&r, p, d, sh->w->eps);
     th->ctx.filter = &f;
     th->rays[kind]++;
@@ -163,12 +167,13 @@ static void direct(const rt_shader *sh, rt_thread *th, const surface *s, const f
     memset(diffuse, 0, 3 * sizeof(float));
     memset(phong, 0, 3 * sizeof(float));
     if (!(m->diffuse > RT_MINCONTRIB || m->phong > RT_MINCONTRIB)) return;
+    int open = point_ok(s->p);          /* else no ray leaves s: all in shadow */
     for (int i = 0; i < sh->nlights; i++) {
         const float *l = sh->ldir[i];
         float inten = sh->light_scale * ms_v3f_dot(s->n, l);
         if (!(inten > RT_MINCONTRIB)) continue;
         if (sh->full) {
-            float v = visibility(sh, th, s->p, l, MS_RT_SHADOW);
+            float v = open ? visibility(sh, th, s->p, l, MS_RT_SHADOW) : 0.0f;
             if (v <= 0.0f) continue;
             inten *= v;
         }
@@ -178,7 +183,7 @@ static void direct(const rt_shader *sh, rt_thread *th, const surface *s, const f
             phong[k] += pv * sh->lcol[i][k];
         }
     }
-    if (sh->full && sh->ao_samples > 0) {
+    if (sh->full && sh->ao_samples > 0 && open) {
         float ao[3];
         occlusion(sh, th, s, ao);
         for (int k = 0; k < 3; k++) diffuse[k] += ao[k];
