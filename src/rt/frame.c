@@ -75,7 +75,8 @@ int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
         return -1;
     }
     size_t room = avail ? avail / 10 * 9 - need : 0, ntris, nother;
-    size_t est = rt_world_estimate(s, &ntris, &nother);
+    size_t placed = rt_place_bytes(s);      /* the lists' world-space copies, beside Embree */
+    size_t est = rt_world_estimate(s, &ntris, &nother) + placed;
     if (avail && est > room) {
         ms_error_set(err, "the scene is too large: the ray tracer's acceleration structures "
                      "need at least %.2f GB for "
@@ -85,7 +86,7 @@ int rt_plan_memory(const ms_scene *s, const ms_rt_options *o, ms_error *err)
                      (double)est / 1e9, ntris, nother, (double)room / 1e9, s->width, s->height);
         return -1;
     }
-    rt_device_set_budget(room);
+    rt_device_set_budget(avail ? room - placed : 0);
     return 0;
 }
 

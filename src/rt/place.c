@@ -106,6 +106,19 @@ static int is_identity(const float x[16])
     return !memcmp(x, id, sizeof id);
 }
 
+size_t rt_place_bytes(const ms_scene *s)
+{
+    size_t bytes = 0;
+    for (size_t i = 0; i < s->nitems; i++) {
+        const ms_displaylist *dl = s->items[i].dl;
+        /* a sphere's centre and radius; a cylinder's three points and radius, its two cap
+         * discs; a cone, its two points and radii and its base disc; a vertex */
+        bytes += (16 * dl->spheres.n + 104 * dl->cylinders.n + 64 * dl->cones.n +
+                  12 * dl->mesh.nverts) * (size_t)!is_identity(s->items[i].xform);
+    }
+    return bytes;
+}
+
 int rt_place(rt_world *w, const rt_source *src, rt_placed *p, ms_error *err)
 {
     memset(p, 0, sizeof *p);

@@ -86,6 +86,8 @@ typedef struct rt_placed {
 /* The placed list of src into p; 0, 1 when its transform is singular (nothing to trace), or
  * -1 with err set when memory runs out. */
 int rt_place(struct rt_world *w, const rt_source *src, rt_placed *p, ms_error *err);
+/* An upper bound of the bytes the placed copies of a scene's lists take. */
+size_t rt_place_bytes(const ms_scene *s);
 
 /* The scenes of the world: the opaque geometries, and the transparent ones (walked by a
  * shadow or occlusion ray only when the opaque ones let it through). */
