@@ -13,6 +13,7 @@
 #
 #   scripts/bench/bench_rtfloor.sh [builddir]
 #   RTFLOOR_RUNS=3  RTFLOOR_VARIANTS="builtin instance user packet cache"  RTFLOOR_THREADS="1 N"
+#   (rt_floor also has camera8: the camera rays as coherent packets of 8)
 #   RTFLOOR_BEFORE=path/to/molscope: also time that binary (an older build) in the same run,
 #   and compare its picture with this build's pixel by pixel
 set -euo pipefail
