@@ -205,7 +205,7 @@ static int add_source(rt_sources *set, const ms_displaylist *dl, const float *xf
                       const ms_material *m, int lit, const ms_scene_item *item)
 {
     rt_source *o = &set->src[set->n++];
-    o->dl = dl, o->xform = xform, o->group = 0, o->item = item;
+    o->dl = dl, o->xform = xform, o->item = item;
     rt_material_terms(m, lit, &o->mat);
     return make_discs(dl, &o->discs);
 }

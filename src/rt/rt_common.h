@@ -53,14 +53,12 @@ typedef struct rt_discs {
     int alpha;
 } rt_discs;
 /* One list to trace: a scene item's list with its transform, texture terms and cap discs, or
- * the world-space list made of an item's lines, points and text (identity transform). group
- * is the caller's. */
+ * the world-space list made of an item's lines, points and text (identity transform). */
 typedef struct rt_source {
     const ms_displaylist *dl;
     const float *xform;
     rt_material mat;
     rt_discs discs;
-    size_t group;
     const ms_scene_item *item;  /* the scene item it comes from (its clip planes) */
 } rt_source;
 /* What both tracers trace, derived once from a scene: the sources, and the stroke lists and
