@@ -65,23 +65,20 @@ static uint8_t mix8(uint8_t a, uint8_t b, uint8_t c, float wa, float wb, float w
     return (uint8_t)(v < 0.0f ? 0.0f : v > 255.0f ? 255.0f : v);
 }
 
-/* Interpolated vertex normal (turned to world space when the list was moved) and colour;
- * Embree's geometric normal, of the list's winding (turned back when a mirror turned it). */
+/* Interpolated vertex normal and colour; Embree's geometric normal (in the list's
+ * coordinates, under the instance); both turned to world space by the normal matrix. */
 static void mesh_surface(const rt_geom *g, const struct RTCHit *h, const float p[3], float n[3],
                          float ng[3], ms_rgba8 *c)
 {
     const uint32_t *t = g->tri + 3 * (size_t)h->primID;
-    float wb = h->u, wc = h->v, wa = 1.0f - wb - wc, nl[3];
+    float wb = h->u, wc = h->v, wa = 1.0f - wb - wc, nl[3], gl[3] = {h->Ng_x, h->Ng_y, h->Ng_z};
     const int8_t *na = g->normal + 3 * (size_t)t[0], *nb = g->normal + 3 * (size_t)t[1],
                  *nc = g->normal + 3 * (size_t)t[2];
     for (int k = 0; k < 3; k++)
         nl[k] = wa * ms_normal_dequantize(na[k]) + wb * ms_normal_dequantize(nb[k]) +
                 wc * ms_normal_dequantize(nc[k]);
-    if (g->nm) rt_m3_vec(g->nm, nl, n);
-    else memcpy(n, nl, sizeof nl);
-    ng[0] = g->sign * h->Ng_x;
-    ng[1] = g->sign * h->Ng_y;
-    ng[2] = g->sign * h->Ng_z;
+    rt_m3_vec(g->nm, nl, n);
+    rt_m3_vec(g->nm, gl, ng);
     ms_rgba8 ca = g->color[t[0]], cb = g->color[t[1]], cc = g->color[t[2]];
     c->r = mix8(ca.r, cb.r, cc.r, wa, wb, wc);
     c->g = mix8(ca.g, cb.g, cc.g, wa, wb, wc);

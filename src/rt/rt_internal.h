@@ -1,6 +1,7 @@
 /* rt_internal.h: what the files of the ray tracer share, and only they include: the traced
- * world (two flat Embree scenes, the opaque and the transparent geometries of every placed
- * display list moved to world space; per list, one Embree geometry per primitive kind), the
+ * world (two Embree scenes, the opaque and the transparent geometries of every placed
+ * display list: spheres, cylinders, cones and discs moved to world space, meshes under an
+ * instance of their transform; per list, one Embree geometry per primitive kind), the
  * primitive method tables (one file per primitive, as Tachyon has them), the camera, the
  * shading settings and the per-thread state of the integrator. */
 #ifndef MS_RT_INTERNAL_H
@@ -38,8 +39,9 @@ void rt_fpu_restore(unsigned state);
 
 typedef enum rt_kind { RT_SPHERE, RT_CYLINDER, RT_CONE, RT_RING, RT_MESH, RT_NKINDS } rt_kind;
 
-/* The primitives of one kind of one placed list, in world coordinates (place.c). The arrays
- * are the display list's where its layout serves, else arrays the world made. */
+/* The primitives of one kind of one placed list: in world coordinates (place.c), but a
+ * mesh's in the list's (its instance places it). The arrays are the display list's where
+ * its layout serves, else arrays the world made. */
 typedef struct rt_geom {
     rt_kind kind;
     size_t n;
@@ -67,20 +69,18 @@ typedef struct rt_geom {
     const ms_dl_spheres *spheres;  /* the spheres the cylinders may take (world.c sets it) */
     uint8_t *taken;             /* per sphere: 1 when a cylinder took it (cylinder.c sets it) */
     const ms_scene_item *item;  /* the scene item (its clip planes, in world coordinates) */
-    const float *nm;            /* meshes: the normal matrix of the list's normals (NULL:
-                                 * already in world space) */
-    float sign;                 /* meshes: -1 when the list's transform mirrors (the winding
-                                 * of the moved triangles turns), else 1 */
+    const float *xf, *nm;       /* meshes: their instance's list-to-world transform and its
+                                 * normal matrix; NULL for the others (world space) */
 } rt_geom;
 
-/* A source's list with its primitives in world space (place.c): the list's arrays, or copies
- * moved by its transform. */
+/* A source's list with its spheres, cylinders, cones and discs in world space (place.c):
+ * the list's arrays, or copies moved by its transform; its mesh is the list's. */
 typedef struct rt_placed {
     ms_displaylist dl;          /* a shallow copy: positions and radii replaced when moved */
     rt_discs discs;
     rt_xform x;
-    int moved;                  /* 0: the identity, the list's own arrays */
     int skip;                   /* a singular transform: nothing to see */
+    size_t group;               /* the sources sharing its transform (its meshes' instance) */
 } rt_placed;
 
 /* The placed list of src into p; 0, 1 when its transform is singular (nothing to trace), or
@@ -90,13 +90,15 @@ int rt_place(struct rt_world *w, const rt_source *src, rt_placed *p, ms_error *e
 size_t rt_place_bytes(const ms_scene *s);
 
 /* The scenes of the world: the opaque geometries, and the transparent ones (walked by a
- * shadow or occlusion ray only when the opaque ones let it through). */
+ * shadow or occlusion ray only when the opaque ones let it through). Each holds the
+ * world-space geometries and, per transform with meshes, an instance of a scene of them. */
 enum { RT_OPAQUE, RT_TRANS };
 
 typedef struct rt_world {
     RTCDevice dev;
     RTCScene scene[2];          /* RT_OPAQUE, RT_TRANS; scene[RT_TRANS] NULL when empty */
-    rt_geom *part[2];           /* each scene's geometries, by Embree geometry id */
+    rt_geom **part[2];          /* by Embree geometry id in each scene: the geometry, or for an
+                                 * instance the first of its scene's (by their ids there) */
     size_t npart[2];
     rt_geom *geoms;             /* every geometry (made in one block: Embree keeps pointers) */
     size_t ngeoms;
@@ -151,7 +153,8 @@ typedef struct rt_ctx {
 
 /* Opacity of primitive prim at a hit (u, v: a mesh's barycentric coordinates). */
 float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v);
-/* Does one of g's clip planes cut away the point at t along the ray o + t d? */
+/* Does one of g's clip planes cut away the point at t along the ray o + t d (in g's
+ * coordinates: world space, or a mesh's list)? */
 int rt_geom_clipped(const rt_geom *g, const float o[3], const float d[3], float t);
 /* The occlusion filter of built-in geometries (spheres, meshes) that are transparent or
  * clipped: a crossing a clip plane cut away is passed, as is a transparent one (filtering

@@ -232,19 +232,27 @@ static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const fl
     if (sh->fog) fog(sh, primary ? s->t * ms_v3f_dot(dir, sh->cam.dir) : s->t, out);
 }
 
+/* The geometry of a hit in a scene of the world (part: its table, rt_world). */
+static const rt_geom *hit_geom(rt_geom *const *part, const struct RTCHit *h)
+{
+    if (h->instID[0] == RTC_INVALID_GEOMETRY_ID) return part[h->geomID];
+    return &part[h->instID[0]][h->geomID];      /* a mesh under its transform's instance */
+}
+
 /* The nearest hit in the opaque scene, then in the transparent one (up to the opaque hit):
  * its geometry, or NULL for none. */
 static const rt_geom *nearest(const rt_world *w, rt_thread *th, struct RTCRayHit *rh)
 {
-    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh->hit.geomID = rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(w->scene[RT_OPAQUE], &th->ctx.ec, rh);
-    unsigned id = rh->hit.geomID;
-    const rt_geom *g = id == RTC_INVALID_GEOMETRY_ID ? NULL : &w->part[RT_OPAQUE][id];
+    unsigned id = rh->hit.geomID, inst = rh->hit.instID[0];
+    const rt_geom *g = id == RTC_INVALID_GEOMETRY_ID ? NULL : hit_geom(w->part[RT_OPAQUE], &rh->hit);
     if (!w->scene[RT_TRANS]) return g;
-    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh->hit.geomID = rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(w->scene[RT_TRANS], &th->ctx.ec, rh);
-    if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) return &w->part[RT_TRANS][rh->hit.geomID];
+    if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) return hit_geom(w->part[RT_TRANS], &rh->hit);
     rh->hit.geomID = id;        /* a miss leaves the opaque hit's record as it was */
+    rh->hit.instID[0] = inst;
     return g;
 }
 

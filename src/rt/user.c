@@ -67,11 +67,14 @@ float rt_geom_opacity(const rt_geom *g, unsigned prim, float u, float v)
 int rt_geom_clipped(const rt_geom *g, const float o[3], const float d[3], float t)
 {
     if (!g->item || !g->item->nclip) return 0;
-    float p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
-    return ms_scene_clipped(g->item, p);
+    float p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]}, w[3];
+    if (!g->xf) return ms_scene_clipped(g->item, p);
+    ms_mat4_point(g->xf, p, w);           /* a mesh: the ray in its instance's coordinates */
+    return ms_scene_clipped(g->item, w);
 }
 
-/* Embree calls the filter with the ray (world coordinates) and its tfar at the crossing. */
+/* Embree calls the filter with the ray in the geometry's coordinates (world space, or a
+ * mesh's list under its instance) and its tfar at the crossing. */
 void rt_occlusion_filter(const struct RTCFilterFunctionNArguments *args)
 {
     const rt_geom *g = args->geometryUserPtr;

@@ -1,13 +1,15 @@
-/* world.c: the traced world built from a scene: two flat Embree scenes, one of the opaque
- * and one of the transparent geometries of every placed display list, their primitives
- * moved to world space (place.c; no instances: the instance each transform was placed by
- * cost 4-6% of the tracing on ambient occlusion), so that shadow rays can take the opaque
- * scene first and the transparent one only when they got through. Each list gives one
- * geometry per primitive kind (spheres, cylinders, cones, cap discs, the mesh), its
- * cylinders made first since they take the spheres on their ends (cylinder.c); its lines,
- * points and text (as world-space cylinders and spheres) and its cap discs come from the
- * pass both tracers share (rt_sources_make, common.c); materials become Tachyon's texture
- * terms as the Tachyon exporter writes them (common.c), so the two devices agree. */
+/* world.c: the traced world built from a scene: two Embree scenes, one of the opaque and
+ * one of the transparent geometries of every placed display list, so that shadow rays can
+ * take the opaque scene first and the transparent one only when they got through. A list's
+ * spheres, cylinders, cones and discs are moved to world space (place.c) and go straight
+ * into them (the instance each transform was placed by until issue 21 cost 4-6% of the
+ * tracing on ambient occlusion); its mesh keeps the list's own vertices in a scene of its
+ * transform's meshes, placed by an instance. Each list gives one geometry per primitive
+ * kind (spheres, cylinders, cones, cap discs, the mesh), its cylinders made first since they
+ * take the spheres on their ends (cylinder.c); its lines, points and text (as world-space
+ * cylinders and spheres) and its cap discs come from the pass both tracers share
+ * (rt_sources_make, common.c); materials become Tachyon's texture terms as the Tachyon
+ * exporter writes them (common.c), so the two devices agree. */
 #include "config.h"
 #include "rt/rt_internal.h"
 
@@ -56,7 +58,6 @@ static int fill_geom(const rt_placed *p, rt_kind kind, rt_geom *g)
     const ms_displaylist *dl = &p->dl;
     memset(g, 0, sizeof *g);
     g->kind = kind;
-    g->sign = 1.0f;
     switch (kind) {
     case RT_SPHERE:
         g->n = dl->spheres.n, g->a = dl->spheres.xyz, g->ra = dl->spheres.radius;
@@ -79,7 +80,7 @@ static int fill_geom(const rt_placed *p, rt_kind kind, rt_geom *g)
         g->n = dl->mesh.ntris, g->xyz = dl->mesh.xyz, g->normal = dl->mesh.normal;
         g->color = dl->mesh.color, g->tri = dl->mesh.tri;
         g->nverts = dl->mesh.nverts, g->vcap = dl->mesh.vcap;
-        if (p->moved) g->nm = p->x.nm, g->sign = p->x.sign;
+        g->xf = p->x.xf, g->nm = p->x.nm;      /* the list's vertices, under an instance */
         break;
     }
     return 0;
@@ -140,11 +141,12 @@ static int keep_spheres(rt_world *w, rt_geom *g, const uint8_t *taken, ms_error 
     return 0;
 }
 
-/* The geometry of a source's kind (placed as p) into the world's scene trans, when its
+/* The geometry of a source's kind (placed as p) into scene sc with Embree id, when its
  * transparency is trans; user: spheres join the user geometries' tree, and the cylinders
- * take the spheres on their ends (*taken: which, for the spheres that follow). */
-static int add_geom(rt_world *w, const source *src, const rt_placed *p, rt_kind kind, int trans,
-                    int user, uint8_t **taken, ms_error *err)
+ * take the spheres on their ends (*taken: which, for the spheres that follow). 1 when it
+ * made one (w->geoms' last), 0 when the list has none, -1 with err set. */
+static int add_geom(rt_world *w, RTCScene sc, unsigned id, const source *src, const rt_placed *p,
+                    rt_kind kind, int trans, int user, uint8_t **taken, ms_error *err)
 {
     if (kind_translucent(src->dl, &src->mat, kind) != trans) return 0;
     rt_geom *g = &w->geoms[w->ngeoms];
@@ -175,11 +177,11 @@ static int add_geom(rt_world *w, const source *src, const rt_placed *p, rt_kind 
     if (trans && kind == RT_MESH && w->samples > 0 && w->samples < 2.0 * (double)g->n)
         rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_LOW);
     rtcCommitGeometry(geom);
-    rtcAttachGeometryByID(w->scene[trans], geom, (unsigned)w->npart[trans]++);
+    rtcAttachGeometryByID(sc, geom, id);
     rtcReleaseGeometry(geom);
     w->ngeoms++;
     w->has_trans |= trans;
-    return 0;
+    return 1;
 }
 
 /* Mesh triangles of the scene. */
@@ -190,6 +192,15 @@ static size_t scene_triangles(const ms_scene *s)
     return tris;
 }
 
+/* Mesh triangles of the sources sharing the transform of source first. */
+static size_t group_triangles(const rt_world *w, size_t first)
+{
+    size_t tris = 0;
+    for (size_t i = first; i < w->set.n; i++)
+        if (w->placed[i].group == first) tris += w->set.src[i].dl->mesh.ntris;
+    return tris;
+}
+
 /* From this many triangles in a scene its Embree scenes are built compact (Triangle4i
  * leaves that index the list's own vertices instead of copying them, and smaller nodes): on
  * the scale benchmark's 1M-atom QuickSurf (2.9M triangles) Embree's peak went from 342 to
@@ -197,36 +208,92 @@ static size_t scene_triangles(const ms_scene *s)
  * Morton-code build of the same scene peaked at 248 MB.) */
 #define COMPACT_TRIS ((size_t)1 << 20)
 
-/* The Embree scene of every placed list's opaque or transparent geometries. */
-static int add_scene(rt_world *w, const ms_scene *s, int trans, ms_error *err)
+/* A new Embree scene for opaque or transparent geometries, with tris triangles in all; NULL
+ * with err set. */
+static RTCScene new_scene(rt_world *w, int trans, size_t tris, ms_error *err)
 {
-    RTCScene sc = w->scene[trans] = rtcNewScene(w->dev);
-    if (!sc) return no_scene(w, err);
+    RTCScene sc = rtcNewScene(w->dev);
+    if (!sc) {
+        no_scene(w, err);
+        return NULL;
+    }
     /* the transparent part is walked only by rays the opaque part let through: a quick build
      * traced as fast there (measured on a 1M-triangle surface: 0.3 s of CPU saved) */
     rtcSetSceneBuildQuality(sc, trans ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
-    if (scene_triangles(s) >= COMPACT_TRIS) rtcSetSceneFlags(sc, RTC_SCENE_FLAG_COMPACT);
-    w->part[trans] = w->geoms + w->ngeoms;
+    if (tris >= COMPACT_TRIS) rtcSetSceneFlags(sc, RTC_SCENE_FLAG_COMPACT);
+    return sc;
+}
+
+/* The meshes of the sources sharing source first's transform (when trans, their transparent
+ * ones): a scene of the lists' own vertices, placed in the world's scene by an instance of
+ * the transform (moving the vertices would copy 12 bytes of each). */
+static int add_meshes(rt_world *w, size_t first, int trans, ms_error *err)
+{
+    RTCScene sub = new_scene(w, trans, group_triangles(w, first), err);
+    if (!sub) return -1;
+    rt_geom *g0 = &w->geoms[w->ngeoms];
+    unsigned n = 0;
+    for (size_t i = first; i < w->set.n; i++) {
+        if (w->placed[i].group != first) continue;
+        int rc = add_geom(w, sub, n, &w->set.src[i], &w->placed[i], RT_MESH, trans, 0, NULL, err);
+        if (rc < 0) goto fail;
+        n += (unsigned)rc;
+    }
+    rtcCommitScene(sub);
+    if (rt_device_check(w->dev, "Embree build", err)) goto fail;
+    if (n) {
+        RTCGeometry inst = rtcNewGeometry(w->dev, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, sub);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, w->placed[first].x.xf);
+        rtcCommitGeometry(inst);
+        rtcAttachGeometryByID(w->scene[trans], inst, (unsigned)w->npart[trans]);
+        rtcReleaseGeometry(inst);
+        w->part[trans][w->npart[trans]++] = g0;
+    }
+    rtcReleaseScene(sub);
+    return rt_device_check(w->dev, "Embree instance", err);
+fail:
+    rtcReleaseScene(sub);
+    return -1;
+}
+
+/* The Embree scene of every placed list's opaque or transparent geometries: the world-space
+ * ones, then an instance per transform with meshes. */
+static int add_scene(rt_world *w, const ms_scene *s, int trans, ms_error *err)
+{
+    RTCScene sc = w->scene[trans] = new_scene(w, trans, scene_triangles(s), err);
+    w->part[trans] = rt_world_alloc(w, w->set.n * RT_NKINDS, sizeof(rt_geom *), err);
+    if (!sc || !w->part[trans]) return -1;
     /* cylinders first: they may take the spheres on their ends */
-    static const rt_kind order[RT_NKINDS] = {RT_CYLINDER, RT_SPHERE, RT_CONE, RT_RING, RT_MESH};
+    static const rt_kind order[] = {RT_CYLINDER, RT_SPHERE, RT_CONE, RT_RING};
     for (size_t i = 0; i < w->set.n; i++) {
         const source *src = &w->set.src[i];
         uint8_t *taken = NULL;
-        for (int k = 0; k < RT_NKINDS && !w->placed[i].skip; k++)
-            if (add_geom(w, src, &w->placed[i], order[k], trans, has_user_kinds(src, trans), &taken, err))
-                return -1;
+        for (int k = 0; k < 4 && !w->placed[i].skip; k++) {
+            rt_geom *g = &w->geoms[w->ngeoms];
+            int rc = add_geom(w, sc, (unsigned)w->npart[trans], src, &w->placed[i], order[k], trans,
+                              has_user_kinds(src, trans), &taken, err);
+            if (rc < 0) return -1;
+            if (rc) w->part[trans][w->npart[trans]++] = g;
+        }
     }
+    for (size_t i = 0; i < w->set.n; i++)
+        if (w->placed[i].group == i && !w->placed[i].skip && add_meshes(w, i, trans, err)) return -1;
     rtcCommitScene(sc);
     return rt_device_check(w->dev, "Embree build", err);
 }
 
-/* Every source's list in world space. */
+/* Every source's list in world space, and the first source of its transform. */
 static int place_sources(rt_world *w, ms_error *err)
 {
+    const source *src = w->set.src;
     for (size_t i = 0; i < w->set.n; i++) {
-        int rc = rt_place(w, &w->set.src[i], &w->placed[i], err);
+        int rc = rt_place(w, &src[i], &w->placed[i], err);
         if (rc < 0) return -1;
         w->placed[i].skip = rc > 0;
+        size_t j = 0;
+        while (j < i && memcmp(src[j].xform, src[i].xform, 16 * sizeof(float))) j++;
+        w->placed[i].group = j;
     }
     return 0;
 }
