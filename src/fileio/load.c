@@ -196,7 +196,10 @@ static int bulk_check(sink_state *st, const ms_atom_columns *c)
 {
     for (int f = 0; f < F_NFIELDS; f++) {
         const uint32_t *x = c->str[f];
-        for (size_t i = 0; x && i < c->n; i++)
+        uint32_t most = 0;
+        for (size_t i = 0; x && i < c->n; i++) most = x[i] > most ? x[i] : most;
+        if (!x || most < st->nstrings[f]) continue;
+        for (size_t i = 0; i < c->n; i++)
             if (x[i] >= st->nstrings[f]) {
                 ms_error_set(st->err, "atom %zu: %s index %u is outside its table of %zu",
                              st->m->atoms.n + i + 1, sink_field_name[f], (unsigned)x[i],
@@ -208,7 +211,7 @@ static int bulk_check(sink_state *st, const ms_atom_columns *c)
 }
 
 /* The string fields of atoms first.., interned atom by atom in the order add_atom would. */
-static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
+static int bulk_strings_ordered(sink_state *st, const ms_atom_columns *c, size_t first)
 {
     ms_atoms *a = &st->m->atoms;
     ms_str *dst[F_NFIELDS] = {a->name + first, a->type + first, a->resname + first,
@@ -231,6 +234,35 @@ static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
     return 0;
 }
 
+/* The same one column at a time, when every string the atoms name is interned already (all
+ * but the first chunks of a large file): the ids are then the same. 1 when a string is new,
+ * and the ordered pass must intern it. */
+static int bulk_strings_known(sink_state *st, const ms_atom_columns *c, size_t first)
+{
+    ms_atoms *a = &st->m->atoms;
+    ms_str *dst[F_NFIELDS] = {a->name + first, a->type + first, a->resname + first,
+                              a->segname + first, a->chain + first};
+    for (int f = 0; f < F_NFIELDS; f++) {
+        if (!c->str[f]) return 1;
+        const uint32_t *x = c->str[f];
+        const ms_str *ids = st->interned[f];
+        ms_str *d = dst[f];
+        ms_str any_new = 0;
+        for (size_t i = 0; i < c->n; i++) {
+            ms_str id = ids[x[i]];
+            any_new |= id == MS_STR_NONE;
+            d[i] = id;
+        }
+        if (any_new) return 1;
+    }
+    return 0;
+}
+
+static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
+{
+    return bulk_strings_known(st, c, first) ? bulk_strings_ordered(st, c, first) : 0;
+}
+
 /* The number columns of atoms first..; absent ones stay blank for the defaults. */
 static void bulk_numbers(ms_atoms *a, const ms_atom_columns *c, size_t first)
 {
@@ -246,6 +278,22 @@ static void bulk_numbers(ms_atoms *a, const ms_atom_columns *c, size_t first)
     }
 }
 
+/* Room for c's atoms: the arrays they fill whole (the strings, the columns c has, mass and
+ * radius, which the defaults write when absent, residues and fragments, which the analysis
+ * writes) are not zeroed first. */
+static long add_bulk_atoms(ms_molecule *m, const ms_atom_columns *c, ms_error *err)
+{
+    ms_atoms *a = &m->atoms;
+    void *given[16] = {&a->name, &a->type,    &a->resname, &a->segname,
+                       &a->chain, &a->mass,   &a->radius,  &a->residue, &a->fragment};
+    size_t n = 9;
+    const void *col[] = {c->resid, c->beta, c->occupancy, c->charge, c->atomicnumber};
+    void *field[] = {&a->resid, &a->beta, &a->occupancy, &a->charge, &a->atomicnumber};
+    for (size_t k = 0; k < MS_COUNTOF(col); k++)
+        if (col[k]) given[n++] = field[k];
+    return ms_mol_add_atoms_given(m, c->n, given, n, err);
+}
+
 static int sink_add_atoms(ms_struct_sink *s, const ms_atom_columns *c)
 {
     sink_state *st = (sink_state *)s;
@@ -255,7 +303,7 @@ static int sink_add_atoms(ms_struct_sink *s, const ms_atom_columns *c)
         ms_error_set(st->err, "more than 2^31 atoms");
         return -1;
     }
-    if (bulk_check(st, c) || ms_mol_add_blank_atoms(m, c->n, st->err) < 0) return -1;
+    if (bulk_check(st, c) || add_bulk_atoms(m, c, st->err) < 0) return -1;
     if (bulk_strings(st, c, n0)) goto fail;
     bulk_numbers(&m->atoms, c, n0);
     ms_analysis_atoms_defaults(m, n0, c->n, c->mass != NULL, c->radius != NULL);
@@ -270,6 +318,21 @@ fail:
     return -1;
 }
 
+/* Orders are kept from the first bond whose order is not 1 on: until then there is no
+ * array (most files' bonds are all single), after it orders[0 .. npairs) are all set. */
+static int sink_keep_orders(sink_state *st, size_t n, const float *order)
+{
+    size_t np = st->npairs, k = 0;
+    while (!st->any_order && order && k < n && order[k] == 1.0f) k++;
+    if (!st->any_order && (!order || k == n)) return 0;
+    if (ms_grow((void **)&st->orders, &st->orders_cap, np + n, sizeof(float))) return -1;
+    if (!st->any_order)
+        for (size_t q = 0; q < np; q++) st->orders[q] = 1.0f;
+    st->any_order = 1;
+    for (k = 0; k < n; k++) st->orders[np + k] = order ? order[k] : 1.0f;
+    return 0;
+}
+
 static int sink_add_bonds(ms_struct_sink *s, size_t n, const uint32_t *from, const uint32_t *to,
                           const float *order)
 {
@@ -277,16 +340,14 @@ static int sink_add_bonds(ms_struct_sink *s, size_t n, const uint32_t *from, con
     size_t np = st->npairs;
     if (n > SIZE_MAX / 2 - np ||
         ms_grow((void **)&st->pairs, &st->pairs_cap, 2 * (np + n), sizeof(uint32_t)) ||
-        ms_grow((void **)&st->orders, &st->orders_cap, np + n, sizeof(float))) {
+        sink_keep_orders(st, n, order)) {
         ms_error_set(st->err, "out of memory for bonds");
         return -1;
     }
+    uint32_t *p = st->pairs + 2 * np;
     for (size_t k = 0; k < n; k++) {
-        st->pairs[2 * (np + k)] = from[k];
-        st->pairs[2 * (np + k) + 1] = to[k];
-        float o = order ? order[k] : 1.0f;
-        st->orders[np + k] = o;
-        if (o != 1.0f) st->any_order = 1;
+        p[2 * k] = from[k];
+        p[2 * k + 1] = to[k];
     }
     st->npairs += n;
     return 0;
