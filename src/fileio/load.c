@@ -234,33 +234,71 @@ static int bulk_strings_ordered(sink_state *st, const ms_atom_columns *c, size_t
     return 0;
 }
 
-/* The same one column at a time, when every string the atoms name is interned already (all
- * but the first chunks of a large file): the ids are then the same. 1 when a string is new,
- * and the ordered pass must intern it. */
-static int bulk_strings_known(sink_state *st, const ms_atom_columns *c, size_t first)
+/* A string index a chunk names before it is interned: where it first appears. Its slot in
+ * interned[] holds STR_PENDING until the chunk's new strings are interned in atom order. */
+#define STR_PENDING (MS_STR_NONE - 1)   /* never an id: a table cannot hold 2^32 - 2 strings */
+typedef struct first_use {
+    size_t i;
+    int f;
+} first_use;
+
+static int first_use_cmp(const void *a, const void *b)
 {
+    const first_use *x = a, *y = b;
+    if (x->i != y->i) return x->i < y->i ? -1 : 1;
+    return x->f - y->f;
+}
+
+/* The column of field f: ids of known strings; the first use of each new one appended to
+ * *uses. 1 when some atom's id is pending, -1 when memory runs out. */
+static int bulk_column(sink_state *st, const ms_atom_columns *c, int f, ms_str *d,
+                       first_use **uses, size_t *nuses, size_t *cap)
+{
+    const uint32_t *x = c->str[f];
+    ms_str *ids = st->interned[f];
+    int pending = 0;
+    for (size_t i = 0; i < c->n; i++) {
+        ms_str id = ids[x[i]];
+        d[i] = id;
+        if (id < STR_PENDING) continue;
+        pending = 1;
+        if (id == STR_PENDING) continue;
+        if (ms_grow((void **)uses, cap, *nuses + 1, sizeof **uses)) return -1;
+        (*uses)[(*nuses)++] = (first_use){i, f};
+        ids[x[i]] = STR_PENDING;
+    }
+    return pending;
+}
+
+/* The string fields of atoms first.., a column at a time; strings new to the molecule are
+ * interned in the order add_atom would meet them (atom by atom, field by field), so the
+ * ids are the same. */
+static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
+{
+    for (int f = 0; f < F_NFIELDS; f++)
+        if (!c->str[f]) return bulk_strings_ordered(st, c, first);
     ms_atoms *a = &st->m->atoms;
     ms_str *dst[F_NFIELDS] = {a->name + first, a->type + first, a->resname + first,
                               a->segname + first, a->chain + first};
-    for (int f = 0; f < F_NFIELDS; f++) {
-        if (!c->str[f]) return 1;
-        const uint32_t *x = c->str[f];
-        const ms_str *ids = st->interned[f];
-        ms_str *d = dst[f];
-        ms_str any_new = 0;
-        for (size_t i = 0; i < c->n; i++) {
-            ms_str id = ids[x[i]];
-            any_new |= id == MS_STR_NONE;
-            d[i] = id;
-        }
-        if (any_new) return 1;
+    first_use *uses = NULL;
+    size_t nuses = 0, cap = 0;
+    int pending[F_NFIELDS], rc = 0;
+    for (int f = 0; f < F_NFIELDS && rc >= 0; f++)
+        rc = pending[f] = bulk_column(st, c, f, dst[f], &uses, &nuses, &cap);
+    if (nuses) qsort(uses, nuses, sizeof *uses, first_use_cmp);
+    for (size_t k = 0; k < nuses && rc >= 0; k++) {
+        int f = uses[k].f;
+        uint32_t x = c->str[f][uses[k].i];
+        ms_str id = ms_strtab_intern_cstr(st->m->strings, st->strings[f][x]);
+        st->interned[f][x] = id;
+        if (id == MS_STR_NONE) rc = -1;
     }
-    return 0;
-}
-
-static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
-{
-    return bulk_strings_known(st, c, first) ? bulk_strings_ordered(st, c, first) : 0;
+    free(uses);
+    for (int f = 0; f < F_NFIELDS && rc >= 0; f++)
+        for (size_t i = 0; pending[f] && i < c->n; i++)
+            if (dst[f][i] >= STR_PENDING) dst[f][i] = st->interned[f][c->str[f][i]];
+    if (rc < 0) ms_error_set(st->err, "out of memory for atom names");
+    return rc < 0 ? -1 : 0;
 }
 
 /* The number columns of atoms first..; absent ones stay blank for the defaults. */
