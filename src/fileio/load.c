@@ -191,22 +191,20 @@ static int sink_set_strings(ms_struct_sink *s, int field, size_t n, const char *
     return 0;
 }
 
-/* Every string index of c names a string set_strings gave. */
-static int bulk_check(sink_state *st, const ms_atom_columns *c)
+/* An error naming atom i's index x of field f, outside its table. */
+static int bad_index(sink_state *st, size_t i, int f, uint32_t x)
 {
-    for (int f = 0; f < F_NFIELDS; f++) {
-        const uint32_t *x = c->str[f];
-        uint32_t most = 0;
-        for (size_t i = 0; x && i < c->n; i++) most = x[i] > most ? x[i] : most;
-        if (!x || most < st->nstrings[f]) continue;
-        for (size_t i = 0; i < c->n; i++)
-            if (x[i] >= st->nstrings[f]) {
-                ms_error_set(st->err, "atom %zu: %s index %u is outside its table of %zu",
-                             st->m->atoms.n + i + 1, sink_field_name[f], (unsigned)x[i],
-                             st->nstrings[f]);
-                return -1;
-            }
-    }
+    ms_error_set(st->err, "atom %zu: %s index %u is outside its table of %zu", i + 1,
+                 sink_field_name[f], (unsigned)x, st->nstrings[f]);
+    return -1;
+}
+
+/* Every string index of c (atoms first..) names a string set_strings gave. */
+static int bulk_check(sink_state *st, const ms_atom_columns *c, size_t first)
+{
+    for (int f = 0; f < F_NFIELDS; f++)
+        for (size_t i = 0; c->str[f] && i < c->n; i++)
+            if (c->str[f][i] >= st->nstrings[f]) return bad_index(st, first + i, f, c->str[f][i]);
     return 0;
 }
 
@@ -251,21 +249,27 @@ static int first_use_cmp(const void *a, const void *b)
 
 /* The column of field f: ids of known strings; the first use of each new one appended to
  * *uses. 1 when some atom's id is pending, -1 when memory runs out. */
-static int bulk_column(sink_state *st, const ms_atom_columns *c, int f, ms_str *d,
-                       first_use **uses, size_t *nuses, size_t *cap)
+static int bulk_column(sink_state *st, const ms_atom_columns *c, size_t first, int f,
+                       ms_str *d, first_use **uses, size_t *nuses, size_t *cap)
 {
     const uint32_t *x = c->str[f];
     ms_str *ids = st->interned[f];
+    size_t n = c->n, nstr = st->nstrings[f];
     int pending = 0;
-    for (size_t i = 0; i < c->n; i++) {
-        ms_str id = ids[x[i]];
+    for (size_t i = 0; i < n; i++) {
+        uint32_t xi = x[i];
+        if (xi >= nstr) return bad_index(st, first + i, f, xi);
+        ms_str id = ids[xi];
         d[i] = id;
         if (id < STR_PENDING) continue;
         pending = 1;
         if (id == STR_PENDING) continue;
-        if (ms_grow((void **)uses, cap, *nuses + 1, sizeof **uses)) return -1;
+        if (ms_grow((void **)uses, cap, *nuses + 1, sizeof **uses)) {
+            ms_error_set(st->err, "out of memory for atom names");
+            return -1;
+        }
         (*uses)[(*nuses)++] = (first_use){i, f};
-        ids[x[i]] = STR_PENDING;
+        ids[xi] = STR_PENDING;
     }
     return pending;
 }
@@ -276,7 +280,7 @@ static int bulk_column(sink_state *st, const ms_atom_columns *c, int f, ms_str *
 static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
 {
     for (int f = 0; f < F_NFIELDS; f++)
-        if (!c->str[f]) return bulk_strings_ordered(st, c, first);
+        if (!c->str[f]) return bulk_check(st, c, first) || bulk_strings_ordered(st, c, first);
     ms_atoms *a = &st->m->atoms;
     ms_str *dst[F_NFIELDS] = {a->name + first, a->type + first, a->resname + first,
                               a->segname + first, a->chain + first};
@@ -284,20 +288,22 @@ static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
     size_t nuses = 0, cap = 0;
     int pending[F_NFIELDS], rc = 0;
     for (int f = 0; f < F_NFIELDS && rc >= 0; f++)
-        rc = pending[f] = bulk_column(st, c, f, dst[f], &uses, &nuses, &cap);
+        rc = pending[f] = bulk_column(st, c, first, f, dst[f], &uses, &nuses, &cap);
     if (nuses) qsort(uses, nuses, sizeof *uses, first_use_cmp);
     for (size_t k = 0; k < nuses && rc >= 0; k++) {
         int f = uses[k].f;
         uint32_t x = c->str[f][uses[k].i];
         ms_str id = ms_strtab_intern_cstr(st->m->strings, st->strings[f][x]);
         st->interned[f][x] = id;
-        if (id == MS_STR_NONE) rc = -1;
+        if (id == MS_STR_NONE) {
+            ms_error_set(st->err, "out of memory for atom names");
+            rc = -1;
+        }
     }
     free(uses);
     for (int f = 0; f < F_NFIELDS && rc >= 0; f++)
         for (size_t i = 0; pending[f] && i < c->n; i++)
             if (dst[f][i] >= STR_PENDING) dst[f][i] = st->interned[f][c->str[f][i]];
-    if (rc < 0) ms_error_set(st->err, "out of memory for atom names");
     return rc < 0 ? -1 : 0;
 }
 
@@ -341,7 +347,7 @@ static int sink_add_atoms(ms_struct_sink *s, const ms_atom_columns *c)
         ms_error_set(st->err, "more than 2^31 atoms");
         return -1;
     }
-    if (bulk_check(st, c) || add_bulk_atoms(m, c, st->err) < 0) return -1;
+    if (add_bulk_atoms(m, c, st->err) < 0) return -1;
     if (bulk_strings(st, c, n0)) goto fail;
     bulk_numbers(&m->atoms, c, n0);
     ms_analysis_atoms_defaults(m, n0, c->n, c->mass != NULL, c->radius != NULL);
