@@ -98,23 +98,34 @@ void ms_analysis_atoms_defaults(ms_molecule *m, size_t first, size_t n, int have
 
 static int residues_build(ms_molecule *m, ms_error *err)
 {
-    ms_atoms *a = &m->atoms;
-    size_t n = a->n, nres = 0;
+    const ms_atoms *a = &m->atoms;
+    const int32_t *resid = a->resid;
+    const char *ins = a->insertion;
+    const ms_str *chain = a->chain, *seg = a->segname;
+    int32_t *residue = a->residue;
+    size_t n = a->n, nres = 0, cap = 0;
+    uint32_t *rs = NULL;   /* each residue's first atom, found in the same pass */
     for (size_t i = 0; i < n; i++) {
-        if (i == 0 || a->resid[i] != a->resid[i - 1] || a->insertion[i] != a->insertion[i - 1] ||
-            a->chain[i] != a->chain[i - 1] || a->segname[i] != a->segname[i - 1])
-            nres++;
-        a->residue[i] = (int32_t)(nres - 1);
+        if (i == 0 || resid[i] != resid[i - 1] || ins[i] != ins[i - 1] ||
+            chain[i] != chain[i - 1] || seg[i] != seg[i - 1]) {
+            if (ms_grow((void **)&rs, &cap, nres + 2, sizeof *rs)) {
+                free(rs);
+                ms_error_set(err, "out of memory for %zu residues", nres + 1);
+                return -1;
+            }
+            rs[nres++] = (uint32_t)i;
+        }
+        residue[i] = (int32_t)(nres - 1);
     }
-    uint32_t *rs = ms_alloc_array(nres + 1, sizeof *rs);
-    if (!rs) {
+    uint32_t *fit = realloc(rs, (nres + 1) * sizeof *rs);
+    if (!fit) {
+        free(rs);
         ms_error_set(err, "out of memory for %zu residues", nres);
         return -1;
     }
-    for (size_t i = n; i-- > 0;) rs[a->residue[i]] = (uint32_t)i;
-    rs[nres] = (uint32_t)n;
+    fit[nres] = (uint32_t)n;
     free(m->res_start);
-    m->res_start = rs;
+    m->res_start = fit;
     m->nresidues = nres;
     return 0;
 }
@@ -331,20 +342,19 @@ static int classify_residues(ms_molecule *m, ms_error *err)
                                           MS_AF_NUC_BB | MS_AF_WATER);
     for (size_t r = 0; r < m->nresidues; r++) {
         size_t first = m->res_start[r], last = m->res_start[r + 1];
-        for (size_t i = first; i < last; i++) a->flags[i] &= cleared;
-        uint16_t whole = 0;
+        uint16_t whole = 0, bb = 0;   /* bb: the flag of the atoms best[] marks */
         if (class_of(&c, a->resname[first]) & NC_WATER) {
             whole = MS_AF_WATER;
         } else if (residue_backbone(&c, r, MS_AF_PROT_BB) >= 4) {
             whole = MS_AF_PROTEIN;
-            for (size_t i = first; i < last; i++)
-                if (c.best[i - first]) a->flags[i] |= MS_AF_PROT_BB;
+            bb = MS_AF_PROT_BB;
         } else if (residue_backbone(&c, r, MS_AF_NUC_BB) >= 4) {
             whole = MS_AF_NUCLEIC;
-            for (size_t i = first; i < last; i++)
-                if (c.best[i - first]) a->flags[i] |= MS_AF_NUC_BB;
+            bb = MS_AF_NUC_BB;
         }
-        for (size_t i = first; i < last; i++) a->flags[i] |= whole;
+        for (size_t i = first; i < last; i++)
+            a->flags[i] = (uint16_t)((a->flags[i] & cleared) | whole |
+                                     (bb && c.best[i - first] ? bb : 0));
     }
     classify_ctx_free(&c);
     return 0;
