@@ -36,6 +36,14 @@ static void guess_init(const ms_molecule *m, ms_str name, ms_str resname, atom_g
     g->name_radius = ms_element_radius_from_name(s);
 }
 
+static void set_hydrogen(ms_atoms *a, size_t i, int hydrogen)
+{
+    if (hydrogen)
+        a->flags[i] |= MS_AF_HYDROGEN;
+    else
+        a->flags[i] &= (uint16_t)~MS_AF_HYDROGEN;
+}
+
 static void defaults_apply(ms_molecule *m, size_t i, atom_guess *g, int have_mass,
                            int have_radius, int have_element)
 {
@@ -49,10 +57,7 @@ static void defaults_apply(ms_molecule *m, size_t i, atom_guess *g, int have_mas
         a->radius[i] = have_element && a->atomicnumber[i]
                            ? ms_element_vdw_radius(a->atomicnumber[i])
                            : g->name_radius;
-    if (g->hydrogen)
-        a->flags[i] |= MS_AF_HYDROGEN;
-    else
-        a->flags[i] &= (uint16_t)~MS_AF_HYDROGEN;
+    set_hydrogen(a, i, g->hydrogen);
 }
 
 void ms_analysis_atom_defaults(ms_molecule *m, size_t i, int have_mass, int have_radius,
@@ -76,9 +81,18 @@ void ms_analysis_atoms_defaults(ms_molecule *m, size_t first, size_t n, int have
         return;
     }
     for (size_t k = 0; k < SLOTS; k++) cache[k].name = MS_STR_NONE;
-    const ms_atoms *a = &m->atoms;
+    ms_atoms *a = &m->atoms;
+    /* An atom with its mass, radius and element given needs only its hydrogen flag, which
+     * its name decides: one byte a distinct name (0 not known yet, 1 no, 2 hydrogen). */
+    uint32_t nstr = ms_strtab_count(m->strings);
+    uint8_t *hyd = have_mass && have_radius && nstr <= 4 * n + 65536 ? calloc(nstr, 1) : NULL;
     for (size_t i = first; i < first + n; i++) {
         ms_str name = a->name[i], res = a->resname[i];
+        if (hyd && a->atomicnumber[i] && name < nstr) {
+            if (!hyd[name]) hyd[name] = (uint8_t)(1 + name_is_hydrogen(ms_mol_str(m, name)));
+            set_hydrogen(a, i, hyd[name] == 2);
+            continue;
+        }
         uint32_t home = (uint32_t)(name * 2654435761u ^ res * 40503u * 2246822519u) >> 20;
         atom_guess *g = &cache[home];
         for (uint32_t p = 0; p < PROBES; p++) {
@@ -91,6 +105,7 @@ void ms_analysis_atoms_defaults(ms_molecule *m, size_t first, size_t n, int have
         if (g->name != name || g->resname != res) guess_init(m, name, res, g);
         defaults_apply(m, i, g, have_mass, have_radius, a->atomicnumber[i] != 0);
     }
+    free(hyd);
     free(cache);
 }
 
