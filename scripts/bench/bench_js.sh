@@ -71,7 +71,7 @@ if [ -z "${JS_ONLY:-}" ]; then
     echo "   PDB load $pdb_s s (cpu $pdb_cpu s); one thread $pdb1_s s (cpu $pdb1_cpu s, the load $pdb1_load s); js written in $write_s s"
 fi
 
-size=$(stat -c %s $js)
+size=$(stat -L -c %s $js)
 cat $js > /dev/null
 cache=$(for i in 1 2 3; do
     s=$(date +%s.%N); dd if=$js of=/dev/null bs=16M status=none; e=$(date +%s.%N)
