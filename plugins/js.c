@@ -327,17 +327,30 @@ static int js_read_chunk(js_reader *r, js_chunk *c, long first, long n, ms_perr 
     return MS_PLUGIN_OK;
 }
 
-/* The string indices of the k-th atom of a chunk (atom i of the file), checked. */
-static int js_atom_strings(const js_reader *r, const js_chunk *c, long i, long k, ms_perr *err)
+/* The string indices of a chunk's n atoms (the first is atom `first` of the file), checked
+ * and widened one column at a time; an error names the first bad atom, and its first bad
+ * field. */
+static int js_chunk_strings(const js_reader *r, const js_chunk *c, long first, long n,
+                            ms_perr *err)
 {
+    long bad = n;
+    int bad_field = 0;
     for (int f = 0; f < T_N; f++) {
-        int x = c->idx[f][k];
-        if (x < 0 || x >= r->count[f])
-            return ms_perr_set(err, "atom %ld: %s index %d is outside its table of %d", i + 1,
-                               js_table_name[f], x, r->count[f]);
-        c->str[f][k] = (uint32_t)x;
+        const int16_t *x = c->idx[f];
+        uint32_t *dst = c->str[f], most = 0;
+        for (long k = 0; k < n; k++) {
+            uint32_t v = (uint32_t)(int32_t)x[k];   /* a negative index becomes huge */
+            dst[k] = v;
+            most = v > most ? v : most;
+        }
+        if (most < (uint32_t)r->count[f]) continue;
+        long k = 0;
+        while (k < n && dst[k] < (uint32_t)r->count[f]) k++;
+        if (k < bad) bad = k, bad_field = f;
     }
-    return MS_PLUGIN_OK;
+    if (bad == n) return MS_PLUGIN_OK;
+    return ms_perr_set(err, "atom %ld: %s index %d is outside its table of %d", first + bad + 1,
+                       js_table_name[bad_field], c->idx[bad_field][bad], r->count[bad_field]);
 }
 
 /* Atom k of a chunk as a record pointing into the tables (the one-atom-a-call path). */
@@ -402,8 +415,7 @@ static int js_set_strings(const js_reader *r, const js_tables *t, ms_struct_sink
 static int js_give_chunk(js_reader *r, const js_tables *t, const js_chunk *c, long first,
                          long n, int bulk, ms_struct_sink *sink, ms_perr *err)
 {
-    for (long k = 0; k < n; k++)
-        if (js_atom_strings(r, c, first + k, k, err)) return MS_PLUGIN_ERROR;
+    if (js_chunk_strings(r, c, first, n, err)) return MS_PLUGIN_ERROR;
     if (bulk) {
         ms_atom_columns col;
         js_chunk_columns(r, c, n, &col);

@@ -189,30 +189,62 @@ void ms_view_rock_step(ms_world *w)
 
 /* ---------------------------------------------------------------- resetview */
 
-/* Mean position and VMD's scale of atoms idx[0..n) (all n atoms when idx is NULL). */
-static void atoms_cov(const float *pos, const uint32_t *idx, size_t n, float center[3],
-                      float *scale)
-{
-    double c[3] = {0, 0, 0};
+/* The sums atoms_cov takes over, in ascending atom order. */
+typedef struct cov_sum {
+    double c[3];
     float lo[3], hi[3];
-    size_t i0 = idx ? idx[0] : 0;
-    for (int k = 0; k < 3; k++) lo[k] = hi[k] = pos[3 * i0 + k];
-    for (size_t j = 0; j < n; j++) {
-        size_t i = idx ? idx[j] : j;
+    size_t n;
+} cov_sum;
+
+static void cov_start(cov_sum *s, const float *p)
+{
+    memset(s->c, 0, sizeof s->c);
+    memcpy(s->lo, p, sizeof s->lo);
+    memcpy(s->hi, p, sizeof s->hi);
+    s->n = 0;
+}
+
+/* Atoms [i0, i1) of pos into s. */
+static void cov_run(cov_sum *s, const float *pos, size_t i0, size_t i1)
+{
+    for (size_t i = i0; i < i1; i++)
         for (int k = 0; k < 3; k++) {
             float x = pos[3 * i + k];
-            c[k] += x;
-            if (x < lo[k]) lo[k] = x;
-            if (x > hi[k]) hi[k] = x;
+            s->c[k] += x;
+            if (x < s->lo[k]) s->lo[k] = x;
+            if (x > s->hi[k]) s->hi[k] = x;
+        }
+    s->n += i1 - i0;
+}
+
+/* Mean position and VMD's scale of the atoms in `in` (all n atoms when in is NULL): whole
+ * words of the set as runs, the others bit by bit. */
+static void atoms_cov(const float *pos, const ms_bitset *in, size_t n, float center[3],
+                      float *scale)
+{
+    cov_sum s;
+    size_t nw = in ? ms_bitset_nwords(in) : 0, w0 = 0;
+    while (w0 < nw && !in->words[w0]) w0++;
+    cov_start(&s, pos + 3 * (in ? 64 * w0 + (size_t)__builtin_ctzll(in->words[w0]) : 0));
+    if (!in) cov_run(&s, pos, 0, n);
+    for (size_t w = w0; w < nw; w++) {
+        uint64_t bits = in->words[w];
+        if (bits == ~(uint64_t)0) {
+            cov_run(&s, pos, 64 * w, 64 * w + 64);
+            continue;
+        }
+        for (; bits; bits &= bits - 1) {
+            size_t i = 64 * w + (size_t)__builtin_ctzll(bits);
+            cov_run(&s, pos, i, i + 1);
         }
     }
-    for (int k = 0; k < 3; k++) center[k] = (float)(c[k] / (double)n);
+    for (int k = 0; k < 3; k++) center[k] = (float)(s.c[k] / (double)s.n);
     /* VMD starts from the x extent (3 when it is zero, so one atom gets 0.5), then takes the
      * larger of the y and z extents. */
-    float ext = hi[0] - lo[0];
+    float ext = s.hi[0] - s.lo[0];
     if (ext == 0.0f) ext = 3.0f;
-    ext = MS_MAX(ext, hi[1] - lo[1]);
-    ext = MS_MAX(ext, hi[2] - lo[2]);
+    ext = MS_MAX(ext, s.hi[1] - s.lo[1]);
+    ext = MS_MAX(ext, s.hi[2] - s.lo[2]);
     *scale = 1.5f / ext;
 }
 
@@ -237,11 +269,10 @@ static void volumes_cov(const ms_molecule *m, float center[3], float *scale)
 int ms_view_mol_cov(ms_world *w, ms_molecule *m, float center[3], float *scale)
 {
     const float *pos = ms_mol_pos(m);
-    uint32_t *shown;
-    size_t nshown;
-    if (ms_rep_shown_atoms(w->reps, m, &shown, &nshown)) {
-        atoms_cov(pos, shown, nshown, center, scale);
-        free(shown);
+    ms_bitset shown;
+    if (ms_rep_shown_atoms(w->reps, m, &shown)) {
+        atoms_cov(pos, &shown, 0, center, scale);
+        ms_bitset_free(&shown);
         return 1;
     }
     if (pos && m->atoms.n) {

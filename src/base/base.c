@@ -86,6 +86,17 @@ void ms_advise_huge(void *p, size_t bytes)
 #endif
 }
 
+void ms_prefault(void *p, size_t bytes)
+{
+#ifdef MADV_POPULATE_WRITE
+    const uintptr_t page = 4096;
+    uintptr_t a = ((uintptr_t)p + page - 1) & ~(page - 1), e = ((uintptr_t)p + bytes) & ~(page - 1);
+    if (p && bytes >= ((size_t)1 << 20) && e > a) madvise((void *)a, e - a, MADV_POPULATE_WRITE);
+#else
+    (void)p, (void)bytes;
+#endif
+}
+
 char *ms_strdup(const char *s)
 {
     size_t n = strlen(s) + 1;

@@ -33,6 +33,12 @@ void *ms_calloc_array(size_t n, size_t elsize);
 /* Ask for huge pages under the 2 MB-aligned part of a large buffer (a hint; no error): a
  * buffer about to be filled takes one page fault per 2 MB instead of one per 4 kB. */
 void ms_advise_huge(void *p, size_t bytes);
+/* Commit the pages of a large buffer the caller is about to write whole, in one call rather
+ * than one page fault per 4 kB page (MADV_POPULATE_WRITE; a hint, no error, nothing on a
+ * kernel without it). The molecule's arrays take this rather than huge pages: on a virtual
+ * machine that hands freed memory back to its host, a fresh huge page is zeroed at a
+ * fraction of the speed of small ones (doc/BENCHMARKS.md, issue 23). */
+void ms_prefault(void *p, size_t bytes);
 
 /* Duplicate a string (NULL on failure). */
 char *ms_strdup(const char *s);

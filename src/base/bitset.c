@@ -76,6 +76,11 @@ size_t ms_bitset_indices(const ms_bitset *b, uint32_t *out)
     size_t c = 0;
     for (size_t i = 0, n = ms_bitset_nwords(b); i < n; i++) {
         uint64_t w = b->words[i];
+        if (w == ~(uint64_t)0) {   /* a whole word: 64 indices in a row */
+            for (uint32_t k = 0; k < 64; k++) out[c + k] = (uint32_t)(i * 64) + k;
+            c += 64;
+            continue;
+        }
         while (w) {
             out[c++] = (uint32_t)(i * 64 + (size_t)__builtin_ctzll(w));
             w &= w - 1;

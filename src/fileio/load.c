@@ -191,24 +191,25 @@ static int sink_set_strings(ms_struct_sink *s, int field, size_t n, const char *
     return 0;
 }
 
-/* Every string index of c names a string set_strings gave. */
-static int bulk_check(sink_state *st, const ms_atom_columns *c)
+/* An error naming atom i's index x of field f, outside its table. */
+static int bad_index(sink_state *st, size_t i, int f, uint32_t x)
 {
-    for (int f = 0; f < F_NFIELDS; f++) {
-        const uint32_t *x = c->str[f];
-        for (size_t i = 0; x && i < c->n; i++)
-            if (x[i] >= st->nstrings[f]) {
-                ms_error_set(st->err, "atom %zu: %s index %u is outside its table of %zu",
-                             st->m->atoms.n + i + 1, sink_field_name[f], (unsigned)x[i],
-                             st->nstrings[f]);
-                return -1;
-            }
-    }
+    ms_error_set(st->err, "atom %zu: %s index %u is outside its table of %zu", i + 1,
+                 sink_field_name[f], (unsigned)x, st->nstrings[f]);
+    return -1;
+}
+
+/* Every string index of c (atoms first..) names a string set_strings gave. */
+static int bulk_check(sink_state *st, const ms_atom_columns *c, size_t first)
+{
+    for (int f = 0; f < F_NFIELDS; f++)
+        for (size_t i = 0; c->str[f] && i < c->n; i++)
+            if (c->str[f][i] >= st->nstrings[f]) return bad_index(st, first + i, f, c->str[f][i]);
     return 0;
 }
 
 /* The string fields of atoms first.., interned atom by atom in the order add_atom would. */
-static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
+static int bulk_strings_ordered(sink_state *st, const ms_atom_columns *c, size_t first)
 {
     ms_atoms *a = &st->m->atoms;
     ms_str *dst[F_NFIELDS] = {a->name + first, a->type + first, a->resname + first,
@@ -231,6 +232,81 @@ static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
     return 0;
 }
 
+/* A string index a chunk names before it is interned: where it first appears. Its slot in
+ * interned[] holds STR_PENDING until the chunk's new strings are interned in atom order. */
+#define STR_PENDING (MS_STR_NONE - 1)   /* never an id: a table cannot hold 2^32 - 2 strings */
+typedef struct first_use {
+    size_t i;
+    int f;
+} first_use;
+
+static int first_use_cmp(const void *a, const void *b)
+{
+    const first_use *x = a, *y = b;
+    if (x->i != y->i) return x->i < y->i ? -1 : 1;
+    return x->f - y->f;
+}
+
+/* The column of field f: ids of known strings; the first use of each new one appended to
+ * *uses. 1 when some atom's id is pending, -1 when memory runs out. */
+static int bulk_column(sink_state *st, const ms_atom_columns *c, size_t first, int f,
+                       ms_str *d, first_use **uses, size_t *nuses, size_t *cap)
+{
+    const uint32_t *x = c->str[f];
+    ms_str *ids = st->interned[f];
+    size_t n = c->n, nstr = st->nstrings[f];
+    int pending = 0;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t xi = x[i];
+        if (xi >= nstr) return bad_index(st, first + i, f, xi);
+        ms_str id = ids[xi];
+        d[i] = id;
+        if (id < STR_PENDING) continue;
+        pending = 1;
+        if (id == STR_PENDING) continue;
+        if (ms_grow((void **)uses, cap, *nuses + 1, sizeof **uses)) {
+            ms_error_set(st->err, "out of memory for atom names");
+            return -1;
+        }
+        (*uses)[(*nuses)++] = (first_use){i, f};
+        ids[xi] = STR_PENDING;
+    }
+    return pending;
+}
+
+/* The string fields of atoms first.., a column at a time; strings new to the molecule are
+ * interned in the order add_atom would meet them (atom by atom, field by field), so the
+ * ids are the same. */
+static int bulk_strings(sink_state *st, const ms_atom_columns *c, size_t first)
+{
+    for (int f = 0; f < F_NFIELDS; f++)
+        if (!c->str[f]) return bulk_check(st, c, first) || bulk_strings_ordered(st, c, first);
+    ms_atoms *a = &st->m->atoms;
+    ms_str *dst[F_NFIELDS] = {a->name + first, a->type + first, a->resname + first,
+                              a->segname + first, a->chain + first};
+    first_use *uses = NULL;
+    size_t nuses = 0, cap = 0;
+    int pending[F_NFIELDS], rc = 0;
+    for (int f = 0; f < F_NFIELDS && rc >= 0; f++)
+        rc = pending[f] = bulk_column(st, c, first, f, dst[f], &uses, &nuses, &cap);
+    if (nuses) qsort(uses, nuses, sizeof *uses, first_use_cmp);
+    for (size_t k = 0; k < nuses && rc >= 0; k++) {
+        int f = uses[k].f;
+        uint32_t x = c->str[f][uses[k].i];
+        ms_str id = ms_strtab_intern_cstr(st->m->strings, st->strings[f][x]);
+        st->interned[f][x] = id;
+        if (id == MS_STR_NONE) {
+            ms_error_set(st->err, "out of memory for atom names");
+            rc = -1;
+        }
+    }
+    free(uses);
+    for (int f = 0; f < F_NFIELDS && rc >= 0; f++)
+        for (size_t i = 0; pending[f] && i < c->n; i++)
+            if (dst[f][i] >= STR_PENDING) dst[f][i] = st->interned[f][c->str[f][i]];
+    return rc < 0 ? -1 : 0;
+}
+
 /* The number columns of atoms first..; absent ones stay blank for the defaults. */
 static void bulk_numbers(ms_atoms *a, const ms_atom_columns *c, size_t first)
 {
@@ -246,6 +322,22 @@ static void bulk_numbers(ms_atoms *a, const ms_atom_columns *c, size_t first)
     }
 }
 
+/* Room for c's atoms: the arrays they fill whole (the strings, the columns c has, mass and
+ * radius, which the defaults write when absent, residues and fragments, which the analysis
+ * writes) are not zeroed first. */
+static long add_bulk_atoms(ms_molecule *m, const ms_atom_columns *c, ms_error *err)
+{
+    ms_atoms *a = &m->atoms;
+    void *given[16] = {&a->name, &a->type,    &a->resname, &a->segname,
+                       &a->chain, &a->mass,   &a->radius,  &a->residue, &a->fragment};
+    size_t n = 9;
+    const void *col[] = {c->resid, c->beta, c->occupancy, c->charge, c->atomicnumber};
+    void *field[] = {&a->resid, &a->beta, &a->occupancy, &a->charge, &a->atomicnumber};
+    for (size_t k = 0; k < MS_COUNTOF(col); k++)
+        if (col[k]) given[n++] = field[k];
+    return ms_mol_add_atoms_given(m, c->n, given, n, err);
+}
+
 static int sink_add_atoms(ms_struct_sink *s, const ms_atom_columns *c)
 {
     sink_state *st = (sink_state *)s;
@@ -255,7 +347,7 @@ static int sink_add_atoms(ms_struct_sink *s, const ms_atom_columns *c)
         ms_error_set(st->err, "more than 2^31 atoms");
         return -1;
     }
-    if (bulk_check(st, c) || ms_mol_add_blank_atoms(m, c->n, st->err) < 0) return -1;
+    if (add_bulk_atoms(m, c, st->err) < 0) return -1;
     if (bulk_strings(st, c, n0)) goto fail;
     bulk_numbers(&m->atoms, c, n0);
     ms_analysis_atoms_defaults(m, n0, c->n, c->mass != NULL, c->radius != NULL);
@@ -270,6 +362,21 @@ fail:
     return -1;
 }
 
+/* Orders are kept from the first bond whose order is not 1 on: until then there is no
+ * array (most files' bonds are all single), after it orders[0 .. npairs) are all set. */
+static int sink_keep_orders(sink_state *st, size_t n, const float *order)
+{
+    size_t np = st->npairs, k = 0;
+    while (!st->any_order && order && k < n && order[k] == 1.0f) k++;
+    if (!st->any_order && (!order || k == n)) return 0;
+    if (ms_grow((void **)&st->orders, &st->orders_cap, np + n, sizeof(float))) return -1;
+    if (!st->any_order)
+        for (size_t q = 0; q < np; q++) st->orders[q] = 1.0f;
+    st->any_order = 1;
+    for (k = 0; k < n; k++) st->orders[np + k] = order ? order[k] : 1.0f;
+    return 0;
+}
+
 static int sink_add_bonds(ms_struct_sink *s, size_t n, const uint32_t *from, const uint32_t *to,
                           const float *order)
 {
@@ -277,16 +384,14 @@ static int sink_add_bonds(ms_struct_sink *s, size_t n, const uint32_t *from, con
     size_t np = st->npairs;
     if (n > SIZE_MAX / 2 - np ||
         ms_grow((void **)&st->pairs, &st->pairs_cap, 2 * (np + n), sizeof(uint32_t)) ||
-        ms_grow((void **)&st->orders, &st->orders_cap, np + n, sizeof(float))) {
+        sink_keep_orders(st, n, order)) {
         ms_error_set(st->err, "out of memory for bonds");
         return -1;
     }
+    uint32_t *p = st->pairs + 2 * np;
     for (size_t k = 0; k < n; k++) {
-        st->pairs[2 * (np + k)] = from[k];
-        st->pairs[2 * (np + k) + 1] = to[k];
-        float o = order ? order[k] : 1.0f;
-        st->orders[np + k] = o;
-        if (o != 1.0f) st->any_order = 1;
+        p[2 * k] = from[k];
+        p[2 * k + 1] = to[k];
     }
     st->npairs += n;
     return 0;

@@ -181,6 +181,20 @@ static void sort_row(uint32_t *to, float *order, uint32_t n)
     }
 }
 
+/* Replace m's bond table by this one (untyped). */
+static void set_bonds(ms_molecule *m, uint32_t *start, uint32_t *to, float *ord)
+{
+    free(m->bonds.start);
+    free(m->bonds.to);
+    free(m->bonds.order);
+    free(m->bonds.type);
+    m->bonds.start = start;
+    m->bonds.to = to;
+    m->bonds.order = ord;
+    m->bonds.type = NULL;
+    m->has_bonds = 1;
+}
+
 int ms_bonds_build(ms_molecule *m, const uint32_t *pairs, size_t npairs, const float *order,
                    ms_error *err)
 {
@@ -188,9 +202,19 @@ int ms_bonds_build(ms_molecule *m, const uint32_t *pairs, size_t npairs, const f
     uint32_t *start = calloc(n + 2, sizeof *start);
     if (!start) goto oom;
     size_t used = 0;
+    /* Pairs given in order (i < j, ascending by i then j, as a js file lists them) fill
+     * every row already sorted and free of duplicates: no row needs sorting then. */
+    int ordered = 1;
+    uint64_t last = 0;
     for (size_t k = 0; k < npairs; k++) {
         uint32_t i = pairs[2 * k], j = pairs[2 * k + 1];
-        if (i == j || i >= n || j >= n) continue;
+        if (i == j || i >= n || j >= n) {
+            ordered = 0;
+            continue;
+        }
+        uint64_t key = (uint64_t)i << 32 | j;
+        ordered &= i < j && (k == 0 || key > last);
+        last = key;
         start[i + 2]++;
         start[j + 2]++;
         used++;
@@ -218,7 +242,12 @@ int ms_bonds_build(ms_molecule *m, const uint32_t *pairs, size_t npairs, const f
         to[sj] = i;
         if (ord) ord[si] = ord[sj] = order[k];
     }
-    /* Sort each row and drop duplicate partners, compacting in place. */
+    /* start[i] is now where row i begins (row i-1's fill cursor ended there). Unless the
+     * pairs came in order, sort each row and drop duplicate partners, compacting in place. */
+    if (ordered) {
+        set_bonds(m, start, to, ord);
+        return 0;
+    }
     uint32_t w = 0;
     for (size_t i = 0; i < n; i++) {
         uint32_t b = start[i], e = start[i + 1];
@@ -238,15 +267,7 @@ int ms_bonds_build(ms_molecule *m, const uint32_t *pairs, size_t npairs, const f
         float *s2 = realloc(ord, (w ? w : 1) * sizeof *ord);
         if (s2) ord = s2;
     }
-    free(m->bonds.start);
-    free(m->bonds.to);
-    free(m->bonds.order);
-    free(m->bonds.type);
-    m->bonds.start = start;
-    m->bonds.to = to;
-    m->bonds.order = ord;
-    m->bonds.type = NULL;
-    m->has_bonds = 1;
+    set_bonds(m, start, to, ord);
     return 0;
 oom:
     ms_error_set(err, "out of memory building the bond table (%zu bonds)", npairs);

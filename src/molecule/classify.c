@@ -36,6 +36,14 @@ static void guess_init(const ms_molecule *m, ms_str name, ms_str resname, atom_g
     g->name_radius = ms_element_radius_from_name(s);
 }
 
+static void set_hydrogen(ms_atoms *a, size_t i, int hydrogen)
+{
+    if (hydrogen)
+        a->flags[i] |= MS_AF_HYDROGEN;
+    else
+        a->flags[i] &= (uint16_t)~MS_AF_HYDROGEN;
+}
+
 static void defaults_apply(ms_molecule *m, size_t i, atom_guess *g, int have_mass,
                            int have_radius, int have_element)
 {
@@ -49,10 +57,7 @@ static void defaults_apply(ms_molecule *m, size_t i, atom_guess *g, int have_mas
         a->radius[i] = have_element && a->atomicnumber[i]
                            ? ms_element_vdw_radius(a->atomicnumber[i])
                            : g->name_radius;
-    if (g->hydrogen)
-        a->flags[i] |= MS_AF_HYDROGEN;
-    else
-        a->flags[i] &= (uint16_t)~MS_AF_HYDROGEN;
+    set_hydrogen(a, i, g->hydrogen);
 }
 
 void ms_analysis_atom_defaults(ms_molecule *m, size_t i, int have_mass, int have_radius,
@@ -66,39 +71,76 @@ void ms_analysis_atom_defaults(ms_molecule *m, size_t i, int have_mass, int have
 void ms_analysis_atoms_defaults(ms_molecule *m, size_t first, size_t n, int have_mass,
                                 int have_radius)
 {
-    enum { SLOTS = 1024 };
-    atom_guess cache[SLOTS];
+    /* An open-addressing table of (name, resname) pairs: a few probes find a pair already
+     * seen; when its probes are all taken the home slot is reused. */
+    enum { SLOTS = 4096, PROBES = 8 };
+    atom_guess *cache = malloc(SLOTS * sizeof *cache);
+    if (!cache) {
+        for (size_t i = first; i < first + n; i++)
+            ms_analysis_atom_defaults(m, i, have_mass, have_radius, m->atoms.atomicnumber[i] != 0);
+        return;
+    }
     for (size_t k = 0; k < SLOTS; k++) cache[k].name = MS_STR_NONE;
-    const ms_atoms *a = &m->atoms;
+    ms_atoms *a = &m->atoms;
+    /* An atom with its mass, radius and element given needs only its hydrogen flag, which
+     * its name decides: one byte a distinct name (0 not known yet, 1 no, 2 hydrogen). */
+    uint32_t nstr = ms_strtab_count(m->strings);
+    uint8_t *hyd = have_mass && have_radius && nstr <= 4 * n + 65536 ? calloc(nstr, 1) : NULL;
     for (size_t i = first; i < first + n; i++) {
         ms_str name = a->name[i], res = a->resname[i];
-        atom_guess *g = &cache[(uint32_t)(name * 2654435761u + res * 40503u) >> 22];
+        if (hyd && a->atomicnumber[i] && name < nstr) {
+            if (!hyd[name]) hyd[name] = (uint8_t)(1 + name_is_hydrogen(ms_mol_str(m, name)));
+            set_hydrogen(a, i, hyd[name] == 2);
+            continue;
+        }
+        uint32_t home = (uint32_t)(name * 2654435761u ^ res * 40503u * 2246822519u) >> 20;
+        atom_guess *g = &cache[home];
+        for (uint32_t p = 0; p < PROBES; p++) {
+            atom_guess *q = &cache[(home + p) & (SLOTS - 1)];
+            if ((q->name == name && q->resname == res) || q->name == MS_STR_NONE) {
+                g = q;
+                break;
+            }
+        }
         if (g->name != name || g->resname != res) guess_init(m, name, res, g);
         defaults_apply(m, i, g, have_mass, have_radius, a->atomicnumber[i] != 0);
     }
+    free(hyd);
+    free(cache);
 }
 
 /* ---------------------------------------------------------------- residues */
 
 static int residues_build(ms_molecule *m, ms_error *err)
 {
-    ms_atoms *a = &m->atoms;
-    size_t n = a->n, nres = 0;
+    const ms_atoms *a = &m->atoms;
+    const int32_t *resid = a->resid;
+    const char *ins = a->insertion;
+    const ms_str *chain = a->chain, *seg = a->segname;
+    int32_t *residue = a->residue;
+    size_t n = a->n, nres = 0, cap = 0;
+    uint32_t *rs = NULL;   /* each residue's first atom, found in the same pass */
     for (size_t i = 0; i < n; i++) {
-        if (i == 0 || a->resid[i] != a->resid[i - 1] || a->insertion[i] != a->insertion[i - 1] ||
-            a->chain[i] != a->chain[i - 1] || a->segname[i] != a->segname[i - 1])
-            nres++;
-        a->residue[i] = (int32_t)(nres - 1);
+        if (i == 0 || resid[i] != resid[i - 1] || ins[i] != ins[i - 1] ||
+            chain[i] != chain[i - 1] || seg[i] != seg[i - 1]) {
+            if (ms_grow((void **)&rs, &cap, nres + 2, sizeof *rs)) {
+                free(rs);
+                ms_error_set(err, "out of memory for %zu residues", nres + 1);
+                return -1;
+            }
+            rs[nres++] = (uint32_t)i;
+        }
+        residue[i] = (int32_t)(nres - 1);
     }
-    uint32_t *rs = ms_alloc_array(nres + 1, sizeof *rs);
-    if (!rs) {
+    uint32_t *fit = realloc(rs, (nres + 1) * sizeof *rs);
+    if (!fit) {
+        free(rs);
         ms_error_set(err, "out of memory for %zu residues", nres);
         return -1;
     }
-    for (size_t i = n; i-- > 0;) rs[a->residue[i]] = (uint32_t)i;
-    rs[nres] = (uint32_t)n;
+    fit[nres] = (uint32_t)n;
     free(m->res_start);
-    m->res_start = rs;
+    m->res_start = fit;
     m->nresidues = nres;
     return 0;
 }
@@ -124,14 +166,16 @@ static void uf_union(uint32_t *parent, uint32_t x, uint32_t y)
 
 /* Label connected components of the atoms where include(i) holds, through bonds between
  * included atoms; components are numbered by their first atom; others get -1. Returns the
- * number of components, or -1 on memory exhaustion. */
+ * number of components. The union-find forest lives in label itself: a parent is always a
+ * smaller index than its child (unions link the larger root under the smaller, and path
+ * halving only moves a link further down), so one ascending pass turns each atom's parent
+ * into its component's number, its parent's number being known by then. */
 typedef int (*atom_pred)(const ms_molecule *m, size_t i);
 
-static long components(const ms_molecule *m, atom_pred include, int32_t *label)
+static size_t components(const ms_molecule *m, atom_pred include, int32_t *label)
 {
     size_t n = m->atoms.n;
-    uint32_t *parent = ms_alloc_array(n, sizeof *parent);
-    if (!parent) return -1;
+    uint32_t *parent = (uint32_t *)label;
     for (size_t i = 0; i < n; i++) parent[i] = (uint32_t)i;
     if (m->has_bonds) {
         for (size_t i = 0; i < n; i++) {
@@ -142,17 +186,13 @@ static long components(const ms_molecule *m, atom_pred include, int32_t *label)
             }
         }
     }
-    long count = 0;
+    size_t count = 0;
     for (size_t i = 0; i < n; i++) {
-        if (include && !include(m, i)) {
-            label[i] = -1;
-            continue;
-        }
-        uint32_t r = uf_find(parent, (uint32_t)i);
-        if (r == i) label[i] = (int32_t)count++;
-        else label[i] = label[r];
+        uint32_t p = parent[i];
+        if (include && !include(m, i)) label[i] = -1;
+        else if (p == i) label[i] = (int32_t)count++;
+        else label[i] = label[p];
     }
-    free(parent);
     return count;
 }
 
@@ -179,18 +219,58 @@ static int is_nucleic_bb_name(const char *s)
     return 0;
 }
 
+static int is_water_resname(const char *s)
+{
+    static const char *names[] = {"H2O", "HHO", "OHH", "HOH", "OH2", "SOL", "WAT",
+                                  "TIP", "TIP2", "TIP3", "TIP4", "SPC"};
+    for (size_t k = 0; k < MS_COUNTOF(names); k++)
+        if (!strcmp(s, names[k])) return 1;
+    return 0;
+}
+
+/* What a string means to the classification, worked out once per distinct string (the
+ * molecule's string table) instead of once per atom. */
+enum {
+    NC_PROT_BB = 1,    /* a protein backbone name: CA C O N */
+    NC_PROT_TERM = 2,  /* a protein terminal oxygen: OT1 OT2 OXT O1 O2 */
+    NC_NUC_BB = 4,     /* a nucleic backbone name */
+    NC_C = 8,          /* the name C */
+    NC_WATER = 16      /* a water residue name */
+};
+
+typedef struct classify_ctx {
+    const ms_molecule *m;
+    uint8_t *cls;      /* NC_* of every string id */
+    uint32_t nstr;
+    uint32_t *cand, *stack;  /* scratch of the longest residue's length */
+    uint8_t *best;
+} classify_ctx;
+
+static uint8_t string_class(const char *s)
+{
+    return (uint8_t)((is_protein_bb_name(s) ? NC_PROT_BB : 0) |
+                     (is_protein_terminal_name(s) ? NC_PROT_TERM : 0) |
+                     (is_nucleic_bb_name(s) ? NC_NUC_BB : 0) | (!strcmp(s, "C") ? NC_C : 0) |
+                     (is_water_resname(s) ? NC_WATER : 0));
+}
+
+static uint8_t class_of(const classify_ctx *c, ms_str s)
+{
+    return s < c->nstr ? c->cls[s] : 0;
+}
+
 /* Is atom i a backbone candidate of the given kind (MS_AF_PROT_BB or MS_AF_NUC_BB)? A
  * terminal oxygen counts when it is bonded to an atom named C of its residue. */
-static int bb_candidate(const ms_molecule *m, size_t i, int kind)
+static int bb_candidate(const classify_ctx *c, size_t i, int kind)
 {
-    const char *name = ms_mol_str(m, m->atoms.name[i]);
-    if (kind == MS_AF_NUC_BB) return is_nucleic_bb_name(name);
-    if (is_protein_bb_name(name)) return 1;
-    if (!is_protein_terminal_name(name) || !m->has_bonds) return 0;
+    const ms_molecule *m = c->m;
+    uint8_t cls = class_of(c, m->atoms.name[i]);
+    if (kind == MS_AF_NUC_BB) return (cls & NC_NUC_BB) != 0;
+    if (cls & NC_PROT_BB) return 1;
+    if (!(cls & NC_PROT_TERM) || !m->has_bonds) return 0;
     for (uint32_t k = m->bonds.start[i]; k < m->bonds.start[i + 1]; k++) {
         uint32_t j = m->bonds.to[k];
-        if (m->atoms.residue[j] == m->atoms.residue[i] &&
-            !strcmp(ms_mol_str(m, m->atoms.name[j]), "C"))
+        if (m->atoms.residue[j] == m->atoms.residue[i] && (class_of(c, m->atoms.name[j]) & NC_C))
             return 1;
     }
     return 0;
@@ -198,13 +278,15 @@ static int bb_candidate(const ms_molecule *m, size_t i, int kind)
 
 /* Largest set of connected backbone candidates within residue r; marks its atoms in best[]
  * (indexed from the residue's first atom). Returns its size (0 with fewer than 4). */
-static size_t residue_backbone(const ms_molecule *m, size_t r, int kind, uint32_t *cand,
-                               uint32_t *stack, uint8_t *best)
+static size_t residue_backbone(const classify_ctx *c, size_t r, int kind)
 {
+    const ms_molecule *m = c->m;
+    uint32_t *cand = c->cand, *stack = c->stack;
+    uint8_t *best = c->best;
     size_t first = m->res_start[r], last = m->res_start[r + 1], len = last - first;
     size_t ncand = 0;
     for (size_t k = 0; k < len; k++) {
-        cand[k] = (uint32_t)bb_candidate(m, first + k, kind);
+        cand[k] = (uint32_t)bb_candidate(c, first + k, kind);
         ncand += cand[k];
         best[k] = 0;
     }
@@ -237,28 +319,37 @@ static size_t residue_backbone(const ms_molecule *m, size_t r, int kind, uint32_
     return best_size;
 }
 
-static int is_water_resname(const char *s)
+/* The scratch and string classes of one classification; -1 when memory runs out. */
+static int classify_ctx_init(classify_ctx *c, const ms_molecule *m)
 {
-    static const char *names[] = {"H2O", "HHO", "OHH", "HOH", "OH2", "SOL", "WAT",
-                                  "TIP", "TIP2", "TIP3", "TIP4", "SPC"};
-    for (size_t k = 0; k < MS_COUNTOF(names); k++)
-        if (!strcmp(s, names[k])) return 1;
+    size_t maxlen = 0;
+    for (size_t r = 0; r < m->nresidues; r++)
+        maxlen = MS_MAX(maxlen, (size_t)(m->res_start[r + 1] - m->res_start[r]));
+    c->m = m;
+    c->nstr = ms_strtab_count(m->strings);
+    c->cls = malloc((size_t)c->nstr + 1);
+    c->cand = ms_alloc_array(maxlen + 1, sizeof *c->cand);
+    c->best = malloc(maxlen + 1);
+    c->stack = ms_alloc_array(maxlen + 1, sizeof *c->stack);
+    if (!c->cls || !c->cand || !c->best || !c->stack) return -1;
+    for (uint32_t s = 0; s < c->nstr; s++) c->cls[s] = string_class(ms_mol_str(m, s));
     return 0;
+}
+
+static void classify_ctx_free(classify_ctx *c)
+{
+    free(c->cls);
+    free(c->cand);
+    free(c->best);
+    free(c->stack);
 }
 
 static int classify_residues(ms_molecule *m, ms_error *err)
 {
     ms_atoms *a = &m->atoms;
-    size_t maxlen = 0;
-    for (size_t r = 0; r < m->nresidues; r++)
-        maxlen = MS_MAX(maxlen, (size_t)(m->res_start[r + 1] - m->res_start[r]));
-    uint32_t *cand = ms_alloc_array(maxlen + 1, sizeof *cand);
-    uint8_t *best = malloc(maxlen + 1);
-    uint32_t *stack = ms_alloc_array(maxlen + 1, sizeof *stack);
-    if (!cand || !best || !stack) {
-        free(cand);
-        free(best);
-        free(stack);
+    classify_ctx c;
+    if (classify_ctx_init(&c, m)) {
+        classify_ctx_free(&c);
         ms_error_set(err, "out of memory classifying residues");
         return -1;
     }
@@ -266,36 +357,28 @@ static int classify_residues(ms_molecule *m, ms_error *err)
                                           MS_AF_NUC_BB | MS_AF_WATER);
     for (size_t r = 0; r < m->nresidues; r++) {
         size_t first = m->res_start[r], last = m->res_start[r + 1];
-        for (size_t i = first; i < last; i++) a->flags[i] &= cleared;
-        uint16_t whole = 0;
-        if (is_water_resname(ms_mol_str(m, a->resname[first]))) {
+        uint16_t whole = 0, bb = 0;   /* bb: the flag of the atoms best[] marks */
+        if (class_of(&c, a->resname[first]) & NC_WATER) {
             whole = MS_AF_WATER;
-        } else if (residue_backbone(m, r, MS_AF_PROT_BB, cand, stack, best) >= 4) {
+        } else if (residue_backbone(&c, r, MS_AF_PROT_BB) >= 4) {
             whole = MS_AF_PROTEIN;
-            for (size_t i = first; i < last; i++)
-                if (best[i - first]) a->flags[i] |= MS_AF_PROT_BB;
-        } else if (residue_backbone(m, r, MS_AF_NUC_BB, cand, stack, best) >= 4) {
+            bb = MS_AF_PROT_BB;
+        } else if (residue_backbone(&c, r, MS_AF_NUC_BB) >= 4) {
             whole = MS_AF_NUCLEIC;
-            for (size_t i = first; i < last; i++)
-                if (best[i - first]) a->flags[i] |= MS_AF_NUC_BB;
+            bb = MS_AF_NUC_BB;
         }
-        for (size_t i = first; i < last; i++) a->flags[i] |= whole;
+        for (size_t i = first; i < last; i++)
+            a->flags[i] = (uint16_t)((a->flags[i] & cleared) | whole |
+                                     (bb && c.best[i - first] ? bb : 0));
     }
-    free(cand);
-    free(best);
-    free(stack);
+    classify_ctx_free(&c);
     return 0;
 }
 
 int ms_analysis_classify(ms_molecule *m, ms_error *err)
 {
     if (residues_build(m, err)) return -1;
-    long nfrag = components(m, NULL, m->atoms.fragment);
-    if (nfrag < 0) {
-        ms_error_set(err, "out of memory finding fragments");
-        return -1;
-    }
-    m->nfragments = (size_t)nfrag;
+    m->nfragments = components(m, NULL, m->atoms.fragment);
     if (classify_residues(m, err)) return -1;
     free(m->pfrag);
     free(m->nfrag);
@@ -318,13 +401,14 @@ int ms_mol_polymer_fragments(ms_molecule *m, ms_error *err)
     if (m->pfrag && m->nfrag) return 0;
     int32_t *p = ms_alloc_array(m->atoms.n, sizeof *p);
     int32_t *q = ms_alloc_array(m->atoms.n, sizeof *q);
-    if (!p || !q || components(m, is_protein_atom, p) < 0 ||
-        components(m, is_nucleic_atom, q) < 0) {
+    if (!p || !q) {
         free(p);
         free(q);
         ms_error_set(err, "out of memory finding polymer fragments");
         return -1;
     }
+    components(m, is_protein_atom, p);
+    components(m, is_nucleic_atom, q);
     m->pfrag = p;
     m->nfrag = q;
     return 0;

@@ -104,22 +104,30 @@ void ms_mol_free_contents(ms_molecule *m)
     memset(m, 0, sizeof *m);
 }
 
-int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err)
+/* Room for n atoms in every per-atom array; prefault: commit the new pages now (a reader
+ * said how many atoms come), else they come as the atoms do (growth by half). */
+static int reserve_atoms(ms_molecule *m, size_t n, int prefault, ms_error *err)
 {
     if (n <= m->atoms.cap) return 0;
     for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) {
-        size_t bytes;
+        size_t bytes, elsize = atom_fields[k].elsize;
         void **p = atom_field(&m->atoms, k);
         void *q;
-        if (ms_mul_size(n, atom_fields[k].elsize, &bytes) || !(q = realloc(*p, bytes))) {
+        if (ms_mul_size(n, elsize, &bytes) || !(q = realloc(*p, bytes))) {
             ms_error_set(err, "out of memory for %zu atoms", n);
             return -1;
         }
         *p = q;
-        ms_advise_huge(q, bytes);
+        if (prefault)
+            ms_prefault((char *)q + m->atoms.n * elsize, (n - m->atoms.n) * elsize);
     }
     m->atoms.cap = n;
     return 0;
+}
+
+int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err)
+{
+    return reserve_atoms(m, n, 1, err);
 }
 
 /* Zero element i of an array of elements of `size` bytes: plain stores for the usual sizes
@@ -142,7 +150,7 @@ long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err)
     ms_atoms *a = &m->atoms;
     if (a->n == a->cap) {
         size_t ncap = a->cap ? a->cap + a->cap / 2 : 1024;
-        if (ms_mol_reserve_atoms(m, ncap, err)) return -1;
+        if (reserve_atoms(m, ncap, 0, err)) return -1;
     }
     size_t i = a->n++;
     for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++)
@@ -153,19 +161,35 @@ long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err)
 
 long ms_mol_add_blank_atoms(ms_molecule *m, size_t n, ms_error *err)
 {
+    return ms_mol_add_atoms_given(m, n, NULL, 0, err);
+}
+
+/* Whether the array at `field` (an ms_atoms member's address) is one of given[0 .. ngiven). */
+static int field_given(void *field, void *const *given, size_t ngiven)
+{
+    for (size_t g = 0; g < ngiven; g++)
+        if (given[g] == field) return 1;
+    return 0;
+}
+
+long ms_mol_add_atoms_given(ms_molecule *m, size_t n, void *const *given, size_t ngiven,
+                            ms_error *err)
+{
     ms_atoms *a = &m->atoms;
     if (n > a->cap - a->n) {
         size_t want = a->n + n, grown = a->cap + a->cap / 2;
-        if (want < a->n || ms_mol_reserve_atoms(m, want > grown ? want : grown, err)) {
+        if (want < a->n || reserve_atoms(m, want > grown ? want : grown, 0, err)) {
             if (want < a->n) ms_error_set(err, "out of memory for %zu more atoms", n);
             return -1;
         }
     }
     size_t first = a->n;
     for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++)
-        memset((char *)*atom_field(a, k) + first * atom_fields[k].elsize, 0,
-               n * atom_fields[k].elsize);
-    memset(a->ss + first, MS_SS_COIL_CODE, n);
+        if (!field_given(atom_field(a, k), given, ngiven))
+            memset((char *)*atom_field(a, k) + first * atom_fields[k].elsize, 0,
+                   n * atom_fields[k].elsize);
+    if (!field_given(&a->ss, given, ngiven))
+        memset(a->ss + first, MS_SS_COIL_CODE, n);
     a->n += n;
     return (long)first;
 }
@@ -199,8 +223,8 @@ ms_frame *ms_mol_add_frame(ms_molecule *m, int with_vel, ms_error *err)
         ms_error_set(err, "out of memory for frame %zu of %zu atoms", m->nframes, m->atoms.n);
         return NULL;
     }
-    ms_advise_huge(f->pos, m->atoms.n * 3 * sizeof(float));
-    ms_advise_huge(f->vel, with_vel ? m->atoms.n * 3 * sizeof(float) : 0);
+    ms_prefault(f->pos, m->atoms.n * 3 * sizeof(float));  /* a reader fills it whole */
+    ms_prefault(f->vel, with_vel ? m->atoms.n * 3 * sizeof(float) : 0);
     m->nframes++;
     return f;
 }

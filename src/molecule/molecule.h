@@ -177,6 +177,11 @@ int ms_mol_reserve_atoms(ms_molecule *m, size_t n, ms_error *err);
 long ms_mol_add_blank_atom(ms_molecule *m, ms_error *err);
 /* Append n blank atoms at once, returning the first one's index, or -1. */
 long ms_mol_add_blank_atoms(ms_molecule *m, size_t n, ms_error *err);
+/* The same, except that the arrays named in given[0 .. ngiven) (addresses of ms_atoms
+ * members: &m->atoms.name ...) are left as they are, for a caller that writes every one of
+ * the n atoms' values in them next (a bulk load: no pass zeroing what is then overwritten). */
+long ms_mol_add_atoms_given(ms_molecule *m, size_t n, void *const *given, size_t ngiven,
+                            ms_error *err);
 /* Release unused capacity of the per-atom arrays after loading. */
 void ms_mol_shrink(ms_molecule *m);
 

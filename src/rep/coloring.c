@@ -132,20 +132,23 @@ static int by_strings(ctx *x, const char *cat, const ms_str *field, int restype)
     int k = cat_of(x->colors, cat), rc = 0;
     for (size_t i = 0; i < x->m->atoms.n && rc == 0; i++) {
         ms_str s = field[i];
-        if (s >= nstr || table[s] >= 0) continue;
-        const char *v = ms_mol_str(x->m, s);
-        if (restype) {
-            const char *t = ms_color_restype(x->colors, v);
-            int col = ms_color_item_get(x->colors, k, t ? t : "Unassigned");
-            table[s] = (int16_t)(col < 0 ? 0 : col);
-        } else {
-            int col = ms_color_for_value(x->colors, k, v);
-            if (col < 0) rc = -1;
+        if (s >= nstr) {
+            x->out[i] = 0;
+            continue;
+        }
+        if (table[s] < 0) {
+            const char *v = ms_mol_str(x->m, s);
+            int col;
+            if (restype) {
+                const char *t = ms_color_restype(x->colors, v);
+                col = ms_color_item_get(x->colors, k, t ? t : "Unassigned");
+            } else if ((col = ms_color_for_value(x->colors, k, v)) < 0) {
+                rc = -1;
+            }
             table[s] = (int16_t)(col < 0 ? 0 : col);
         }
+        x->out[i] = (uint16_t)table[s];
     }
-    for (size_t i = 0; i < x->m->atoms.n && rc == 0; i++)
-        x->out[i] = (uint16_t)(field[i] < nstr ? table[field[i]] : 0);
     free(table);
     return rc;
 }

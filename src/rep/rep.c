@@ -501,29 +501,22 @@ int ms_rep_to_scene(ms_rep_state *reps, ms_molecule *m, ms_scene *s, const float
 }
 
 /* VMD's resetview: the atoms of the molecule's shown reps, when there are any. */
-int ms_rep_shown_atoms(ms_rep_state *reps, ms_molecule *m, uint32_t **atoms, size_t *natoms)
+int ms_rep_shown_atoms(ms_rep_state *reps, ms_molecule *m, ms_bitset *shown)
 {
     ms_replist *l = list_get(reps, m, 0);
     const float *pos = ms_mol_pos(m);
     if (!l || !pos || m->atoms.n == 0) return 0;
-    ms_bitset any;
-    if (ms_bitset_init(&any, m->atoms.n)) return 0;
+    if (ms_bitset_init(shown, m->atoms.n)) return 0;
     ms_error err = {{0}};
     for (size_t i = 0; i < l->n; i++)
         if (l->reps[i]->shown && ms_rep_update_data(reps, m, l->reps[i], &err) == 0 &&
             l->reps[i]->cache->on.nbits == m->atoms.n)
-            ms_bitset_or(&any, &l->reps[i]->cache->on);
-    size_t n = ms_bitset_count(&any);
-    uint32_t *idx = n ? malloc(n * sizeof *idx) : NULL;
-    int rc = 0;
-    if (idx) {
-        ms_bitset_indices(&any, idx);
-        *atoms = idx;
-        *natoms = n;
-        rc = 1;
-    }
-    ms_bitset_free(&any);
-    return rc;
+            ms_bitset_or(shown, &l->reps[i]->cache->on);
+    size_t nw = ms_bitset_nwords(shown);
+    for (size_t w = 0; w < nw; w++)
+        if (shown->words[w]) return 1;
+    ms_bitset_free(shown);
+    return 0;
 }
 
 /* ---------------------------------------------------------------- the state */

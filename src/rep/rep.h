@@ -229,9 +229,10 @@ size_t ms_rep_cache_bytes(const ms_rep *r);
  * rep. */
 int ms_rep_to_scene(ms_rep_state *reps, ms_molecule *m, ms_scene *s, const float model[16],
                     ms_error *err);
-/* The atoms of m's shown reps, for VMD's resetview: 1 with *atoms (malloc'd, ascending) and
- * *n, or 0 when no shown rep selects an atom (or memory runs out). */
-int ms_rep_shown_atoms(ms_rep_state *reps, ms_molecule *m, uint32_t **atoms, size_t *n);
+/* The atoms of m's shown reps, for VMD's resetview: 1 with *shown set to them (the caller
+ * frees it with ms_bitset_free), or 0 when no shown rep selects an atom (or memory runs
+ * out). */
+int ms_rep_shown_atoms(ms_rep_state *reps, ms_molecule *m, ms_bitset *shown);
 /* Atoms selected when last evaluated, ascending. */
 const uint32_t *ms_rep_atoms(const ms_rep *r, size_t *n);
 /* How many times the display list was built (for tests of the cache). */

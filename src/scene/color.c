@@ -358,8 +358,11 @@ static int add_field(ms_colors *c, int cat, const ms_molecule *m, const ms_str *
 {
     uint32_t nstr = ms_strtab_count(m->strings);
     memset(seen, 0, nstr);
+    ms_str prev = MS_STR_NONE;
     for (size_t i = 0; i < m->atoms.n; i++) {
         ms_str s = field[i];
+        if (s == prev) continue;  /* runs of one value: residues, chains, segments */
+        prev = s;
         if (s >= nstr || seen[s]) continue;
         seen[s] = 1;
         const char *v = ms_mol_str(m, s);
@@ -374,7 +377,7 @@ static int add_chars(ms_colors *c, int cat, const ms_molecule *m, const char *fi
     uint8_t seen[256] = {0};
     for (size_t i = 0; i < m->atoms.n; i++) {
         unsigned char ch = (unsigned char)field[i];
-        if (seen[ch]) continue;
+        if ((i && field[i - 1] == field[i]) || seen[ch]) continue;
         seen[ch] = 1;
         char v[2] = {(char)ch, '\0'};
         if (ms_color_for_value(c, cat, v) < 0) return -1;

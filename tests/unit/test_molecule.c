@@ -168,11 +168,100 @@ static void test_bad_input(void)
          "a missing file says so (%s)", err.msg);
 }
 
+/* The bond table of m as its pairs i < j, ascending (as a js file lists them); *n pairs. */
+static uint32_t *ordered_pairs(const ms_molecule *m, size_t *n)
+{
+    size_t nb = m->bonds.start[m->atoms.n] / 2, k = 0;
+    uint32_t *p = malloc(2 * nb * sizeof *p + 1);
+    for (uint32_t i = 0; p && i < m->atoms.n; i++)
+        for (uint32_t b = m->bonds.start[i]; b < m->bonds.start[i + 1]; b++)
+            if (m->bonds.to[b] > i) {
+                p[2 * k] = i;
+                p[2 * k + 1] = m->bonds.to[b];
+                k++;
+            }
+    *n = k;
+    return p;
+}
+
+static int same_table(const ms_molecule *a, const uint32_t *start, const uint32_t *to,
+                      const float *order)
+{
+    size_t n = a->atoms.n;
+    if (memcmp(a->bonds.start, start, (n + 1) * sizeof *start)) return 0;
+    if (memcmp(a->bonds.to, to, start[n] * sizeof *to)) return 0;
+    return !order || (a->bonds.order && !memcmp(a->bonds.order, order, start[n] * sizeof *order));
+}
+
+/* The CSR table from pairs in order (no sorting pass) equals the one from the same bonds
+ * reversed, shuffled and given twice, with a self pair and an atom out of range; orders
+ * follow their bonds either way. */
+static void test_bond_table_order(void)
+{
+    t_suite = "molecule";
+    ms_error err = {{0}};
+    ms_molecule *m = load_err("1tii.pdb", &err);
+    if (!t_ok(m != NULL, "load 1tii.pdb (%s)", err.msg)) return;
+    size_t np, n = m->atoms.n;
+    uint32_t *p = ordered_pairs(m, &np);
+    uint32_t *q = malloc((4 * np + 4) * sizeof *q), *start = malloc((n + 1) * sizeof *start);
+    float *op = malloc(np * sizeof *op), *oq = malloc((2 * np + 2) * sizeof *oq);
+    uint32_t *to = malloc(2 * np * sizeof *to + 1);
+    float *ord = malloc(2 * np * sizeof *ord + 1);
+    if (!t_ok(p && q && start && op && oq && to && ord, "memory")) return;
+    for (size_t k = 0; k < np; k++) op[k] = (float)(1 + k % 3);
+    t_ok(ms_bonds_build(m, p, np, op, &err) == 0, "table from pairs in order");
+    memcpy(start, m->bonds.start, (n + 1) * sizeof *start);
+    memcpy(to, m->bonds.to, start[n] * sizeof *to);
+    memcpy(ord, m->bonds.order, start[n] * sizeof *ord);
+    size_t nq = 0;
+    for (size_t k = 0; k < np; k++) {   /* every bond twice, the second copy reversed */
+        size_t a = (k * 7919) % np;     /* 7919 is prime and does not divide np */
+        q[2 * nq] = p[2 * a + 1], q[2 * nq + 1] = p[2 * a], oq[nq++] = op[a];
+        q[2 * nq] = p[2 * a], q[2 * nq + 1] = p[2 * a + 1], oq[nq++] = op[a];
+    }
+    q[2 * nq] = 5, q[2 * nq + 1] = 5, oq[nq++] = 9;
+    q[2 * nq] = 0, q[2 * nq + 1] = (uint32_t)n, oq[nq++] = 9;
+    t_ok(np % 7919 != 0 && ms_bonds_build(m, q, nq, oq, &err) == 0 &&
+             same_table(m, start, to, ord),
+         "the same table from %zu bonds shuffled, reversed, duplicated, with bad pairs", np);
+    t_ok(ms_bonds_build(m, p, np, NULL, &err) == 0 && same_table(m, start, to, NULL) &&
+             !m->bonds.order,
+         "pairs in order without orders: the same partners, no orders");
+    free(p), free(q), free(start), free(op), free(oq), free(to), free(ord);
+    ms_mol_free(m);
+}
+
+/* Atoms added with some arrays given are zero in the others (the secondary structure coil). */
+static void test_atoms_given(void)
+{
+    t_suite = "molecule";
+    ms_error err = {{0}};
+    ms_molecule *m = ms_mol_new(&err);
+    if (!t_ok(m != NULL, "new molecule")) return;
+    ms_atoms *a = &m->atoms;
+    long first = ms_mol_add_blank_atoms(m, 3, &err);
+    a->beta[1] = 7.0f, a->resid[2] = 4;
+    void *given[] = {&a->beta, &a->ss};
+    long more = ms_mol_add_atoms_given(m, 2000, given, 2, &err);
+    int zero = 1;
+    for (size_t i = 3; i < a->n; i++) {
+        a->beta[i] = 1.0f, a->ss[i] = 'H';
+        zero &= a->resid[i] == 0 && a->charge[i] == 0 && a->flags[i] == 0 && a->name[i] == 0;
+    }
+    t_ok(first == 0 && more == 3 && a->n == 2003 && zero && a->beta[1] == 7.0f &&
+             a->resid[2] == 4 && a->ss[0] == 'C',
+         "2000 atoms added to 3: the arrays not given are blank, the first atoms kept");
+    ms_mol_free(m);
+}
+
 int main(void)
 {
     ms_registry_init(&reg);
     ms_registry_add(&reg, ms_plugin_entry_pdb(), NULL, NULL);
     test_1tii();
+    test_bond_table_order();
+    test_atoms_given();
     test_il2();
     test_nucleic();
     test_bad_input();
