@@ -33,7 +33,7 @@ MOLSCOPE_RT_PASSES=${PASSES:-1} /usr/bin/time -f "TOTAL %e %U %S %M" \
     </dev/null >$log 2>&1 || { cat $log; exit 1; }
 awk '
 /^ATOMS/ {n = $2}
-/^STAGE/ {printf "RESULT scale: %-10s %7.2f s wall %7.2f s cpu   VmHWM %6.0f MB (%4.0f B/atom)\n", $2, $3, $4, $5/1e6, $5/n}
+/^STAGE/ {printf "RESULT scale: %-10s %7.2f s wall %7.2f s cpu (%.2f user, %.2f system)   VmHWM %6.0f MB (%4.0f B/atom)\n", $2, $3, $4, $7, $8, $5/1e6, $5/n}
 /^MEM/ && $2 != "rss" && $2 != "peak" {printf "RESULT scale:   %-13s %8.1f MB %7.1f B/atom\n", $2, $3/1e6, $3/n; sum += $3}
 /^TOTAL/ {printf "RESULT scale: %d atoms: %.1f s wall, %.1f s cpu, peak %.0f MB = %.0f B/atom; 64M at this rate: %.1f GB\n", n, $2, $3+$4, $5*1024/1e6, $5*1024/n, $5*1024/n*64e6/1e9}
 ' $log

@@ -3,18 +3,19 @@
 # load, QuickSurf of everything (radius scale 1.0, isovalue 0.5, grid 2 A, quality 0,
 # coloured by chain), NewCartoon of the first copy (segname 0000), and a 1920x1080
 # TachyonInternal render with shadows and ambient occlusion. After each stage a line
-#   STAGE <name> <wall s> <cpu s> <VmHWM bytes> <VmRSS bytes>
+#   STAGE <name> <wall s> <cpu s> <VmHWM bytes> <VmRSS bytes> <user s> <system s>
 # and at the end, the bytes of every structure (::molscope::memory) as
 #   MEM <key> <bytes>
 lassign $argv file image
 
-# CPU seconds of this process so far, all threads (utime + stime of /proc/self/stat).
+# CPU seconds of this process so far, all threads: {user system} (utime and stime of
+# /proc/self/stat).
 proc cpu_now {} {
     set f [open /proc/self/stat]
     set s [read $f]
     close $f
     set fields [split [string range $s [expr {[string last ")" $s] + 2}] end]]
-    return [expr {([lindex $fields 11] + [lindex $fields 12]) / 100.0}]
+    return [list [expr {[lindex $fields 11] / 100.0}] [expr {[lindex $fields 12] / 100.0}]]
 }
 
 # VmHWM and VmRSS of this process in bytes (from /proc, so that builds before
@@ -33,9 +34,13 @@ proc stage {name script} {
     set c0 [cpu_now]
     uplevel 1 $script
     set wall [expr {([clock microseconds] - $t0) / 1e6}]
-    set cpu [expr {[cpu_now] - $c0}]
+    lassign [cpu_now] u1 s1
+    lassign $c0 u0 s0
+    set user [expr {$u1 - $u0}]
+    set sys [expr {$s1 - $s0}]
     lassign [vm] hwm rss
-    puts [format "STAGE %s %.2f %.2f %d %d" $name $wall $cpu $hwm $rss]
+    puts [format "STAGE %s %.2f %.2f %d %d %.2f %.2f" $name $wall [expr {$user + $sys}] $hwm $rss \
+              $user $sys]
     flush stdout
 }
 
