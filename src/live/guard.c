@@ -34,6 +34,23 @@ static void drop(ms_live_guard *g, ms_live_conn *k)
     g->dropped++;
 }
 
+/* Whether bytes wait unread on k's socket: a request the server has not parsed yet, perhaps
+ * the one with the token, so that an eviction passes it over for an idle connection. */
+static int unread(const ms_live_conn *k)
+{
+    char b;
+    return k->fd >= 0 && recv(k->fd, &b, 1, MSG_PEEK | MSG_DONTWAIT) > 0;
+}
+
+/* The untrusted connection to close when too many are open: the oldest with nothing unread
+ * (a flood's connections send nothing), else the oldest. */
+static ms_live_conn *victim(const ms_live_guard *g)
+{
+    for (ms_live_conn *k = g->oldest; k; k = k->next)
+        if (!unread(k)) return k;
+    return g->oldest;
+}
+
 static void opened(ms_live_guard *g, struct MHD_Connection *c, void **socket_context)
 {
     ms_live_conn *k = calloc(1, sizeof *k);
@@ -49,7 +66,7 @@ static void opened(ms_live_guard *g, struct MHD_Connection *c, void **socket_con
     g->newest = k;
     g->untrusted++;
     *socket_context = k;
-    while (g->untrusted > MS_LIVE_MAX_UNTRUSTED) drop(g, g->oldest);
+    while (g->untrusted > MS_LIVE_MAX_UNTRUSTED) drop(g, victim(g));
 }
 
 void ms_live_guard_notify(void *cls, struct MHD_Connection *c, void **socket_context,

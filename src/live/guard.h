@@ -4,7 +4,8 @@
  * guard instead follows each connection from its accept: one that has not yet sent a
  * request with the token is untrusted, may stay open MS_LIVE_UNTRUSTED_S seconds at most
  * (however slowly it sends), and when more than MS_LIVE_MAX_UNTRUSTED are open the oldest
- * is closed at each new accept. A connection whose request showed the token is trusted from
+ * with no bytes waiting unread is closed at each new accept (a request not yet parsed may be
+ * the page's own; when every one has bytes waiting, the oldest). A connection whose request showed the token is trusted from
  * then on: the guard leaves it alone and it gets the longer idle time-out. Private to the
  * server (it includes libmicrohttpd's header). */
 #ifndef MS_LIVE_GUARD_H
