@@ -104,11 +104,24 @@ void ms_mol_free_contents(ms_molecule *m)
     memset(m, 0, sizeof *m);
 }
 
+/* Bytes of one atom in every per-atom array. */
+static size_t atom_bytes(void)
+{
+    size_t b = 0;
+    for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) b += atom_fields[k].elsize;
+    return b;
+}
+
 /* Room for n atoms in every per-atom array; prefault: commit the new pages now (a reader
- * said how many atoms come), else they come as the atoms do (growth by half). */
+ * said how many atoms come), else they come as the atoms do (growth by half). A count is a
+ * file's hint, not its atoms: pages are committed only when they take at most half the
+ * memory available, so a header claiming more atoms than the file holds costs nothing. */
 static int reserve_atoms(ms_molecule *m, size_t n, int prefault, ms_error *err)
 {
     if (n <= m->atoms.cap) return 0;
+    size_t more;
+    if (prefault && (ms_mul_size(n - m->atoms.n, atom_bytes(), &more) || more > ms_mem_available() / 2))
+        prefault = 0;
     for (size_t k = 0; k < MS_COUNTOF(atom_fields); k++) {
         size_t bytes, elsize = atom_fields[k].elsize;
         void **p = atom_field(&m->atoms, k);

@@ -8,6 +8,7 @@
 #include "molecule/analysis.h"
 #include "molecule/elements.h"
 
+#include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -255,6 +256,37 @@ static void test_atoms_given(void)
     ms_mol_free(m);
 }
 
+/* Resident memory of this process in bytes (VmRSS). */
+static size_t rss_bytes(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    size_t kb = 0;
+    while (f && fgets(line, sizeof line, f))
+        if (sscanf(line, "VmRSS: %zu kB", &kb) == 1) break;
+    if (f) fclose(f);
+    return kb * 1024;
+}
+
+/* A reader's atom count is a hint: one as large as the memory available reserves address
+ * space but commits no pages (a header claiming more atoms than its file holds). */
+static void test_reserve_hint(void)
+{
+    t_suite = "molecule";
+    ms_error err = {{0}};
+    ms_molecule *m = ms_mol_new(&err);
+    if (!t_ok(m != NULL, "new molecule")) return;
+    size_t n = ms_mem_available() / 64, before = rss_bytes();
+    if (ms_mol_reserve_atoms(m, n, &err)) {
+        t_ok(err.msg[0] != 0, "a reserve that cannot be had says so");
+    } else {
+        size_t grew = rss_bytes() - before;
+        t_ok(grew < ((size_t)64 << 20), "a hint of %zu atoms (all the memory available) "
+             "commits no pages: resident memory grew by %zu bytes", n, grew);
+    }
+    ms_mol_free(m);
+}
+
 int main(void)
 {
     ms_registry_init(&reg);
@@ -262,6 +294,7 @@ int main(void)
     test_1tii();
     test_bond_table_order();
     test_atoms_given();
+    test_reserve_hint();
     test_il2();
     test_nucleic();
     test_bad_input();
