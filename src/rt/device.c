@@ -74,6 +74,13 @@ void rt_device_set_budget(size_t bytes)
     atomic_store(&denied, 0);
 }
 
+size_t rt_device_room(void)
+{
+    long long limit = atomic_load(&budget), h = atomic_load(&held);
+    if (limit <= 0) return 0;
+    return limit > h ? (size_t)(limit - h) : 1;
+}
+
 size_t rt_device_held(void)
 {
     long long h = atomic_load(&held);

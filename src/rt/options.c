@@ -50,6 +50,17 @@ int ms_rt_options_from_env(ms_rt_options *o, ms_error *err)
     o->max_depth = (int)depth;
     o->time_budget = seconds;
     o->raydump = getenv("MOLSCOPE_RT_RAYDUMP");
+    const char *leaves = getenv("MOLSCOPE_RT_LEAVES");
+    if (leaves && *leaves) {
+        static const char *const names[] = {"auto", "compact", "fast"};
+        int k = 0;
+        while (k < 3 && strcmp(leaves, names[k])) k++;
+        if (k == 3) {
+            ms_error_set(err, "MOLSCOPE_RT_LEAVES='%s': expected auto, compact or fast", leaves);
+            return -1;
+        }
+        o->leaves = k;
+    }
     o->progress = isatty(2);
     return 0;
 }

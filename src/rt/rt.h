@@ -38,7 +38,11 @@ typedef struct ms_rt_options {
     size_t memory;        /* bytes the render may use; 0: what the system has available */
     const char *raydump;  /* a file for every ray cast (raydump.c; NULL: none); only
                            * ms_rt_render and ms_rt_write write it */
+    int leaves;           /* large meshes' leaves: MS_RT_LEAVES_AUTO (by memory and rays),
+                           * _COMPACT (less memory) or _FAST (faster rays) */
 } ms_rt_options;
+
+enum { MS_RT_LEAVES_AUTO, MS_RT_LEAVES_COMPACT, MS_RT_LEAVES_FAST };
 
 enum { MS_RT_PRIMARY, MS_RT_SHADOW, MS_RT_AO, MS_RT_SECONDARY, MS_RT_NRAYKINDS };
 

@@ -24,6 +24,8 @@ RTCDevice rt_device(ms_error *err);
 /* Bytes Embree may hold from now on (allocations past it fail, and the build reports that
  * the scene does not fit in memory); 0 lifts the limit. */
 void rt_device_set_budget(size_t bytes);
+/* Bytes Embree may still take under the budget; 0 when there is no budget. */
+size_t rt_device_room(void);
 /* Bytes Embree holds now, and the most it held since rt_device_peak_reset. */
 size_t rt_device_held(void);
 size_t rt_device_peak(void);
@@ -104,6 +106,7 @@ typedef struct rt_world {
     size_t ngeoms;
     rt_placed *placed;          /* per source */
     int has_trans;              /* some geometry is transparent */
+    int compact;                /* large meshes get compact leaves (world.c, new_scene) */
     double samples;             /* camera rays to trace (0: unknown) */
     float eps;                  /* secondary ray offset, from the scene's size */
     void **owned;               /* arrays made for the build */
@@ -113,9 +116,9 @@ typedef struct rt_world {
 } rt_world;
 
 /* Build the world of a scene (Embree scenes committed) for about samples camera rays (pixels
- * times passes; 0: unknown, as for a session, which may trace many passes). 0, or -1 with err
- * set and w freed. */
-int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err);
+ * times passes; 0: unknown, as for a session, which may trace many passes), its large meshes'
+ * leaves as leaves says (MS_RT_LEAVES_*). 0, or -1 with err set and w freed. */
+int rt_world_build(rt_world *w, const ms_scene *s, double samples, int leaves, ms_error *err);
 /* A lower bound of the bytes Embree will hold for s (its triangles, and its other
  * primitives), to refuse a scene that cannot fit before building it. */
 size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother);

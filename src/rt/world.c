@@ -201,12 +201,38 @@ static size_t group_triangles(const rt_world *w, size_t first)
     return tris;
 }
 
-/* From this many triangles in a scene its Embree scenes are built compact (Triangle4i
- * leaves that index the list's own vertices instead of copying them, and smaller nodes): on
- * the scale benchmark's 1M-atom QuickSurf (2.9M triangles) Embree's peak went from 342 to
- * 147 MB, the trace time unchanged within the noise, the image identical. (A low-quality,
- * Morton-code build of the same scene peaked at 248 MB.) */
+/* Compact leaves: Triangle4i leaves that index the list's own vertices instead of copying
+ * them, and smaller nodes. On the scale benchmark's 1M-atom QuickSurf (2.9M triangles)
+ * Embree's peak went from 342 to 147 MB, the image identical (a low-quality, Morton-code
+ * build of the same scene peaked at 248 MB). But a ray costs more: on the Table 2 scene
+ * (nested QuickSurf surfaces, issue 21) compact leaves traced 25-35% slower at 56 k and at
+ * 2.4 M atoms, and at 2.4 M they built 4-5 s of CPU faster (44.65 M triangles). So a scene's
+ * large meshes (COMPACT_TRIS and more) are compact only when the fast layout would take more
+ * than half of what Embree may hold (rt_device_room, from the render's memory plan; with no
+ * plan, always), or when the camera rays are too few to repay its build: fewer than
+ * RAYS_PER_TRI_FAST a triangle (measured at 2.4 M atoms, 1024 x 1024, 1 sample, shadows and
+ * AO: the two layouts' build and trace cost about the same, at 1 camera ray for 43
+ * triangles; 0.1 us of build a triangle against about 2.6 us of tracing a camera ray). */
 #define COMPACT_TRIS ((size_t)1 << 20)
+#define RAYS_PER_TRI_FAST (1.0 / 16.0)
+
+/* Embree's bytes a primitive, taken low: the scale benchmark's QuickSurf triangles peaked at
+ * 52 bytes each compact and 119 otherwise (BVH, leaves and the build's references); the
+ * other primitives are user geometries with at least a reference and a node share each. */
+#define EST_TRI_COMPACT 48
+#define EST_TRI 100
+#define EST_TRI_FAST 120      /* as measured (119), to choose the layout */
+#define EST_OTHER 64
+
+/* Whether the world's large meshes get compact leaves (above). */
+static int use_compact(const rt_world *w, size_t tris, size_t nother)
+{
+    if (tris < COMPACT_TRIS) return 0;
+    size_t room = rt_device_room();
+    if (!room || (double)tris * EST_TRI_FAST + (double)nother * EST_OTHER > (double)room / 2)
+        return 1;
+    return w->samples > 0 && w->samples < RAYS_PER_TRI_FAST * (double)tris;
+}
 
 /* A new Embree scene for opaque or transparent geometries, with tris triangles in all; NULL
  * with err set. */
@@ -220,7 +246,7 @@ static RTCScene new_scene(rt_world *w, int trans, size_t tris, ms_error *err)
     /* the transparent part is walked only by rays the opaque part let through: a quick build
      * traced as fast there (measured on a 1M-triangle surface: 0.3 s of CPU saved) */
     rtcSetSceneBuildQuality(sc, trans ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
-    if (tris >= COMPACT_TRIS) rtcSetSceneFlags(sc, RTC_SCENE_FLAG_COMPACT);
+    if (w->compact && tris >= COMPACT_TRIS) rtcSetSceneFlags(sc, RTC_SCENE_FLAG_COMPACT);
     return sc;
 }
 
@@ -298,13 +324,6 @@ static int place_sources(rt_world *w, ms_error *err)
     return 0;
 }
 
-/* Embree's bytes a primitive, taken low: the scale benchmark's QuickSurf triangles peaked at
- * 52 bytes each compact and 119 otherwise (BVH, leaves and the build's references); the
- * other primitives are user geometries with at least a reference and a node share each. */
-#define EST_TRI_COMPACT 48
-#define EST_TRI 100
-#define EST_OTHER 64
-
 size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother)
 {
     *ntris = scene_triangles(s);
@@ -316,13 +335,16 @@ size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother)
     return *ntris * (*ntris >= COMPACT_TRIS ? EST_TRI_COMPACT : EST_TRI) + *nother * EST_OTHER;
 }
 
-int rt_world_build(rt_world *w, const ms_scene *s, double samples, ms_error *err)
+int rt_world_build(rt_world *w, const ms_scene *s, double samples, int leaves, ms_error *err)
 {
     memset(w, 0, sizeof *w);
     w->samples = samples;
     w->dev = rt_device(err);
     if (!w->dev) return -1;
     w->eps = rt_world_eps(s);
+    size_t ntris, nother;
+    rt_world_estimate(s, &ntris, &nother);
+    w->compact = leaves == MS_RT_LEAVES_AUTO ? use_compact(w, ntris, nother) : leaves == MS_RT_LEAVES_COMPACT;
     if (rt_sources_make(&w->set, s, err)) goto fail;
     w->placed = rt_world_alloc(w, w->set.n, sizeof *w->placed, err);
     w->geoms = rt_world_alloc(w, w->set.n * RT_NKINDS, sizeof *w->geoms, err);

@@ -880,6 +880,72 @@ static void test_errors(void)
     ms_dl_free(&dl);
 }
 
+#ifndef MS_TEST_OCLRT
+/* A large mesh's leaves (world.c): compact when asked, or when the fast layout would take more
+ * than half the memory allowed or the camera rays are fewer than one for 16 triangles; fast
+ * otherwise. The layouts give the same picture; the fast one takes more of Embree's memory. */
+static size_t leaves_render(const ms_scene *s, int layout, int aasamples, size_t memory,
+                            ms_image *img)
+{
+    ms_rt_options o;
+    ms_rt_options_default(&o);
+    o.aasamples = aasamples, o.aosamples = 0, o.leaves = layout, o.memory = memory;
+    ms_error err = {{0}};
+    if (ms_rt_render(s, &o, img, NULL, &err)) {
+        printf("# render failed: %s\n", err.msg);
+        return 0;
+    }
+    ms_rt_memory m;
+    ms_rt_last_memory(&m);
+    return m.embree;
+}
+
+static void test_leaves(void)
+{
+    t_suite = "leaves";
+    enum { N = 730 };              /* (N - 1)^2 quads: 1,062,882 triangles, past 2^20 */
+    ms_displaylist dl;
+    ms_dl_init(&dl);
+    float nrm[3] = {0, 0, 1};
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            float p[3] = {-2.5f + 5.0f * i / (N - 1), -2.5f + 5.0f * j / (N - 1),
+                          0.2f * sinf(0.05f * (float)(i + 2 * j))};
+            ms_dl_vertex(&dl, p, nrm, (ms_rgba8){200, 120, 60, 255});
+        }
+    for (uint32_t j = 0; j + 1 < N; j++)
+        for (uint32_t i = 0; i + 1 < N; i++) {
+            uint32_t a = j * N + i;
+            ms_dl_tri(&dl, a, a + 1, a + N + 1);
+            ms_dl_tri(&dl, a, a + N + 1, a + N);
+        }
+    ms_scene s;
+    scene_new(&s, 32, 32, 0);
+    light(&s, 0, 0.3f, 0.4f, 1);
+    place(&s, &dl, 0.2f, 0.8f, 0, 40, 1);
+    ms_image ic, ifast, img;
+    size_t compact = leaves_render(&s, MS_RT_LEAVES_COMPACT, 0, 0, &ic);
+    size_t fast = leaves_render(&s, MS_RT_LEAVES_FAST, 0, 0, &ifast);
+    t_ok(compact && fast > compact * 3 / 2, "the fast leaves take more memory (%zu against %zu bytes)",
+         fast, compact);
+    t_ok(compact && fast && !memcmp(ic.rgb, ifast.rgb, 3 * 32 * 32), "the two layouts give the same picture");
+    size_t one = leaves_render(&s, MS_RT_LEAVES_AUTO, 0, 0, &img);
+    t_ok(one && one < (compact + fast) / 2, "1,024 camera rays for 1M triangles: compact (%zu bytes)", one);
+    if (one) ms_image_free(&img);
+    /* 65 passes of 1,024 pixels: 66,560 camera rays, one for 16 triangles */
+    size_t many = leaves_render(&s, MS_RT_LEAVES_AUTO, 64, 0, &img);
+    t_ok(many > (compact + fast) / 2, "66,560 camera rays: fast (%zu bytes)", many);
+    if (many) ms_image_free(&img);
+    size_t tight = leaves_render(&s, MS_RT_LEAVES_AUTO, 64, (size_t)200 << 20, &img);
+    t_ok(tight && tight < (compact + fast) / 2, "the same rays in 200 MB: compact (%zu bytes)", tight);
+    if (tight) ms_image_free(&img);
+    if (compact) ms_image_free(&ic);
+    if (fast) ms_image_free(&ifast);
+    ms_scene_free(&s);
+    ms_dl_free(&dl);
+}
+#endif
+
 #ifdef MS_TEST_OCLRT
 /* ---------------------------------------------------------------- OpenCL only */
 
@@ -1098,6 +1164,9 @@ int main(void)
     test_mirror();
     test_cylinder_caps();
     test_half_bonds();
+#ifndef MS_TEST_OCLRT
+    test_leaves();
+#endif
     test_cone();
     test_mesh_colors();
     test_gradient();
