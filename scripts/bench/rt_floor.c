@@ -15,6 +15,10 @@
  *             (recorded by an occlusion filter) before walking the tree
  *   camera8   builtin, the camera rays in packets of 8 (half a tile's row: neighbouring
  *             pixels) by rtcIntersect8 with Embree's coherent flag
+ *   nbr       builtin, each shadow and occlusion ray first tested against the RTFLOOR_K
+ *             (default 8) spheres nearest the sphere it leaves (by the gap between their
+ *             surfaces; found with a grid before the timing, as is the sphere each ray
+ *             leaves, which a render knows from its hit)
  *
  *   rt_floor [-t threads] [-v variant] [-r repeats] [-shuffle] dump
  *
@@ -48,14 +52,22 @@ typedef struct dump {
     size_t nrays[NKINDS];
 } dump;
 
-typedef enum variant { V_BUILTIN, V_INSTANCE, V_USER, V_PACKET, V_CACHE, V_CAMERA8, NVARIANTS } variant;
-static const char *const variant_names[] = {"builtin", "instance", "user", "packet", "cache", "camera8"};
+typedef enum variant { V_BUILTIN, V_INSTANCE, V_USER, V_PACKET, V_CACHE, V_CAMERA8, V_NBR, NVARIANTS } variant;
+static const char *const variant_names[] = {"builtin", "instance", "user", "packet", "cache", "camera8", "nbr"};
+
+/* The nbr variant: each sphere's K nearest neighbours (by the gap between the surfaces),
+ * and each shadow and occlusion ray's sphere (the one its origin lies on). */
+static int nbr_k = 8;
+static uint64_t nbr_caught;     /* rays a neighbour blocked (summed after each kind) */
+static uint32_t *nbr;
+static uint32_t *ray_sphere[4];
 
 /* The context of a query: Embree's, then the sphere that blocked the thread's last
  * occlusion ray (the cache variant). */
 typedef struct query {
     struct RTCIntersectContext ec;
     unsigned last;
+    uint64_t caught;            /* nbr: rays a neighbour blocked */
 } query;
 
 /* ---------------------------------------------------------------- reading the dump */
@@ -189,6 +201,108 @@ static int sphere_blocks(const float *s, const float o[3], const float d[3], flo
     return tc + td > tnear + 1e-4f * s[3];
 }
 
+/* ---------------------------------------------------------------- neighbours (nbr) */
+
+typedef struct grid {
+    float lo[3], cell;
+    int n[3];
+    uint32_t *start, *items;    /* cell c's spheres: items[start[c] .. start[c + 1]) */
+} grid;
+
+static size_t cell_of(const grid *g, const float p[3], int c[3])
+{
+    for (int k = 0; k < 3; k++) {
+        int v = (int)((p[k] - g->lo[k]) / g->cell);
+        c[k] = v < 0 ? 0 : v >= g->n[k] ? g->n[k] - 1 : v;
+    }
+    return ((size_t)c[2] * g->n[1] + c[1]) * g->n[0] + c[0];
+}
+
+static void grid_build(grid *g, const dump *d, float rmax)
+{
+    float hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < 3; k++) g->lo[k] = INFINITY;
+    for (size_t i = 0; i < d->nspheres; i++)
+        for (int k = 0; k < 3; k++) {
+            g->lo[k] = fminf(g->lo[k], d->spheres[4 * i + k]);
+            hi[k] = fmaxf(hi[k], d->spheres[4 * i + k]);
+        }
+    g->cell = 2.0f * rmax;
+    size_t nc = 1;
+    for (int k = 0; k < 3; k++) nc *= (size_t)(g->n[k] = (int)((hi[k] - g->lo[k]) / g->cell) + 1);
+    g->start = calloc(nc + 1, sizeof *g->start);
+    g->items = malloc(d->nspheres * sizeof *g->items);
+    int c[3];
+    for (size_t i = 0; i < d->nspheres; i++) g->start[cell_of(g, d->spheres + 4 * i, c) + 1]++;
+    for (size_t i = 0; i < nc; i++) g->start[i + 1] += g->start[i];
+    uint32_t *fill = malloc(nc * sizeof *fill);
+    memcpy(fill, g->start, nc * sizeof *fill);
+    for (size_t i = 0; i < d->nspheres; i++) g->items[fill[cell_of(g, d->spheres + 4 * i, c)]++] = (uint32_t)i;
+    free(fill);
+}
+
+/* Visit the spheres of the cells within reach of p. */
+#define GRID_EACH(g, p, reach, j, ...) do { \
+    int c0[3], c1[3]; \
+    float a_[3] = {(p)[0] - (reach), (p)[1] - (reach), (p)[2] - (reach)}; \
+    float b_[3] = {(p)[0] + (reach), (p)[1] + (reach), (p)[2] + (reach)}; \
+    cell_of(g, a_, c0); cell_of(g, b_, c1); \
+    for (int z_ = c0[2]; z_ <= c1[2]; z_++) for (int y_ = c0[1]; y_ <= c1[1]; y_++) \
+    for (int x_ = c0[0]; x_ <= c1[0]; x_++) { \
+        size_t cc_ = ((size_t)z_ * (g)->n[1] + y_) * (g)->n[0] + x_; \
+        for (uint32_t q_ = (g)->start[cc_]; q_ < (g)->start[cc_ + 1]; q_++) { \
+            uint32_t j = (g)->items[q_]; __VA_ARGS__; } } } while (0)
+
+static void nbr_build(const dump *d)
+{
+    float rmax = 0;
+    for (size_t i = 0; i < d->nspheres; i++) rmax = fmaxf(rmax, d->spheres[4 * i + 3]);
+    grid g;
+    grid_build(&g, d, rmax);
+    nbr = malloc(d->nspheres * nbr_k * sizeof *nbr);
+    float *gap = malloc(nbr_k * sizeof *gap);
+    for (size_t i = 0; i < d->nspheres; i++) {
+        const float *si = d->spheres + 4 * i;
+        uint32_t *ni = nbr + i * nbr_k;
+        int n = 0;
+        GRID_EACH(&g, si, si[3] + 2.0f * rmax, j, {
+            if (j == i) continue;
+            const float *sj = d->spheres + 4 * (size_t)j;
+            float dx = sj[0] - si[0], dy = sj[1] - si[1], dz = sj[2] - si[2];
+            float gp = sqrtf(dx * dx + dy * dy + dz * dz) - si[3] - sj[3];
+            if (gp > rmax) continue;
+            int at = n < nbr_k ? n++ : nbr_k;
+            if (at == nbr_k && gp >= gap[nbr_k - 1]) continue;
+            if (at == nbr_k) at = nbr_k - 1;
+            while (at > 0 && gap[at - 1] > gp) { gap[at] = gap[at - 1]; ni[at] = ni[at - 1]; at--; }
+            gap[at] = gp, ni[at] = j;
+        });
+        for (int k = n; k < nbr_k; k++) ni[k] = ~0u;
+    }
+    for (int kind = SHADOW; kind <= AO; kind++) {
+        ray_sphere[kind] = malloc((d->nrays[kind] + 1) * sizeof(uint32_t));
+        size_t found = 0;
+        for (size_t r = 0; r < d->nrays[kind]; r++) {
+            const float *o = d->rays[kind][r].org;
+            float best = INFINITY;
+            uint32_t bj = ~0u;
+            GRID_EACH(&g, o, 2.0f * rmax, j, {
+                const float *sj = d->spheres + 4 * (size_t)j;
+                float dx = o[0] - sj[0], dy = o[1] - sj[1], dz = o[2] - sj[2];
+                float e = fabsf(sqrtf(dx * dx + dy * dy + dz * dz) - sj[3]);
+                if (e < best) best = e, bj = j;
+            });
+            ray_sphere[kind][r] = best < 1e-3f ? bj : ~0u;
+            found += best < 1e-3f;
+        }
+        printf("nbr: %zu of %zu %s rays start on a sphere (K %d)\n", found, d->nrays[kind],
+               kind_names[kind], nbr_k);
+    }
+    free(gap);
+    free(g.start);
+    free(g.items);
+}
+
 /* ---------------------------------------------------------------- the scene */
 
 static RTCGeometry sphere_geometry(RTCDevice dev, const dump *d, variant v)
@@ -268,6 +382,12 @@ static uint64_t trace_one(const job *j, query *qc, const rayrec *q)
     }
     if (j->v == V_CACHE && qc->last != ~0u && sphere_blocks(j->spheres + 4 * (size_t)qc->last, q->org, q->dir, q->tnear))
         return 1;
+    if (j->v == V_NBR) {
+        uint32_t src = ray_sphere[j->kind][q - j->rays];
+        if (src != ~0u)
+            for (const uint32_t *n = nbr + (size_t)src * nbr_k, *e = n + nbr_k; n < e && *n != ~0u; n++)
+                if (sphere_blocks(j->spheres + 4 * (size_t)*n, q->org, q->dir, q->tnear)) { qc->caught++; return 1; }
+    }
     struct RTCRay r;
     set_ray(&r, q);
     rtcOccluded1(j->scene, ctx, &r);
@@ -353,6 +473,7 @@ static void *worker(void *arg)
     uint64_t hits = 0;
     rtcInitIntersectContext(&ctx.ec);
     ctx.last = ~0u;
+    ctx.caught = 0;
     for (;;) {
         pthread_mutex_lock(&j->lock);
         size_t b = j->next;
@@ -363,6 +484,7 @@ static void *worker(void *arg)
     }
     pthread_mutex_lock(&j->lock);
     j->hits += hits;
+    nbr_caught += ctx.caught;
     pthread_mutex_unlock(&j->lock);
     return NULL;
 }
@@ -400,7 +522,7 @@ static uint64_t trace_kind(RTCScene s, variant v, const dump *d, int kind, int n
 
 static void usage(void)
 {
-    die("%s", "usage: rt_floor [-t threads] [-v builtin|instance|user|packet|cache] [-r repeats] [-shuffle] dump");
+    die("%s", "usage: rt_floor [-t threads] [-v builtin|instance|user|packet|cache|camera8|nbr] [-r repeats] [-shuffle] dump");
 }
 
 int main(int argc, char **argv)
@@ -423,6 +545,11 @@ int main(int argc, char **argv)
     dump d;
     read_dump(path, &d);
     if (shuffled) shuffle(&d);
+    if (v == V_NBR) {
+        if (getenv("RTFLOOR_K")) nbr_k = atoi(getenv("RTFLOOR_K"));
+        if (nbr_k < 1 || nbr_k > 64) usage();
+        nbr_build(&d);
+    }
     if (d.nother)
         printf("note: the scene's %llu other primitives are not in the dump; spheres only\n",
                (unsigned long long)d.nother);
@@ -448,6 +575,9 @@ int main(int argc, char **argv)
                (unsigned long long)hits, best, best_cpu, (double)d.nrays[k] / best / 1e6);
         total += best, total_cpu += best_cpu, nall += d.nrays[k];
     }
+    if (v == V_NBR)
+        printf("nbr: %llu shadow and occlusion rays blocked by a neighbour (all repeats)\n",
+               (unsigned long long)nbr_caught);
     printf("total rays=%llu wall=%.3f cpu=%.3f mrays=%.2f\n", (unsigned long long)nall, total, total_cpu,
            (double)nall / total / 1e6);
     rtcReleaseScene(s);
