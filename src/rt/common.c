@@ -98,6 +98,22 @@ static void background_init(rt_shader *sh, const ms_scene *s)
     sh->grad_bot = -mag;
 }
 
+/* The lights that shade: on, with a direction. */
+static int light_dir(const ms_light *l, float d[3])
+{
+    memcpy(d, l->pos, 3 * sizeof(float));
+    return l->on && ms_v3f_normalize_rcp(d) != 0.0f;
+}
+
+double rt_rays_per_sample(const ms_scene *s, int aosamples)
+{
+    int lights = 0;
+    float d[3];
+    for (int i = 0; i < MS_SCENE_LIGHTS; i++) lights += light_dir(&s->settings.lights[i], d);
+    int full = s->settings.shadows || s->settings.ao;
+    return 1.0 + (full ? lights : 0) + (s->settings.ao ? aosamples : 0);
+}
+
 void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, int aosamples)
 {
     memset(sh, 0, sizeof *sh);
@@ -105,8 +121,8 @@ void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, 
     rt_camera_init(&sh->cam, s);
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) {
         const ms_light *l = &s->settings.lights[i];
-        float d[3] = {l->pos[0], l->pos[1], l->pos[2]};
-        if (!l->on || ms_v3f_normalize_rcp(d) == 0.0f) continue;
+        float d[3];
+        if (!light_dir(l, d)) continue;
         memcpy(sh->ldir[sh->nlights], d, sizeof d);
         memcpy(sh->lcol[sh->nlights], l->color, sizeof d);
         sh->nlights++;

@@ -217,7 +217,9 @@ int ms_rt_render(const ms_scene *s, const ms_rt_options *o, ms_image *img, ms_rt
     rt_device_peak_reset();
     double t0 = ms_now(), c0 = cpu_now();
     int passes = o->max_passes > 0 && o->max_passes < o->aasamples + 1 ? o->max_passes : o->aasamples + 1;
-    int rc = rt_world_build(&w, s, (double)s->width * (double)s->height * passes, o->leaves, err);
+    double samples = (double)s->width * (double)s->height * passes;
+    int rc = rt_world_build(&w, s, samples, samples * rt_rays_per_sample(s, o->aosamples),
+                            o->leaves, err);
     st->build_s = ms_now() - t0;
     st->build_cpu_s = cpu_now() - c0;
     if (rc == 0) {
@@ -268,7 +270,7 @@ ms_rt_session *ms_rt_session_begin(const ms_scene *s, const ms_rt_options *o, ms
         return NULL;
     }
     double t0 = ms_now();
-    int rc = rt_world_build(&ss->world, s, 0, o->leaves, err);
+    int rc = rt_world_build(&ss->world, s, 0, 0, o->leaves, err);
     ss->st.build_s = ms_now() - t0;
     rt_device_set_budget(0);
     if (rc) {

@@ -116,9 +116,14 @@ typedef struct rt_world {
 } rt_world;
 
 /* Build the world of a scene (Embree scenes committed) for about samples camera rays (pixels
- * times passes; 0: unknown, as for a session, which may trace many passes), its large meshes'
- * leaves as leaves says (MS_RT_LEAVES_*). 0, or -1 with err set and w freed. */
-int rt_world_build(rt_world *w, const ms_scene *s, double samples, int leaves, ms_error *err);
+ * times passes) and rays rays in all (0, 0: unknown, as for a session, which may trace many
+ * passes), its large meshes' leaves as leaves says (MS_RT_LEAVES_*). 0, or -1 with err set
+ * and w freed. */
+int rt_world_build(rt_world *w, const ms_scene *s, double samples, double rays, int leaves,
+                   ms_error *err);
+/* The rays a camera sample casts where it hits: itself, a shadow ray per light and the
+ * occlusion rays, as the shader will (an estimate: reflection and transmission not counted). */
+double rt_rays_per_sample(const ms_scene *s, int aosamples);
 /* A lower bound of the bytes Embree will hold for s (its triangles, and its other
  * primitives), to refuse a scene that cannot fit before building it. */
 size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother);

@@ -205,16 +205,16 @@ static size_t group_triangles(const rt_world *w, size_t first)
  * them, and smaller nodes. On the scale benchmark's 1M-atom QuickSurf (2.9M triangles)
  * Embree's peak went from 342 to 147 MB, the image identical (a low-quality, Morton-code
  * build of the same scene peaked at 248 MB). But a ray costs more: on the Table 2 scene
- * (nested QuickSurf surfaces, issue 21) compact leaves traced 25-35% slower at 56 k and at
- * 2.4 M atoms, and at 2.4 M they built 4-5 s of CPU faster (44.65 M triangles). So a scene's
- * large meshes (COMPACT_TRIS and more) are compact only when the fast layout would take more
- * than half of what Embree may hold (rt_device_room, from the render's memory plan; with no
- * plan, always), or when the camera rays are too few to repay its build: fewer than
- * RAYS_PER_TRI_FAST a triangle (measured at 2.4 M atoms, 1024 x 1024, 1 sample, shadows and
- * AO: the two layouts' build and trace cost about the same, at 1 camera ray for 43
- * triangles; 0.1 us of build a triangle against about 2.6 us of tracing a camera ray). */
+ * (nested QuickSurf surfaces, issue 21) compact leaves traced 30-40% slower at 56 k, 500 k
+ * and 2.4 M atoms, while at 2.4 M (44.65 M triangles) they built 4-5 s of CPU faster: about
+ * 0.1 us a triangle saved against 0.4 us a ray lost, even at about one ray for five
+ * triangles. A scene's large meshes (COMPACT_TRIS and more) are therefore compact when the
+ * fast layout would take more than half of what Embree may hold (rt_device_room, from the
+ * render's memory plan; with no plan, always), or when the render's rays (estimated:
+ * camera rays times one plus the shadow and occlusion rays of a hit) are fewer than its
+ * triangles: there the fast layout gains less than 30% of the tracing for 2.3 times
+ * Embree's memory. */
 #define COMPACT_TRIS ((size_t)1 << 20)
-#define RAYS_PER_TRI_FAST (1.0 / 16.0)
 
 /* Embree's bytes a primitive, taken low: the scale benchmark's QuickSurf triangles peaked at
  * 52 bytes each compact and 119 otherwise (BVH, leaves and the build's references); the
@@ -224,14 +224,15 @@ static size_t group_triangles(const rt_world *w, size_t first)
 #define EST_TRI_FAST 120      /* as measured (119), to choose the layout */
 #define EST_OTHER 64
 
-/* Whether the world's large meshes get compact leaves (above). */
-static int use_compact(const rt_world *w, size_t tris, size_t nother)
+/* Whether the world's large meshes get compact leaves (above), for about rays rays (0:
+ * unknown, as for a session, which may trace many passes). */
+static int use_compact(double rays, size_t tris, size_t nother)
 {
     if (tris < COMPACT_TRIS) return 0;
     size_t room = rt_device_room();
     if (!room || (double)tris * EST_TRI_FAST + (double)nother * EST_OTHER > (double)room / 2)
         return 1;
-    return w->samples > 0 && w->samples < RAYS_PER_TRI_FAST * (double)tris;
+    return rays > 0 && rays < (double)tris;
 }
 
 /* A new Embree scene for opaque or transparent geometries, with tris triangles in all; NULL
@@ -335,7 +336,8 @@ size_t rt_world_estimate(const ms_scene *s, size_t *ntris, size_t *nother)
     return *ntris * (*ntris >= COMPACT_TRIS ? EST_TRI_COMPACT : EST_TRI) + *nother * EST_OTHER;
 }
 
-int rt_world_build(rt_world *w, const ms_scene *s, double samples, int leaves, ms_error *err)
+int rt_world_build(rt_world *w, const ms_scene *s, double samples, double rays, int leaves,
+                   ms_error *err)
 {
     memset(w, 0, sizeof *w);
     w->samples = samples;
@@ -344,7 +346,8 @@ int rt_world_build(rt_world *w, const ms_scene *s, double samples, int leaves, m
     w->eps = rt_world_eps(s);
     size_t ntris, nother;
     rt_world_estimate(s, &ntris, &nother);
-    w->compact = leaves == MS_RT_LEAVES_AUTO ? use_compact(w, ntris, nother) : leaves == MS_RT_LEAVES_COMPACT;
+    w->compact = leaves == MS_RT_LEAVES_AUTO ? use_compact(rays, ntris, nother)
+                                             : leaves == MS_RT_LEAVES_COMPACT;
     if (rt_sources_make(&w->set, s, err)) goto fail;
     w->placed = rt_world_alloc(w, w->set.n, sizeof *w->placed, err);
     w->geoms = rt_world_alloc(w, w->set.n * RT_NKINDS, sizeof *w->geoms, err);
