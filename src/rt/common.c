@@ -110,8 +110,10 @@ double rt_rays_per_sample(const ms_scene *s, int aosamples)
     int lights = 0;
     float d[3];
     for (int i = 0; i < MS_SCENE_LIGHTS; i++) lights += light_dir(&s->settings.lights[i], d);
-    int full = s->settings.shadows || s->settings.ao;
-    return 1.0 + (full ? lights : 0) + (s->settings.ao ? aosamples : 0);
+    int full = s->settings.shadows || s->settings.ao, glass = 0;
+    for (size_t i = 0; i < s->nitems && !glass; i++) glass = s->items[i].mat.opacity < 1.0f;
+    /* behind glass a hit is shaded again, and shadow rays walk the transparent scene too */
+    return (1.0 + (full ? lights : 0) + (s->settings.ao ? aosamples : 0)) * (glass ? 2.0 : 1.0);
 }
 
 void rt_shader_init(rt_shader *sh, const ms_scene *s, const struct rt_world *w, int aosamples)

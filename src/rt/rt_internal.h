@@ -122,7 +122,8 @@ typedef struct rt_world {
 int rt_world_build(rt_world *w, const ms_scene *s, double samples, double rays, int leaves,
                    ms_error *err);
 /* The rays a camera sample casts where it hits: itself, a shadow ray per light and the
- * occlusion rays, as the shader will (an estimate: reflection and transmission not counted). */
+ * occlusion rays, as the shader will, twice over when a material is transparent (an
+ * estimate: reflection, and transmission past one surface, not counted). */
 double rt_rays_per_sample(const ms_scene *s, int aosamples);
 /* A lower bound of the bytes Embree will hold for s (its triangles, and its other
  * primitives), to refuse a scene that cannot fit before building it. */

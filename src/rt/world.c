@@ -206,15 +206,16 @@ static size_t group_triangles(const rt_world *w, size_t first)
  * Embree's peak went from 342 to 147 MB, the image identical (a low-quality, Morton-code
  * build of the same scene peaked at 248 MB). But a ray costs more: on the Table 2 scene
  * (nested QuickSurf surfaces, issue 21) compact leaves traced 30-40% slower at 56 k, 500 k
- * and 2.4 M atoms, while at 2.4 M (44.65 M triangles) they built 4-5 s of CPU faster: about
- * 0.1 us a triangle saved against 0.4 us a ray lost, even at about one ray for five
- * triangles. A scene's large meshes (COMPACT_TRIS and more) are therefore compact when the
- * fast layout would take more than half of what Embree may hold (rt_device_room, from the
- * render's memory plan; with no plan, always), or when the render's rays (estimated:
- * camera rays times one plus the shadow and occlusion rays of a hit) are fewer than its
- * triangles: there the fast layout gains less than 30% of the tracing for 2.3 times
- * Embree's memory. */
+ * and 2.4 M atoms, an opaque surface with AO 15% slower at 13 rays a triangle; the fast
+ * layout builds slower and takes 2.3 times the memory, whose first touch is itself slow
+ * (the 4M-atom scale benchmark, 2.8 rays a triangle: 25% more CPU, none of it saved in the
+ * trace; the 1M one, 11: the same CPU; the Table 2 scene at 2.4 M atoms, 3.4 rays a
+ * triangle: 13% less CPU, 26% at 13.5). A scene's large meshes (COMPACT_TRIS
+ * and more) therefore get the fast layout only when it takes at most half of what Embree
+ * may hold (rt_device_room, from the render's memory plan; with no plan, never) and the
+ * render's rays (estimated: rt_rays_per_sample) are at least RAYS_PER_TRI_FAST a triangle. */
 #define COMPACT_TRIS ((size_t)1 << 20)
+#define RAYS_PER_TRI_FAST 3.0
 
 /* Embree's bytes a primitive, taken low: the scale benchmark's QuickSurf triangles peaked at
  * 52 bytes each compact and 119 otherwise (BVH, leaves and the build's references); the
@@ -232,7 +233,7 @@ static int use_compact(double rays, size_t tris, size_t nother)
     size_t room = rt_device_room();
     if (!room || (double)tris * EST_TRI_FAST + (double)nother * EST_OTHER > (double)room / 2)
         return 1;
-    return rays > 0 && rays < (double)tris;
+    return rays > 0 && rays < RAYS_PER_TRI_FAST * (double)tris;
 }
 
 /* A new Embree scene for opaque or transparent geometries, with tris triangles in all; NULL

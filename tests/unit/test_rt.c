@@ -882,7 +882,7 @@ static void test_errors(void)
 
 #ifndef MS_TEST_OCLRT
 /* A large mesh's leaves (world.c): compact when asked, or when the fast layout would take more
- * than half the memory allowed or the render's rays are fewer than its triangles; fast
+ * than half the memory allowed or the render's rays are fewer than 3 a triangle; fast
  * otherwise. The layouts give the same picture; the fast one takes more of Embree's memory. */
 static size_t leaves_render(const ms_scene *s, int layout, int aasamples, size_t memory,
                             ms_image *img)
@@ -932,11 +932,15 @@ static void test_leaves(void)
     size_t one = leaves_render(&s, MS_RT_LEAVES_AUTO, 0, 0, &img);
     t_ok(one && one < (compact + fast) / 2, "16,384 rays for 1M triangles: compact (%zu bytes)", one);
     if (one) ms_image_free(&img);
-    /* 65 passes of 16,384 pixels: 1,064,960 rays, as many as the triangles */
-    size_t many = leaves_render(&s, MS_RT_LEAVES_AUTO, 64, 0, &img);
-    t_ok(many > (compact + fast) / 2, "1,064,960 rays: fast (%zu bytes)", many);
+    /* 194 passes: 3,178,496 rays, just short of 3 a triangle */
+    one = leaves_render(&s, MS_RT_LEAVES_AUTO, 193, 0, &img);
+    t_ok(one && one < (compact + fast) / 2, "3,178,496 rays: compact (%zu bytes)", one);
+    if (one) ms_image_free(&img);
+    /* 195 passes of 16,384 pixels: 3,194,880 rays, 3 a triangle */
+    size_t many = leaves_render(&s, MS_RT_LEAVES_AUTO, 194, 0, &img);
+    t_ok(many > (compact + fast) / 2, "3,194,880 rays: fast (%zu bytes)", many);
     if (many) ms_image_free(&img);
-    size_t tight = leaves_render(&s, MS_RT_LEAVES_AUTO, 64, (size_t)200 << 20, &img);
+    size_t tight = leaves_render(&s, MS_RT_LEAVES_AUTO, 194, (size_t)200 << 20, &img);
     t_ok(tight && tight < (compact + fast) / 2, "the same rays in 200 MB: compact (%zu bytes)", tight);
     if (tight) ms_image_free(&img);
     if (compact) ms_image_free(&ic);
