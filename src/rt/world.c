@@ -226,14 +226,15 @@ static size_t group_triangles(const rt_world *w, size_t first)
 #define EST_OTHER 64
 
 /* Whether the world's large meshes get compact leaves (above), for about rays rays (0:
- * unknown, as for a session, which may trace many passes). */
+ * unknown, as for a session: the live view builds its world again at every change of the
+ * view, so the quicker build is kept there). */
 static int use_compact(double rays, size_t tris, size_t nother)
 {
     if (tris < COMPACT_TRIS) return 0;
     size_t room = rt_device_room();
     if (!room || (double)tris * EST_TRI_FAST + (double)nother * EST_OTHER > (double)room / 2)
         return 1;
-    return rays > 0 && rays < RAYS_PER_TRI_FAST * (double)tris;
+    return !(rays >= RAYS_PER_TRI_FAST * (double)tris);
 }
 
 /* A new Embree scene for opaque or transparent geometries, with tris triangles in all; NULL
