@@ -88,6 +88,14 @@ proc test_error {name script pattern} {
 
 proc skip {name why} { ::t_report SKIP $name $why }
 
+# The bytes of a file, whole.
+proc read_bytes {path} {
+    set f [open $path rb]
+    set b [read $f]
+    close $f
+    return $b
+}
+
 if {[catch {source [lindex $argv 0]} err]} {
     ::t_report FAIL "(file)" "script error: $err [string range $::errorInfo 0 300]"
 }
