@@ -13,13 +13,17 @@
 # extrapolated from the 1-sample run (its trace times the samples, plus its preprocessing;
 # its CPU beyond the parse in the same proportion) and marked so. A scene whose estimated
 # size in tachyon (T2_TACHYON_BPO bytes an object: 550-580 measured at 56k and 500k atoms)
-# passes the cap is not run, and the table says so. Logs in bench-out/table2/ (T2_OUT).
+# passes the cap is not run, and the table says so. The rows of T2_FLOOR_ROWS are rendered
+# once more with their rays dumped (MOLSCOPE_RT_RAYDUMP), and rt_floor traces those rays with
+# Embree alone, its scenes built as the render's (-v placed), on all threads: the floor of
+# the row (Embree's build and trace, CPU s). Logs in bench-out/table2/ (T2_OUT).
 #
 #   scripts/bench/bench_table2.sh [builddir]
 #   T2_ATOMS=56000 (2400000: the paper's scale)  T2_SIZE=1024  T2_ROWS="spp sh ao depth ..."
 #   T2_ONE_ROWS="0 2 5" (row indices, "": none)  T2_RENDERER=TachyonInternal
 #   T2_TACHYON=1 (0: no tachyon)  T2_TACHYON_MEM=7 (GB)  T2_TACHYON_MAX=3600 (s)
-#   T2_TACHYON_BPO=600
+#   T2_TACHYON_BPO=600  T2_FLOOR_ROWS="0 2 5" (row indices, "": none; 32 bytes a ray on disc:
+#   1.6 GB for a 12-sample row at 1024 x 1024)
 set -euo pipefail
 . "$(dirname "$0")/lib.sh" "$@"
 out=${T2_OUT:-$out/table2}
@@ -63,6 +67,25 @@ while read -r spp sh ao depth _; do
 done < "$out/ti.log"
 : > "$out/ti1.log"
 [ -n "$one_rows" ] && MOLSCOPE_THREADS=1 run_molscope "$out/ti1.log" "$one_rows"
+
+# the floor of the rows of T2_FLOOR_ROWS: "spp sh ao depth cpu" lines (build + trace)
+: > "$out/floor.log"
+floor_rows=${T2_FLOOR_ROWS-0 2 5}
+if [ "$renderer" = TachyonInternal ] && [ -n "$floor_rows" ]; then
+    (cd "$build" && make -s scripts/bench/rt_floor)
+    i=0
+    while read -r spp sh ao depth _; do
+        for k in $floor_rows; do
+            [ "$k" = "$i" ] || continue
+            MOLSCOPE_RT_RAYDUMP=$out/floor.rays run_molscope "$out/dump.log" "$spp $sh $ao $depth" 2> /dev/null
+            "$build/scripts/bench/rt_floor" -t "$(nproc)" -v placed "$out/floor.rays" > "$out/floor_$i.log"
+            rm -f "$out/floor.rays"
+            awk -v r="$spp $sh $ao $depth" '/^floor / {for (f = 1; f <= NF; f++) if ($f ~ /^build_cpu=/) b = substr($f, 11)}
+                /^total / {split($4, a, "="); printf "%s %.2f\n", r, b + a[2]}' "$out/floor_$i.log" >> "$out/floor.log"
+        done
+        i=$((i + 1))
+    done < "$out/ti.log"
+fi
 
 # tachyon on one scene: file depth aasamples -> "parse preprocess trace cpu rss" (seconds, kB),
 # or "fail <status>"
@@ -115,13 +138,13 @@ tachyon_cols() {
         'BEGIN {printf "%.1f %.1f %.2f%s\n", q + t, c - p, m / 1048576, n}'
 }
 
-one_cpu() {   # spp sh ao depth -> the 1-thread CPU s of that row, or -
-    awk -v a="$1" -v b="$2" -v c="$3" -v d="$4" \
-        '$1 == a && $2 == b && $3 == c && $4 == d {x = $6} END {print (x == "" ? "-" : x)}' "$out/ti1.log"
+row_col() {   # log column spp sh ao depth -> that column of the row in the log, or -
+    awk -v a="$3" -v b="$4" -v c="$5" -v d="$6" -v k="$2" \
+        '$1 == a && $2 == b && $3 == c && $4 == d {x = $k} END {print (x == "" ? "-" : x)}' "$1"
 }
 echo
-echo "| samples | shadows | AO | depth | $renderer s (CPU s) | 1 thread CPU s | tachyon s (CPU s) | tachyon GB | wall ratio | CPU ratio |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| samples | shadows | AO | depth | $renderer s (CPU s) | 1 thread CPU s | Embree floor CPU s | tachyon s (CPU s) | tachyon GB | wall ratio | CPU ratio | tachyon / floor CPU |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 i=0
 while read -r spp sh ao depth wall cpu; do
     tw=- tc=- tg=- note=""
@@ -131,9 +154,12 @@ while read -r spp sh ao depth wall cpu; do
     fi
     wr=$(awk -v a="$wall" -v b="$tw" 'BEGIN {if (b + 0 > 0) printf "%.1fx", b / a; else print "-"}')
     cr=$(awk -v a="$cpu" -v b="$tc" 'BEGIN {if (b + 0 > 0) printf "%.1fx", b / a; else print "-"}')
-    echo "| $spp | $sh | $ao | $depth | $wall ($cpu) | $(one_cpu "$spp" "$sh" "$ao" "$depth") | $tw ($tc) | $tg | $wr | $cr |${note:+ $note}"
+    fl=$(row_col "$out/floor.log" 5 "$spp" "$sh" "$ao" "$depth")
+    fr=$(awk -v a="$fl" -v b="$tc" 'BEGIN {if (a + 0 > 0 && b + 0 > 0) printf "%.1fx", b / a; else print "-"}')
+    echo "| $spp | $sh | $ao | $depth | $wall ($cpu) | $(row_col "$out/ti1.log" 6 "$spp" "$sh" "$ao" "$depth") | $fl | $tw ($tc) | $tg | $wr | $cr | $fr |${note:+ $note}"
     i=$((i + 1))
 done < "$out/ti.log"
 echo "($renderer: the render command, Embree build and PNG included, not the surfaces (built"
 echo " before the first row). tachyon: preprocessing + ray tracing; its CPU: the whole run less"
-echo " its parse of the scene file; GB: its peak resident memory)"
+echo " its parse of the scene file; GB: its peak resident memory. Embree floor: the row's rays"
+echo " traced by Embree alone (rt_floor -v placed), its build and trace, all threads)"

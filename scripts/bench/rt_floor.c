@@ -1,13 +1,26 @@
 /* rt_floor.c: the floor of a TachyonInternal render. Reads a ray dump (MOLSCOPE_RT_RAYDUMP,
- * src/rt/raydump.c: the scene's spheres in world coordinates and every ray the render cast,
- * by kind) and traces the same rays with Embree alone: camera and transmission rays with
- * rtcIntersect1, shadow and occlusion rays with rtcOccluded1, no sampling, no shading, no
- * image. Prints, per ray kind, the rays, wall and CPU seconds (the least of the repeats, each)
+ * src/rt/raydump.c: the scene's spheres in world coordinates, its meshes, and every ray the
+ * render cast, by kind) and traces the same rays with Embree alone: camera and transmission
+ * rays with rtcIntersect1, shadow and occlusion rays with rtcOccluded1, no sampling, no
+ * shading, no image. As the render does, the opaque geometries are one scene and the
+ * transparent meshes another: a camera or transmission ray walks the opaque scene and then
+ * the transparent one up to the opaque hit; a shadow or occlusion ray that the opaque scene
+ * lets through walks the transparent one to its end, an occlusion filter taking off each
+ * crossing's share of the light (the mesh's opacity). Meshes are built as the render built
+ * them (compact leaves, a Morton-code tree: the dump's flags). Prints, per ray kind, the rays, wall and CPU seconds (the least of the repeats, each)
  * and Mrays/s (from the wall time), and the total: the time the render could not go below
  * with these rays on this tree. Variants (-v), for the
  * experiments of doc/BENCHMARKS.md:
- *   builtin   Embree's sphere geometry (RTC_GEOMETRY_TYPE_SPHERE_POINT), one flat scene
- *   instance  the same under one instance (as TachyonInternal places every transform)
+ *   builtin   Embree's sphere geometry (RTC_GEOMETRY_TYPE_SPHERE_POINT) and the meshes moved
+ *             to world coordinates, flat scenes
+ *   placed    as TachyonInternal places them: spheres as builtin, meshes under an instance
+ *             of their transform (one for the meshes that share it)
+ *   coherent  placed, the camera rays in packets of 8 (half a tile's row) and the shadow
+ *             rays in packets of 8 of one direction (a light's, from neighbouring points),
+ *             by rtcIntersect8 and rtcOccluded8 with Embree's coherent flag: what tracing a
+ *             tile's rays of these kinds together would be worth
+ *   instance  builtin's spheres under one instance (as TachyonInternal placed every
+ *             transform before it moved spheres to world space)
  *   user      a user geometry over Embree's tree, with a compact sphere test
  *   packet    builtin, the occlusion rays sharing an origin (a hit's AO rays) traced
  *             together by rtcOccluded4/8/16
@@ -20,13 +33,19 @@
  *             surfaces; found with a grid before the timing, as is the sphere each ray
  *             leaves, which a render knows from its hit)
  *
- *   rt_floor [-t threads] [-v variant] [-r repeats] [-shuffle] dump
+ *   rt_floor [-t threads] [-v variant] [-r repeats] [-shuffle | -mixed] [-c embree-config] dump
  *
  * -shuffle traces each kind's rays in a random order instead of the render's (tile by tile,
  * a hit's occlusion rays together): what the coherence of the render's order is worth.
  *
- * Only spheres are in the dump's geometry: a dump whose scene had other primitives is traced
- * without them, and the program says so. */
+ * -mixed traces all the rays in the render's order, the kinds interleaved as the render casts
+ * them, instead of each kind's in turn: what grouping the rays by kind would be worth (the
+ * builtin and placed variants only).
+ * -c adds to Embree's device configuration (e.g. max_isa=avx2).
+ *
+ * Only spheres and meshes are in the dump's geometry: a dump whose scene had other primitives
+ * (cylinders, cones, discs) is traced without them, and the program says so. The variants
+ * other than builtin and instance are for scenes of spheres alone. */
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <pthread.h>
@@ -37,23 +56,35 @@
 #include <sys/resource.h>
 #include <time.h>
 
-enum { PRIMARY, SHADOW, AO, SECONDARY, NKINDS };
-static const char *const kind_names[NKINDS] = {"camera", "shadow", "occlusion", "transmission"};
+enum { PRIMARY, SHADOW, AO, SECONDARY, NKINDS, MIXED = NKINDS };
+static const char *const kind_names[NKINDS + 1] = {"camera", "shadow", "occlusion", "transmission", "mixed"};
 
 typedef struct rayrec {
     float org[3], tnear, dir[3];
     uint32_t info;
 } rayrec;
 
+/* A mesh of the dump: how the render built it, its transform and its own coordinates. */
+enum { MESH_TRANSPARENT = 1, MESH_MORTON = 2, MESH_COMPACT = 4 };
+typedef struct mesh {
+    uint32_t flags;
+    float opacity;
+    uint64_t nverts, ntris;
+    float xf[12];               /* list to world, 3 x 4 row-major */
+    float *xyz;                 /* nverts x 3 and a spare vertex (Embree reads 16 bytes) */
+    uint32_t *tri;
+} mesh;
+
 typedef struct dump {
-    uint64_t nspheres, nother;
+    uint64_t nspheres, nother, nmeshes;
     float *spheres;             /* x y z r */
-    rayrec *rays[NKINDS];
-    size_t nrays[NKINDS];
+    mesh *meshes;
+    rayrec *rays[NKINDS + 1];   /* by kind; [MIXED]: all, in the file's order (-mixed) */
+    size_t nrays[NKINDS + 1];
 } dump;
 
-typedef enum variant { V_BUILTIN, V_INSTANCE, V_USER, V_PACKET, V_CACHE, V_CAMERA8, V_NBR, NVARIANTS } variant;
-static const char *const variant_names[] = {"builtin", "instance", "user", "packet", "cache", "camera8", "nbr"};
+typedef enum variant { V_BUILTIN, V_PLACED, V_COHERENT, V_INSTANCE, V_USER, V_PACKET, V_CACHE, V_CAMERA8, V_NBR, NVARIANTS } variant;
+static const char *const variant_names[] = {"builtin", "placed", "coherent", "instance", "user", "packet", "cache", "camera8", "nbr"};
 
 /* The nbr variant: each sphere's K nearest neighbours (by the gap between the surfaces),
  * and each shadow and occlusion ray's sphere (the one its origin lies on). */
@@ -66,6 +97,7 @@ static uint32_t *ray_sphere[4];
  * occlusion ray (the cache variant). */
 typedef struct query {
     struct RTCIntersectContext ec;
+    float light;                /* a shadow or occlusion ray's light through transparent meshes */
     unsigned last;
     uint64_t caught;            /* nbr: rays a neighbour blocked */
 } query;
@@ -80,13 +112,14 @@ static void die(const char *fmt, const char *arg)
     exit(1);
 }
 
-static void read_rays(FILE *f, dump *d, const char *path)
+static void read_rays(FILE *f, dump *d, const char *path, int mixed)
 {
     rayrec r;
-    size_t cap[NKINDS] = {0};
+    size_t cap[NKINDS + 1] = {0};
     while (fread(&r, sizeof r, 1, f) == 1) {
         unsigned k = r.info & 0xffu;
         if (k >= NKINDS) die("%s: a ray of an unknown kind", path);
+        if (mixed) k = MIXED;
         if (d->nrays[k] == cap[k]) {
             cap[k] = cap[k] ? 2 * cap[k] : 1 << 16;
             d->rays[k] = realloc(d->rays[k], cap[k] * sizeof r);
@@ -97,7 +130,38 @@ static void read_rays(FILE *f, dump *d, const char *path)
     if (ferror(f) || !feof(f)) die("%s: read error", path);
 }
 
-static void read_dump(const char *path, dump *d)
+static void read_exact(FILE *f, void *p, size_t size, size_t n, const char *path)
+{
+    if (fread(p, size, n, f) != n) die("%s: truncated", path);
+}
+
+static void read_meshes(FILE *f, dump *d, const char *path)
+{
+    read_exact(f, &d->nmeshes, 8, 1, path);
+    if (d->nmeshes > 1u << 24) die("%s: too many meshes", path);
+    d->meshes = calloc(d->nmeshes + 1, sizeof *d->meshes);
+    if (!d->meshes) die("%s: out of memory", path);
+    for (uint64_t i = 0; i < d->nmeshes; i++) {
+        mesh *m = &d->meshes[i];
+        unsigned char h[72];
+        read_exact(f, h, sizeof h, 1, path);
+        memcpy(&m->flags, h, 4);
+        memcpy(&m->opacity, h + 4, 4);
+        memcpy(&m->nverts, h + 8, 8);
+        memcpy(&m->ntris, h + 16, 8);
+        memcpy(m->xf, h + 24, sizeof m->xf);
+        if (m->nverts > 0xffffffffu || m->ntris > 0xffffffffu) die("%s: a mesh too large", path);
+        m->xyz = malloc(3 * (m->nverts + 1) * sizeof(float));
+        m->tri = malloc(3 * m->ntris * sizeof(uint32_t) + 1);
+        if (!m->xyz || !m->tri) die("%s: out of memory", path);
+        read_exact(f, m->xyz, 3 * sizeof(float), m->nverts, path);
+        read_exact(f, m->tri, 3 * sizeof(uint32_t), m->ntris, path);
+        for (uint64_t t = 0; t < 3 * m->ntris; t++)
+            if (m->tri[t] >= m->nverts) die("%s: a triangle's vertex out of range", path);
+    }
+}
+
+static void read_dump(const char *path, dump *d, int mixed)
 {
     FILE *f = fopen(path, "rb");
     unsigned char h[32];
@@ -108,12 +172,13 @@ static void read_dump(const char *path, dump *d)
     memcpy(v, h + 8, sizeof v);
     memcpy(&d->nspheres, h + 16, 8);
     memcpy(&d->nother, h + 24, 8);
-    if (v[0] != 1 || v[1] != NKINDS) die("%s: a ray dump of another version", path);
+    if ((v[0] != 1 && v[0] != 2) || v[1] != NKINDS) die("%s: a ray dump of another version", path);
     if (d->nspheres > ((uint64_t)1 << 32)) die("%s: too many spheres", path);
     d->spheres = malloc(d->nspheres * 16 + 16);
     if (!d->spheres) die("%s: out of memory", path);
-    if (fread(d->spheres, 16, d->nspheres, f) != d->nspheres) die("%s: truncated", path);
-    read_rays(f, d, path);
+    read_exact(f, d->spheres, 16, d->nspheres, path);
+    if (v[0] >= 2) read_meshes(f, d, path);
+    read_rays(f, d, path, mixed);
     fclose(f);
 }
 
@@ -326,14 +391,127 @@ static RTCGeometry sphere_geometry(RTCDevice dev, const dump *d, variant v)
     return g;
 }
 
-static RTCScene build_scene(RTCDevice dev, const dump *d, variant v)
+/* Whether variant v places meshes under instances of their transforms, as the render does. */
+static int placed(variant v)
+{
+    return v == V_PLACED || v == V_COHERENT;
+}
+
+/* The transparent meshes' occlusion filter: each crossing takes its share of the light and
+ * the walk goes on (an opaque one, opacity 1, blocks), as the render's does. */
+static void pass_through(const struct RTCFilterFunctionNArguments *a)
+{
+    const mesh *m = a->geometryUserPtr;
+    if (m->opacity >= 1.0f) return;
+    for (unsigned i = 0; i < a->N; i++)
+        if (a->valid[i]) {
+            ((query *)a->context)->light *= 1.0f - m->opacity;
+            a->valid[i] = 0;
+        }
+}
+
+static void xf_point(const float *x, const float *p, float *out)
+{
+    for (int r = 0; r < 3; r++) out[r] = x[4 * r] * p[0] + x[4 * r + 1] * p[1] + x[4 * r + 2] * p[2] + x[4 * r + 3];
+}
+
+/* Mesh m as the render built it; world: its vertices moved to world coordinates. */
+static RTCGeometry mesh_geometry(RTCDevice dev, mesh *m, int world)
+{
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *xyz = m->xyz;
+    if (world) {
+        xyz = malloc(3 * (m->nverts + 1) * sizeof(float));
+        if (!xyz) die("%s", "out of memory");
+        for (uint64_t i = 0; i < m->nverts; i++) xf_point(m->xf, m->xyz + 3 * i, xyz + 3 * i);
+    }
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, xyz, 0, 12, m->nverts);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->tri, 0, 12, m->ntris);
+    if (m->flags & MESH_MORTON) rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_LOW);
+    if (m->flags & MESH_TRANSPARENT) rtcSetGeometryOccludedFilterFunction(g, pass_through);
+    rtcSetGeometryUserData(g, m);
+    rtcCommitGeometry(g);
+    return g;
+}
+
+/* A scene as the render makes them: the transparent part at low quality (Morton codes), the
+ * opaque at medium; compact leaves when the render's were. */
+static RTCScene new_scene(RTCDevice dev, int trans, int compact)
 {
     RTCScene s = rtcNewScene(dev);
-    RTCGeometry g = sphere_geometry(dev, d, v);
-    rtcAttachGeometry(s, g);
-    rtcReleaseGeometry(g);
+    rtcSetSceneBuildQuality(s, trans ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
+    if (compact) rtcSetSceneFlags(s, RTC_SCENE_FLAG_COMPACT);
+    return s;
+}
+
+/* The meshes into the opaque (trans 0) or transparent scene top: moved to world coordinates
+ * (builtin), or under an instance of each transform they share (placed). */
+static void add_meshes(RTCDevice dev, const dump *d, variant v, int trans, RTCScene top)
+{
+    uint8_t *done = calloc(d->nmeshes + 1, 1);
+    for (uint64_t i = 0; i < d->nmeshes; i++) {
+        mesh *m = &d->meshes[i];
+        if (done[i] || !(m->flags & MESH_TRANSPARENT) != !trans) continue;
+        if (!placed(v)) {
+            RTCGeometry g = mesh_geometry(dev, m, 1);
+            rtcAttachGeometry(top, g);
+            rtcReleaseGeometry(g);
+            continue;
+        }
+        RTCScene sub = new_scene(dev, trans, m->flags & MESH_COMPACT);
+        for (uint64_t k = i; k < d->nmeshes; k++) {
+            mesh *o = &d->meshes[k];
+            if (!(o->flags & MESH_TRANSPARENT) != !trans || memcmp(o->xf, m->xf, sizeof m->xf)) continue;
+            RTCGeometry g = mesh_geometry(dev, o, 0);
+            rtcAttachGeometry(sub, g);
+            rtcReleaseGeometry(g);
+            done[k] = 1;
+        }
+        rtcCommitScene(sub);
+        RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, sub);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, m->xf);
+        rtcCommitGeometry(inst);
+        rtcAttachGeometry(top, inst);
+        rtcReleaseGeometry(inst);
+        rtcReleaseScene(sub);
+    }
+    free(done);
+}
+
+/* Whether the dump has a mesh of that transparency, and one with compact leaves. */
+static int has_meshes(const dump *d, int trans, int *compact)
+{
+    int n = 0;
+    *compact = 0;
+    for (uint64_t i = 0; i < d->nmeshes; i++)
+        if (!(d->meshes[i].flags & MESH_TRANSPARENT) == !trans) {
+            n++;
+            *compact |= (d->meshes[i].flags & MESH_COMPACT) != 0;
+        }
+    return n > 0;
+}
+
+/* The opaque scene, and the transparent one (NULL when the dump has no transparent mesh). */
+static void build_scenes(RTCDevice dev, const dump *d, variant v, RTCScene sc[2])
+{
+    int compact;
+    sc[1] = NULL;
+    if (has_meshes(d, 1, &compact)) {
+        sc[1] = new_scene(dev, 1, compact && !placed(v));
+        add_meshes(dev, d, v, 1, sc[1]);
+        rtcCommitScene(sc[1]);
+    }
+    has_meshes(d, 0, &compact);
+    RTCScene s = sc[0] = new_scene(dev, 0, compact && !placed(v));
+    if (d->nspheres) {
+        RTCGeometry g = sphere_geometry(dev, d, v);
+        rtcAttachGeometry(s, g);
+        rtcReleaseGeometry(g);
+    }
+    add_meshes(dev, d, v, 0, s);
     rtcCommitScene(s);
-    if (v != V_INSTANCE) return s;
+    if (v != V_INSTANCE) return;
     RTCScene top = rtcNewScene(dev);
     RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
     float id[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
@@ -344,13 +522,13 @@ static RTCScene build_scene(RTCDevice dev, const dump *d, variant v)
     rtcReleaseGeometry(inst);
     rtcReleaseScene(s);
     rtcCommitScene(top);
-    return top;
+    sc[0] = top;
 }
 
 /* ---------------------------------------------------------------- tracing */
 
 typedef struct job {
-    RTCScene scene;
+    RTCScene scene, trans;      /* the opaque scene and the transparent one (or NULL) */
     const float *spheres;
     variant v;
     int kind;
@@ -372,12 +550,14 @@ static void set_ray(struct RTCRay *r, const rayrec *q)
 static uint64_t trace_one(const job *j, query *qc, const rayrec *q)
 {
     struct RTCIntersectContext *ctx = &qc->ec;
-    if (j->kind == PRIMARY || j->kind == SECONDARY) {
+    int kind = j->kind == MIXED ? (int)(q->info & 0xffu) : j->kind;
+    if (kind == PRIMARY || kind == SECONDARY) {
         struct RTCRayHit rh;
         set_ray(&rh.ray, q);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(j->scene, ctx, &rh);
+        if (j->trans) rtcIntersect1(j->trans, ctx, &rh);    /* up to the opaque hit */
         return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     }
     if (j->v == V_CACHE && qc->last != ~0u && sphere_blocks(j->spheres + 4 * (size_t)qc->last, q->org, q->dir, q->tnear))
@@ -391,6 +571,10 @@ static uint64_t trace_one(const job *j, query *qc, const rayrec *q)
     struct RTCRay r;
     set_ray(&r, q);
     rtcOccluded1(j->scene, ctx, &r);
+    if (r.tfar < 0.0f || !j->trans) return r.tfar < 0.0f;
+    r.tfar = INFINITY;
+    qc->light = 1.0f;
+    rtcOccluded1(j->trans, ctx, &r);
     return r.tfar < 0.0f;
 }
 
@@ -417,7 +601,8 @@ static uint64_t trace_packet(const job *j, struct RTCIntersectContext *ctx, cons
     return blocked;
 }
 
-/* Camera rays q[0..n) (n <= 8) as one coherent packet of 8; returns those that hit. */
+/* Camera rays q[0..n) (n <= 8) as one coherent packet of 8, through the opaque scene and
+ * then the transparent one; returns those that hit. */
 static uint64_t trace_camera8(const job *j, struct RTCIntersectContext *ctx, const rayrec *q, int n)
 {
     RTC_ALIGN(32) int valid[8];
@@ -437,10 +622,74 @@ static uint64_t trace_camera8(const job *j, struct RTCIntersectContext *ctx, con
     enum RTCIntersectContextFlags old = ctx->flags;
     ctx->flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect8(valid, j->scene, ctx, &p);
+    if (j->trans) rtcIntersect8(valid, j->trans, ctx, &p);
     ctx->flags = old;
     uint64_t hits = 0;
     for (int i = 0; i < n; i++) hits += p.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
     return hits;
+}
+
+/* Shadow rays *q[0..n) (n <= 8, one direction) as one coherent packet of 8: the opaque
+ * scene, then the transparent one for those it let through; returns those blocked. */
+static uint64_t trace_shadow8(const job *j, query *qc, const rayrec *const *q, int n)
+{
+    RTC_ALIGN(32) int valid[8];
+    RTC_ALIGN(32) struct RTCRay8 p;
+    float *f = (float *)&p;
+    for (int i = 0; i < 8; i++) {
+        const rayrec *r = q[i < n ? i : 0];
+        valid[i] = i < n ? -1 : 0;
+        float v[9] = {r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0.0f, INFINITY};
+        for (int k = 0; k < 9; k++) f[k * 8 + i] = v[k];
+        ((unsigned *)f)[9 * 8 + i] = 0xffffffffu;
+        ((unsigned *)f)[10 * 8 + i] = 0;
+        ((unsigned *)f)[11 * 8 + i] = 0;
+    }
+    struct RTCIntersectContext *ctx = &qc->ec;
+    enum RTCIntersectContextFlags old = ctx->flags;
+    ctx->flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded8(valid, j->scene, ctx, &p);
+    uint64_t blocked = 0;
+    for (int i = 0; i < 8; i++)
+        if (valid[i] && p.tfar[i] < 0.0f) blocked++, valid[i] = 0;
+    if (j->trans && blocked < (uint64_t)n) {
+        qc->light = 1.0f;
+        rtcOccluded8(valid, j->trans, ctx, &p);
+        for (int i = 0; i < 8; i++) blocked += valid[i] && p.tfar[i] < 0.0f;
+    }
+    ctx->flags = old;
+    return blocked;
+}
+
+/* The shadow rays of [b, e) gathered by direction (a light's) into packets of 8, up to 4
+ * packets open at a time. */
+#define OPEN 4
+static uint64_t trace_shadows(const job *j, query *qc, size_t b, size_t e)
+{
+    const rayrec *open[OPEN][8];
+    int n[OPEN] = {0}, next = 0;
+    uint64_t blocked = 0;
+    for (size_t i = b; i < e; i++) {
+        const rayrec *r = &j->rays[i];
+        int k = 0;
+        while (k < OPEN && !(n[k] && !memcmp(open[k][0]->dir, r->dir, sizeof r->dir))) k++;
+        if (k == OPEN) {
+            for (k = 0; k < OPEN && n[k]; k++) {}
+            if (k == OPEN) {                    /* all open: trace the oldest's */
+                k = next, next = (next + 1) % OPEN;
+                blocked += trace_shadow8(j, qc, open[k], n[k]);
+                n[k] = 0;
+            }
+        }
+        open[k][n[k]++] = r;
+        if (n[k] == 8) {
+            blocked += trace_shadow8(j, qc, open[k], 8);
+            n[k] = 0;
+        }
+    }
+    for (int k = 0; k < OPEN; k++)
+        if (n[k]) blocked += trace_shadow8(j, qc, open[k], n[k]);
+    return blocked;
 }
 
 static int same_origin(const rayrec *a, const rayrec *b)
@@ -452,7 +701,8 @@ static uint64_t trace_range(const job *j, query *ctx, size_t b, size_t e)
 {
     uint64_t hits = 0;
     int packets = j->v == V_PACKET && (j->kind == AO || j->kind == SHADOW);
-    if (j->v == V_CAMERA8 && j->kind == PRIMARY) {
+    if (j->v == V_COHERENT && j->kind == SHADOW) return trace_shadows(j, ctx, b, e);
+    if ((j->v == V_CAMERA8 || j->v == V_COHERENT) && j->kind == PRIMARY) {
         for (size_t i = b; i < e; i += 8) hits += trace_camera8(j, &ctx->ec, &j->rays[i], (int)(e - i < 8 ? e - i : 8));
         return hits;
     }
@@ -505,10 +755,10 @@ static double cpu(void)
 }
 
 /* Trace every ray of one kind on nthreads threads: wall and CPU seconds, and the hits. */
-static uint64_t trace_kind(RTCScene s, variant v, const dump *d, int kind, int nthreads,
+static uint64_t trace_kind(RTCScene s[2], variant v, const dump *d, int kind, int nthreads,
                            double *wall, double *cpu_s)
 {
-    job j = {s, d->spheres, v, kind, d->rays[kind], d->nrays[kind], 0, PTHREAD_MUTEX_INITIALIZER, 0};
+    job j = {s[0], s[1], d->spheres, v, kind, d->rays[kind], d->nrays[kind], 0, PTHREAD_MUTEX_INITIALIZER, 0};
     pthread_t th[256];
     double t0 = now(), c0 = cpu();
     for (int t = 1; t < nthreads; t++)
@@ -522,18 +772,20 @@ static uint64_t trace_kind(RTCScene s, variant v, const dump *d, int kind, int n
 
 static void usage(void)
 {
-    die("%s", "usage: rt_floor [-t threads] [-v builtin|instance|user|packet|cache|camera8|nbr] [-r repeats] [-shuffle] dump");
+    die("%s", "usage: rt_floor [-t threads] [-v builtin|placed|coherent|instance|user|packet|cache|camera8|nbr] [-r repeats] [-shuffle | -mixed] [-c embree-config] dump");
 }
 
 int main(int argc, char **argv)
 {
-    int nthreads = 1, repeats = 1, shuffled = 0;
+    int nthreads = 1, repeats = 1, shuffled = 0, mixed = 0;
     variant v = V_BUILTIN;
-    const char *path = NULL;
+    const char *path = NULL, *extra = "";
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "-t") && i + 1 < argc) nthreads = atoi(argv[++i]);
+        if (!strcmp(argv[i], "-c") && i + 1 < argc) extra = argv[++i];
+        else if (!strcmp(argv[i], "-t") && i + 1 < argc) nthreads = atoi(argv[++i]);
         else if (!strcmp(argv[i], "-r") && i + 1 < argc) repeats = atoi(argv[++i]);
         else if (!strcmp(argv[i], "-shuffle")) shuffled = 1;
+        else if (!strcmp(argv[i], "-mixed")) mixed = 1;
         else if (!strcmp(argv[i], "-v") && i + 1 < argc) {
             const char *name = argv[++i];
             for (v = 0; v < NVARIANTS && strcmp(name, variant_names[v]); v++) {}
@@ -543,7 +795,8 @@ int main(int argc, char **argv)
     }
     if (!path || nthreads < 1 || nthreads > 256 || repeats < 1) usage();
     dump d;
-    read_dump(path, &d);
+    read_dump(path, &d, mixed);
+    if (mixed && (shuffled || v > V_COHERENT)) usage();
     if (shuffled) shuffle(&d);
     if (v == V_NBR) {
         if (getenv("RTFLOOR_K")) nbr_k = atoi(getenv("RTFLOOR_K"));
@@ -551,19 +804,24 @@ int main(int argc, char **argv)
         nbr_build(&d);
     }
     if (d.nother)
-        printf("note: the scene's %llu other primitives are not in the dump; spheres only\n",
+        printf("note: the scene's %llu other primitives are not in the dump; spheres and meshes only\n",
                (unsigned long long)d.nother);
-    char cfg[32];
-    snprintf(cfg, sizeof cfg, "threads=%d", nthreads);
+    if (d.nmeshes && v > V_COHERENT) die("the %s variant is for scenes of spheres alone", variant_names[v]);
+    char cfg[256];
+    snprintf(cfg, sizeof cfg, "threads=%d%s%s", nthreads, *extra ? "," : "", extra);
     RTCDevice dev = rtcNewDevice(cfg);
     if (!dev) die("%s", "Embree did not start");
-    double b0 = now();
-    RTCScene s = build_scene(dev, &d, v);
-    printf("floor variant=%s%s threads=%d spheres=%llu build=%.3f\n", variant_names[v],
-           shuffled ? " (shuffled)" : "", nthreads, (unsigned long long)d.nspheres, now() - b0);
+    double b0 = now(), bc0 = cpu();
+    RTCScene s[2];
+    build_scenes(dev, &d, v, s);
+    uint64_t ntris = 0;
+    for (uint64_t i = 0; i < d.nmeshes; i++) ntris += d.meshes[i].ntris;
+    printf("floor variant=%s%s threads=%d spheres=%llu meshes=%llu triangles=%llu build=%.3f build_cpu=%.3f\n",
+           variant_names[v], shuffled ? " (shuffled)" : "", nthreads, (unsigned long long)d.nspheres,
+           (unsigned long long)d.nmeshes, (unsigned long long)ntris, now() - b0, cpu() - bc0);
     double total = 0, total_cpu = 0;
     uint64_t nall = 0;
-    for (int k = 0; k < NKINDS; k++) {
+    for (int k = 0; k <= NKINDS; k++) {
         if (!d.nrays[k]) continue;
         double best = INFINITY, best_cpu = INFINITY, wall, c;
         uint64_t hits = 0;
@@ -580,7 +838,8 @@ int main(int argc, char **argv)
                (unsigned long long)nbr_caught);
     printf("total rays=%llu wall=%.3f cpu=%.3f mrays=%.2f\n", (unsigned long long)nall, total, total_cpu,
            (double)nall / total / 1e6);
-    rtcReleaseScene(s);
+    rtcReleaseScene(s[0]);
+    if (s[1]) rtcReleaseScene(s[1]);
     rtcReleaseDevice(dev);
     return 0;
 }

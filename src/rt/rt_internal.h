@@ -73,6 +73,8 @@ typedef struct rt_geom {
     const ms_scene_item *item;  /* the scene item (its clip planes, in world coordinates) */
     const float *xf, *nm;       /* meshes: their instance's list-to-world transform and its
                                  * normal matrix; NULL for the others (world space) */
+    uint8_t morton;             /* meshes: its tree built by Morton codes (low quality) */
+    uint8_t compact;            /* meshes: its instance's scene has compact leaves */
 } rt_geom;
 
 /* A source's list with its spheres, cylinders, cones and discs in world space (place.c):
