@@ -4,10 +4,13 @@
 # $env(BENCH_REPEAT) times to $env(BENCH_IMAGE) (BENCH_RENDERER=TachyonLOpenCLInternal: the
 # OpenCL tracer instead); each render prints
 # "render<TAB>wall s<TAB>CPU s" (CPU: the process's, all threads, /proc/self/stat).
-# With BENCH_EXPORT set, the scene is also written there by `render Tachyon`.
+# With BENCH_EXPORT set, the scene is also written there by `render Tachyon`. BENCH_STYLE
+# draws another representation instead of VDW (e.g. "Licorice 0.3 12 12").
 source [file join [file dirname [info script]] bench_util.tcl]
 mol new $env(BENCH_PDB) waitfor all
-mol modstyle 0 top VDW
+set style VDW
+if {[info exists env(BENCH_STYLE)]} { set style $env(BENCH_STYLE) }
+mol modstyle 0 top {*}$style
 mol modmaterial 0 top AOChalky
 display resize 800 800
 axes location off
