@@ -19,6 +19,9 @@
  *             rays in packets of 8 of one direction (a light's, from neighbouring points),
  *             by rtcIntersect8 and rtcOccluded8 with Embree's coherent flag: what tracing a
  *             tile's rays of these kinds together would be worth
+ *   reuse     placed, each transmission ray walking the transparent scene alone, up to the
+ *             opaque hit its parent found (found before the timing): what carrying the
+ *             parent's opaque hit down a straight transmission would be worth
  *   instance  builtin's spheres under one instance (as TachyonInternal placed every
  *             transform before it moved spheres to world space)
  *   user      a user geometry over Embree's tree, with a compact sphere test
@@ -83,8 +86,8 @@ typedef struct dump {
     size_t nrays[NKINDS + 1];
 } dump;
 
-typedef enum variant { V_BUILTIN, V_PLACED, V_COHERENT, V_INSTANCE, V_USER, V_PACKET, V_CACHE, V_CAMERA8, V_NBR, NVARIANTS } variant;
-static const char *const variant_names[] = {"builtin", "placed", "coherent", "instance", "user", "packet", "cache", "camera8", "nbr"};
+typedef enum variant { V_BUILTIN, V_PLACED, V_COHERENT, V_REUSE, V_INSTANCE, V_USER, V_PACKET, V_CACHE, V_CAMERA8, V_NBR, NVARIANTS } variant;
+static const char *const variant_names[] = {"builtin", "placed", "coherent", "reuse", "instance", "user", "packet", "cache", "camera8", "nbr"};
 
 /* The nbr variant: each sphere's K nearest neighbours (by the gap between the surfaces),
  * and each shadow and occlusion ray's sphere (the one its origin lies on). */
@@ -394,8 +397,11 @@ static RTCGeometry sphere_geometry(RTCDevice dev, const dump *d, variant v)
 /* Whether variant v places meshes under instances of their transforms, as the render does. */
 static int placed(variant v)
 {
-    return v == V_PLACED || v == V_COHERENT;
+    return v == V_PLACED || v == V_COHERENT || v == V_REUSE;
 }
+
+/* The reuse variant: each transmission ray's opaque hit distance (INFINITY: none). */
+static float *reuse_tfar;
 
 /* The transparent meshes' occlusion filter: each crossing takes its share of the light and
  * the walk goes on (an opaque one, opacity 1, blocks), as the render's does. */
@@ -556,6 +562,11 @@ static uint64_t trace_one(const job *j, query *qc, const rayrec *q)
         set_ray(&rh.ray, q);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        if (j->v == V_REUSE && kind == SECONDARY && j->trans) {
+            rh.ray.tfar = reuse_tfar[q - j->rays];
+            rtcIntersect1(j->trans, ctx, &rh);
+            return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID || rh.ray.tfar < INFINITY;
+        }
         rtcIntersect1(j->scene, ctx, &rh);
         if (j->trans) rtcIntersect1(j->trans, ctx, &rh);    /* up to the opaque hit */
         return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
@@ -772,7 +783,7 @@ static uint64_t trace_kind(RTCScene s[2], variant v, const dump *d, int kind, in
 
 static void usage(void)
 {
-    die("%s", "usage: rt_floor [-t threads] [-v builtin|placed|coherent|instance|user|packet|cache|camera8|nbr] [-r repeats] [-shuffle | -mixed] [-c embree-config] dump");
+    die("%s", "usage: rt_floor [-t threads] [-v builtin|placed|coherent|reuse|instance|user|packet|cache|camera8|nbr] [-r repeats] [-shuffle | -mixed] [-c embree-config] dump");
 }
 
 int main(int argc, char **argv)
@@ -796,7 +807,7 @@ int main(int argc, char **argv)
     if (!path || nthreads < 1 || nthreads > 256 || repeats < 1) usage();
     dump d;
     read_dump(path, &d, mixed);
-    if (mixed && (shuffled || v > V_COHERENT)) usage();
+    if (mixed && (shuffled || v > V_PLACED)) usage();
     if (shuffled) shuffle(&d);
     if (v == V_NBR) {
         if (getenv("RTFLOOR_K")) nbr_k = atoi(getenv("RTFLOOR_K"));
@@ -806,7 +817,7 @@ int main(int argc, char **argv)
     if (d.nother)
         printf("note: the scene's %llu other primitives are not in the dump; spheres and meshes only\n",
                (unsigned long long)d.nother);
-    if (d.nmeshes && v > V_COHERENT) die("the %s variant is for scenes of spheres alone", variant_names[v]);
+    if (d.nmeshes && v > V_REUSE) die("the %s variant is for scenes of spheres alone", variant_names[v]);
     char cfg[256];
     snprintf(cfg, sizeof cfg, "threads=%d%s%s", nthreads, *extra ? "," : "", extra);
     RTCDevice dev = rtcNewDevice(cfg);
@@ -819,6 +830,19 @@ int main(int argc, char **argv)
     printf("floor variant=%s%s threads=%d spheres=%llu meshes=%llu triangles=%llu build=%.3f build_cpu=%.3f\n",
            variant_names[v], shuffled ? " (shuffled)" : "", nthreads, (unsigned long long)d.nspheres,
            (unsigned long long)d.nmeshes, (unsigned long long)ntris, now() - b0, cpu() - bc0);
+    if (v == V_REUSE && d.nrays[SECONDARY]) {
+        reuse_tfar = malloc(d.nrays[SECONDARY] * sizeof *reuse_tfar);
+        if (!reuse_tfar) die("%s", "out of memory");
+        struct RTCIntersectContext ec;
+        rtcInitIntersectContext(&ec);
+        for (size_t i = 0; i < d.nrays[SECONDARY]; i++) {
+            struct RTCRayHit rh;
+            set_ray(&rh.ray, &d.rays[SECONDARY][i]);
+            rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(s[0], &ec, &rh);
+            reuse_tfar[i] = rh.ray.tfar;
+        }
+    }
     double total = 0, total_cpu = 0;
     uint64_t nall = 0;
     for (int k = 0; k <= NKINDS; k++) {

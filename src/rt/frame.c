@@ -36,8 +36,10 @@ static void trace_tile(const frame *f, rt_thread *th, size_t tile)
             float sx, sy, lens[2], org[3], dir[3], col[3];
             th->rng = f->rng[idx];
             rt_sample_pixel((uint32_t)idx, f->pass, &sx, &sy);
-            if (f->pass > 0) rt_sample_disc(&th->rng, lens);
-            rt_camera_ray(&f->sh->cam, (float)x + sx, (float)y + sy, f->pass > 0 ? lens : NULL, org, dir);
+            int lensed = f->pass > 0 && f->sh->cam.dof;
+            if (lensed) rt_sample_disc(&th->rng, lens);
+            else if (f->pass > 0) rt_rand(&th->rng), rt_rand(&th->rng);  /* the lens numbers, unused: the stream stays */
+            rt_camera_ray(&f->sh->cam, (float)x + sx, (float)y + sy, lensed ? lens : NULL, org, dir);
             rt_trace(f->sh, th, org, dir, f->depth, 1, col);
             float *a = f->accum + 3 * idx;
             for (int k = 0; k < 3; k++) a[k] += isfinite(col[k]) ? col[k] : 0.0f;   /* a degenerate camera */

@@ -9,7 +9,9 @@
  * letting (1 - opacity) of the light through. Rays that leave the scene see the background
  * or its gradient.
  * src/oclrt/kernels.cl mirrors this file function by function for the OpenCL tracer: change
- * both together. */
+ * both together. One shortcut is this file's alone: a transmission ray takes the opaque hit
+ * its parent found beyond the transparent one (beyond, below); the kernel walks one tree for
+ * both kinds and has nothing to carry. */
 #include "config.h"
 #include "rt/rt_internal.h"
 
@@ -192,19 +194,34 @@ static void direct(const rt_shader *sh, rt_thread *th, const surface *s, const f
 
 /* ---------------------------------------------------------------- tracing */
 
-/* The colour of a secondary ray from p along d (the background once depth runs out). */
+/* What a ray found in the opaque scene beyond the transparent hit it stopped at: a straight
+ * transmission ray from that hit goes on to the same opaque hit (or to none), so it walks
+ * the transparent scene alone, up to it. */
+typedef struct beyond {
+    int known;                  /* 0: the transmission ray walks both scenes */
+    float t;                    /* the opaque hit's distance from the ray's origin, or INFINITY */
+    struct RTCHit hit;
+    const rt_geom *g;           /* its geometry, or NULL for none */
+} beyond;
+
+static void trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
+                  int depth, int primary, const beyond *op, float out[3]);
+
+/* The colour of a secondary ray from p along d (the background once depth runs out); op:
+ * what lies beyond in the opaque scene when it is known (a transmission), else NULL. */
 static void secondary(const rt_shader *sh, rt_thread *th, const float p[3], const float d[3],
-                      const float in_org[3], const float in_dir[3], int depth, float out[3])
+                      const float in_org[3], const float in_dir[3], int depth, const beyond *op,
+                      float out[3])
 {
     if (depth <= 1) {
         background(sh, in_org, in_dir, out);
         return;
     }
-    rt_trace(sh, th, p, d, depth - 1, 0, out);
+    trace(sh, th, p, d, depth - 1, 0, op, out);
 }
 
 static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const float org[3],
-                  const float dir[3], int depth, int primary, float out[3])
+                  const float dir[3], int depth, int primary, const beyond *op, float out[3])
 {
     const rt_material *m = s->mat;
     float diffuse[3], phong[3], nd = ms_v3f_dot(s->n, dir), f = m->diffuse;
@@ -217,7 +234,7 @@ static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const fl
     if (m->mirror > RT_MINCONTRIB) {
         float r[3], c[3];
         for (int k = 0; k < 3; k++) r[k] = dir[k] - 2.0f * nd * s->n[k];
-        secondary(sh, th, s->p, r, org, dir, depth, c);
+        secondary(sh, th, s->p, r, org, dir, depth, NULL, c);
         for (int k = 0; k < 3; k++) out[k] += m->mirror * c[k];
     }
     if (s->opacity < 1.0f - RT_MINCONTRIB) {
@@ -226,7 +243,14 @@ static void shade(const rt_shader *sh, rt_thread *th, const surface *s, const fl
             a = 1.0f + cosf(3.1415926f * (1.0f - a) * nd);
             a = a * a * 0.25f;
         }
-        secondary(sh, th, s->p, dir, org, dir, depth, c);
+        beyond next;
+        next.known = 0;
+        if (op && op->known) {      /* the same opaque hit, from this one */
+            next = *op;
+            next.t = op->t - s->t;
+            next.known = next.t > 2.0f * sh->w->eps;    /* else walked again, as tnear moves */
+        }
+        secondary(sh, th, s->p, dir, org, dir, depth, &next, c);
         for (int k = 0; k < 3; k++) out[k] = a * out[k] + (1.0f - a) * c[k];
     }
     if (sh->fog) fog(sh, primary ? s->t * ms_v3f_dot(dir, sh->cam.dir) : s->t, out);
@@ -239,30 +263,49 @@ static const rt_geom *hit_geom(rt_geom *const *part, const struct RTCHit *h)
     return &part[h->instID[0]][h->geomID];      /* a mesh under its transform's instance */
 }
 
-/* The nearest hit in the opaque scene, then in the transparent one (up to the opaque hit):
- * its geometry, or NULL for none. */
-static const rt_geom *nearest(const rt_world *w, rt_thread *th, struct RTCRayHit *rh)
+static int unclipped(const rt_geom *g)
 {
-    rh->hit.geomID = rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(w->scene[RT_OPAQUE], &th->ctx.ec, rh);
-    unsigned id = rh->hit.geomID, inst = rh->hit.instID[0];
-    const rt_geom *g = id == RTC_INVALID_GEOMETRY_ID ? NULL : hit_geom(w->part[RT_OPAQUE], &rh->hit);
+    return !g || !g->item || !g->item->nclip;
+}
+
+/* The nearest hit in the opaque scene (or op's, when known), then in the transparent one (up
+ * to the opaque hit): its geometry, or NULL for none. When the transparent hit is the
+ * nearest, *next is what lies beyond it in the opaque scene, for its transmission ray. */
+static const rt_geom *nearest(const rt_world *w, rt_thread *th, struct RTCRayHit *rh,
+                              const beyond *op, beyond *next)
+{
+    const rt_geom *g;
+    if (op && op->known) {
+        rh->ray.tfar = op->t;
+        rh->hit = op->hit;
+        g = op->g;
+    } else {
+        rh->hit.geomID = rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(w->scene[RT_OPAQUE], &th->ctx.ec, rh);
+        g = rh->hit.geomID == RTC_INVALID_GEOMETRY_ID ? NULL : hit_geom(w->part[RT_OPAQUE], &rh->hit);
+    }
+    next->known = 0;
     if (!w->scene[RT_TRANS]) return g;
+    struct RTCHit opaque = rh->hit;
+    float t = rh->ray.tfar;
     rh->hit.geomID = rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(w->scene[RT_TRANS], &th->ctx.ec, rh);
-    if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) return hit_geom(w->part[RT_TRANS], &rh->hit);
-    rh->hit.geomID = id;        /* a miss leaves the opaque hit's record as it was */
-    rh->hit.instID[0] = inst;
-    return g;
+    if (rh->hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        rh->hit = opaque;       /* a miss leaves the opaque hit's record as it was */
+        return g;
+    }
+    *next = (beyond){unclipped(g), t, opaque, g};
+    return hit_geom(w->part[RT_TRANS], &rh->hit);
 }
 
 /* The nearest hit that no clip plane of its item cuts away: a cut hit is passed and the ray
  * goes on beyond it (a bound on the passes keeps a pathological scene finite). Its geometry,
- * or NULL for none. */
-static const rt_geom *intersect_unclipped(const rt_shader *sh, rt_thread *th, struct RTCRayHit *rh)
+ * or NULL for none; op and next as for nearest (op is used by the first pass only). */
+static const rt_geom *intersect_unclipped(const rt_shader *sh, rt_thread *th, struct RTCRayHit *rh,
+                                          const beyond *op, beyond *next)
 {
     for (int pass = 0; pass < 256; pass++) {
-        const rt_geom *g = nearest(sh->w, th, rh);
+        const rt_geom *g = nearest(sh->w, th, rh, pass ? NULL : op, next);
         if (!g || !g->item || !g->item->nclip) return g;
         float t = rh->ray.tfar;
         float p[3] = {rh->ray.org_x + t * rh->ray.dir_x, rh->ray.org_y + t * rh->ray.dir_y,
@@ -274,10 +317,11 @@ static const rt_geom *intersect_unclipped(const rt_shader *sh, rt_thread *th, st
     return NULL;
 }
 
-void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
-              int depth, int primary, float out[3])
+static void trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
+                  int depth, int primary, const beyond *op, float out[3])
 {
     struct RTCRayHit rh;
+    beyond next;
     if (!ray_ok(org, dir)) {
         memcpy(out, sh->bg, 3 * sizeof(float));
         return;
@@ -285,7 +329,7 @@ void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const floa
     int kind = primary ? MS_RT_PRIMARY : MS_RT_SECONDARY;
     ray_init(&rh.ray, org, dir, primary ? 0.0f : sh->w->eps);
     if (th->dump) rt_raybuf_add(th->dump, kind, 0xffu, org, dir, rh.ray.tnear);
-    const rt_geom *g = intersect_unclipped(sh, th, &rh);
+    const rt_geom *g = intersect_unclipped(sh, th, &rh, op, &next);
     th->rays[kind]++;
     if (!g) {
         background(sh, org, dir, out);
@@ -293,5 +337,12 @@ void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const floa
     }
     surface s;
     surface_at(g, &rh, &s);
-    shade(sh, th, &s, org, dir, depth, primary, out);
+    if (!unclipped(g)) next.known = 0;
+    shade(sh, th, &s, org, dir, depth, primary, &next, out);
+}
+
+void rt_trace(const rt_shader *sh, rt_thread *th, const float org[3], const float dir[3],
+              int depth, int primary, float out[3])
+{
+    trace(sh, th, org, dir, depth, primary, NULL, out);
 }
