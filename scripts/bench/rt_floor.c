@@ -589,6 +589,17 @@ static uint64_t trace_one(const job *j, query *qc, const rayrec *q)
     return r.tfar < 0.0f;
 }
 
+/* Ray r into lane i of a w-wide packet f (Embree's RTCRayW layout: org, tnear, dir, time,
+ * tfar, mask, id, flags, each w wide). */
+static void pack_ray(float *f, int w, int i, const rayrec *r)
+{
+    float v[9] = {r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0.0f, INFINITY};
+    for (int k = 0; k < 9; k++) f[k * w + i] = v[k];
+    ((unsigned *)f)[9 * w + i] = 0xffffffffu;
+    ((unsigned *)f)[10 * w + i] = 0;
+    ((unsigned *)f)[11 * w + i] = 0;
+}
+
 /* Rays q[0..n) (n <= 16, one origin) as one packet of 4, 8 or 16; returns those blocked. */
 static uint64_t trace_packet(const job *j, struct RTCIntersectContext *ctx, const rayrec *q, int n)
 {
@@ -596,13 +607,8 @@ static uint64_t trace_packet(const job *j, struct RTCIntersectContext *ctx, cons
     RTC_ALIGN(64) struct RTCRay16 p;
     float *f = (float *)&p;
     for (int i = 0; i < w; i++) {
-        const rayrec *r = &q[i < n ? i : 0];
         valid[i] = i < n ? -1 : 0;
-        float v[9] = {r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0.0f, INFINITY};
-        for (int k = 0; k < 9; k++) f[k * w + i] = v[k];
-        ((unsigned *)f)[9 * w + i] = 0xffffffffu;
-        ((unsigned *)f)[10 * w + i] = 0;
-        ((unsigned *)f)[11 * w + i] = 0;
+        pack_ray(f, w, i, &q[i < n ? i : 0]);
     }
     if (w == 4) rtcOccluded4(valid, j->scene, ctx, (struct RTCRay4 *)&p);
     else if (w == 8) rtcOccluded8(valid, j->scene, ctx, (struct RTCRay8 *)&p);
@@ -620,13 +626,8 @@ static uint64_t trace_camera8(const job *j, struct RTCIntersectContext *ctx, con
     RTC_ALIGN(32) struct RTCRayHit8 p;
     float *f = (float *)&p.ray;
     for (int i = 0; i < 8; i++) {
-        const rayrec *r = &q[i < n ? i : 0];
         valid[i] = i < n ? -1 : 0;
-        float v[9] = {r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0.0f, INFINITY};
-        for (int k = 0; k < 9; k++) f[k * 8 + i] = v[k];
-        ((unsigned *)f)[9 * 8 + i] = 0xffffffffu;
-        ((unsigned *)f)[10 * 8 + i] = 0;
-        ((unsigned *)f)[11 * 8 + i] = 0;
+        pack_ray(f, 8, i, &q[i < n ? i : 0]);
         p.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         p.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -648,13 +649,8 @@ static uint64_t trace_shadow8(const job *j, query *qc, const rayrec *const *q, i
     RTC_ALIGN(32) struct RTCRay8 p;
     float *f = (float *)&p;
     for (int i = 0; i < 8; i++) {
-        const rayrec *r = q[i < n ? i : 0];
         valid[i] = i < n ? -1 : 0;
-        float v[9] = {r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0.0f, INFINITY};
-        for (int k = 0; k < 9; k++) f[k * 8 + i] = v[k];
-        ((unsigned *)f)[9 * 8 + i] = 0xffffffffu;
-        ((unsigned *)f)[10 * 8 + i] = 0;
-        ((unsigned *)f)[11 * 8 + i] = 0;
+        pack_ray(f, 8, i, q[i < n ? i : 0]);
     }
     struct RTCIntersectContext *ctx = &qc->ec;
     enum RTCIntersectContextFlags old = ctx->flags;
