@@ -1,8 +1,8 @@
 /* bench_rt.c: the TachyonInternal benchmark scene and its timings. 1tii replicated to about a
  * million atoms (bench_system.h): every other copy drawn VDW (atom radii), the others Licorice
- * (0.3 A spheres and half-bond cylinders coloured by atom), and a transparent surface: until
- * QuickSurf lands, a smooth tessellated sphere (VMD's Transparent material) enclosing the
- * middle of the lattice. VMD's default view, lights, shadows and ambient occlusion (12
+ * (0.3 A spheres and a tube a bond, coloured by atom up to its middle, as the Licorice rep
+ * emits it since issue 17), and a transparent surface: a smooth tessellated sphere (VMD's
+ * Transparent material) enclosing the middle of the lattice. VMD's default view, lights, shadows and ambient occlusion (12
  * samples). The scene is exported with the Tachyon device (for Debian's tachyon, run by
  * bench_rt.sh on the same file), then rendered by TachyonInternal at each sample count given,
  * printing build and trace times and rays per second.
@@ -45,8 +45,8 @@ static int fill_molecule(const bench_sys *s, ms_displaylist *vdw, ms_displaylist
                 if (j < i) continue;
                 const float *q = s->pos + 3 * j;
                 float mid[3] = {0.5f * (p[0] + q[0]), 0.5f * (p[1] + q[1]), 0.5f * (p[2] + q[2])};
-                if (ms_dl_cylinder(dl, p, mid, 0.3f, s->color[i], 0, 12) ||
-                    ms_dl_cylinder(dl, q, mid, 0.3f, s->color[j], 0, 12))
+                /* one tube a bond, its colour changing at the joint, as Licorice emits it */
+                if (ms_dl_bond(dl, p, mid, q, 0.3f, s->color[i], s->color[j], MS_CYL_INWARD, 12))
                     goto oom;
             }
         }
