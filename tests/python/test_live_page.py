@@ -110,16 +110,23 @@ class Page:
     def css(self, sel):
         return self.drv.find_elements(self.By.CSS_SELECTOR, sel)
 
-    def click(self, sel):
-        """Click the element sel finds, found again if the page redrew it meanwhile."""
+    def again(self, action, tries=20):
+        """action(), which finds its element each time, run again when the page replaced that
+        element meanwhile (it redraws parts of itself as news from molscope arrives)."""
         from selenium.common.exceptions import StaleElementReferenceException
-        for _ in range(20):
+        for _ in range(tries - 1):
             try:
-                wait_for(lambda: self.css(sel), timeout=5)
-                return self.css(sel)[0].click()
+                return action()
             except StaleElementReferenceException:
                 time.sleep(0.05)
-        raise RuntimeError("cannot click " + sel)
+        return action()
+
+    def click(self, sel):
+        """Click the element sel finds, found again if the page redrew it meanwhile."""
+        def action():
+            wait_for(lambda: self.css(sel), timeout=5)
+            return self.css(sel)[0].click()
+        return self.again(action)
 
     def choose(self, id_, text):
         self.Select(self.el(id_)).select_by_visible_text(text)
@@ -158,17 +165,24 @@ class Page:
         return self.js("return [...document.querySelectorAll('#mols tbody tr')].map("
                        "tr => tr.dataset.molid);")
 
-    def fill(self, box, text, end=None):
-        """Select what a field holds and type text over it, then Enter or Tab (the change)."""
+    def fill(self, find, text, end=None):
+        """Select what a field holds and type text over it, then Enter or Tab (the change).
+        find() gives the field: found again when the page has just rebuilt it (a rep's
+        parameters are redrawn when the page learns of the new method), the typing, which
+        selects all first, starting over."""
         from selenium.webdriver.common.keys import Keys
-        box.click()
-        box.send_keys(Keys.CONTROL, "a")    # the modifier is held for this call only
-        box.send_keys(text)
-        box.send_keys(end or Keys.TAB)
+
+        def action():
+            box = find()
+            box.click()
+            box.send_keys(Keys.CONTROL, "a")    # the modifier is held for this call only
+            box.send_keys(text)
+            box.send_keys(end or Keys.TAB)
+        self.again(action)
 
     def type_into(self, id_, text, enter=True):
         from selenium.webdriver.common.keys import Keys
-        self.fill(self.el(id_), text, Keys.ENTER if enter else Keys.TAB)
+        self.fill(lambda: self.el(id_), text, Keys.ENTER if enter else Keys.TAB)
 
 
 def changed(fn, old, timeout=10):
@@ -271,12 +285,12 @@ def check_reps(s, p):
              "reps: the drawing method changes (mol modstyle)", repget(s, "rep", k))
     R.report(bool(changed(p.serial, serial)), "reps: the image changes with the rep")
     wait_for(lambda: p.css("#rep-params input"))
-    p.fill(p.css("#rep-params input")[0], "0.5")
+    p.fill(lambda: p.css("#rep-params input")[0], "0.5")
     R.report(wait_for(lambda: repget(s, "rep", k).startswith("VDW 0.5")),
              "reps: a parameter changes (sphere scale 0.5)", repget(s, "rep", k))
     p.choose("rep-color", "ColorID")
     wait_for(lambda: p.el("rep-colorid").is_displayed())
-    p.fill(p.el("rep-colorid"), "7")
+    p.fill(lambda: p.el("rep-colorid"), "7")
     R.report(wait_for(lambda: repget(s, "color", k) == "ColorID 7"),
              "reps: the colouring changes (ColorID 7)", repget(s, "color", k))
     p.type_into("rep-sel", "resid <")
