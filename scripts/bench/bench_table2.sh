@@ -73,6 +73,7 @@ done < "$out/ti.log"
 floor_rows=${T2_FLOOR_ROWS-0 2 5}
 if [ "$renderer" = TachyonInternal ] && [ -n "$floor_rows" ]; then
     (cd "$build" && make -s scripts/bench/rt_floor)
+    trap 'rm -f "$out/floor.rays"' EXIT     # 32 bytes a ray: not left behind by a failure
     i=0
     while read -r spp sh ao depth _; do
         for k in $floor_rows; do

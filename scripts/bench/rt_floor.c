@@ -7,10 +7,10 @@
  * the transparent one up to the opaque hit; a shadow or occlusion ray that the opaque scene
  * lets through walks the transparent one to its end, an occlusion filter taking off each
  * crossing's share of the light (the mesh's opacity). Meshes are built as the render built
- * them (compact leaves, a Morton-code tree: the dump's flags). Prints, per ray kind, the rays, wall and CPU seconds (the least of the repeats, each)
- * and Mrays/s (from the wall time), and the total: the time the render could not go below
- * with these rays on this tree. Variants (-v), for the
- * experiments of doc/BENCHMARKS.md:
+ * them (compact leaves, a Morton-code tree: the dump's flags). Prints, per ray kind, the
+ * rays, wall and CPU seconds (the least of the repeats, each) and Mrays/s (from the wall
+ * time), and the total: the time the render could not go below with these rays on these
+ * trees. Variants (-v), for the experiments of doc/BENCHMARKS.md:
  *   builtin   Embree's sphere geometry (RTC_GEOMETRY_TYPE_SPHERE_POINT) and the meshes moved
  *             to world coordinates, flat scenes
  *   placed    as TachyonInternal places them: spheres as builtin, meshes under an instance
@@ -48,7 +48,7 @@
  *
  * Only spheres and meshes are in the dump's geometry: a dump whose scene had other primitives
  * (cylinders, cones, discs) is traced without them, and the program says so. The variants
- * other than builtin and instance are for scenes of spheres alone. */
+ * after reuse (instance to nbr) are for scenes of spheres alone, and say so. */
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <pthread.h>

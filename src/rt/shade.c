@@ -263,7 +263,8 @@ static const rt_geom *hit_geom(rt_geom *const *part, const struct RTCHit *h)
     return &part[h->instID[0]][h->geomID];      /* a mesh under its transform's instance */
 }
 
-static int unclipped(const rt_geom *g)
+/* Whether no clip plane can cut a hit on g. */
+static int clip_free(const rt_geom *g)
 {
     return !g || !g->item || !g->item->nclip;
 }
@@ -294,7 +295,7 @@ static const rt_geom *nearest(const rt_world *w, rt_thread *th, struct RTCRayHit
         rh->hit = opaque;       /* a miss leaves the opaque hit's record as it was */
         return g;
     }
-    *next = (beyond){unclipped(g), t, opaque, g};
+    *next = (beyond){clip_free(g), t, opaque, g};
     return hit_geom(w->part[RT_TRANS], &rh->hit);
 }
 
@@ -306,7 +307,7 @@ static const rt_geom *intersect_unclipped(const rt_shader *sh, rt_thread *th, st
 {
     for (int pass = 0; pass < 256; pass++) {
         const rt_geom *g = nearest(sh->w, th, rh, pass ? NULL : op, next);
-        if (!g || !g->item || !g->item->nclip) return g;
+        if (clip_free(g)) return g;
         float t = rh->ray.tfar;
         float p[3] = {rh->ray.org_x + t * rh->ray.dir_x, rh->ray.org_y + t * rh->ray.dir_y,
                       rh->ray.org_z + t * rh->ray.dir_z};
@@ -337,7 +338,7 @@ static void trace(const rt_shader *sh, rt_thread *th, const float org[3], const 
     }
     surface s;
     surface_at(g, &rh, &s);
-    if (!unclipped(g)) next.known = 0;
+    if (!clip_free(g)) next.known = 0;
     shade(sh, th, &s, org, dir, depth, primary, &next, out);
 }
 
