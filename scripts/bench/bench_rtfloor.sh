@@ -12,8 +12,9 @@
 # Prints a table for doc/BENCHMARKS.md; logs in bench-out/rtfloor/.
 #
 #   scripts/bench/bench_rtfloor.sh [builddir]
-#   RTFLOOR_RUNS=3  RTFLOOR_VARIANTS="builtin instance user packet cache"  RTFLOOR_THREADS="1 N"
-#   (rt_floor also has camera8: the camera rays as coherent packets of 8)
+#   RTFLOOR_RUNS=3  RTFLOOR_VARIANTS="builtin instance user packet cache own"  RTFLOOR_THREADS="1 N"
+#   (own where the CPU has AVX2; rt_floor also has camera8: the camera rays as coherent
+#   packets of 8, nbr, and -ab: a variant beside builtin in one process, chunk by chunk)
 #   RTFLOOR_BEFORE=path/to/molscope: also time that binary (an older build) in the same run,
 #   and compare its picture with this build's pixel by pixel
 set -euo pipefail
@@ -21,7 +22,9 @@ set -euo pipefail
 out=$out/rtfloor
 mkdir -p "$out"
 runs=${RTFLOOR_RUNS:-3}
-variants=${RTFLOOR_VARIANTS:-builtin instance user packet cache}
+# own (a tree of our own) wants AVX2 and FMA
+own=$(grep -qw avx2 /proc/cpuinfo 2>/dev/null && grep -qw fma /proc/cpuinfo && echo own || true)
+variants=${RTFLOOR_VARIANTS:-builtin instance user packet cache $own}
 before=${RTFLOOR_BEFORE:-}
 threads=${RTFLOOR_THREADS:-1 $(nproc)}
 floor=$build/scripts/bench/rt_floor

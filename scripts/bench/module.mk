@@ -29,6 +29,8 @@ scripts_bench_bench_rt_LDADD = $(BENCH_LIBS)
 if HAVE_EMBREE
 EXTRA_PROGRAMS += scripts/bench/rt_floor
 BENCH_DRIVERS += scripts/bench/rt_floor$(EXEEXT)
-scripts_bench_rt_floor_SOURCES = scripts/bench/rt_floor.c
+scripts_bench_rt_floor_SOURCES = scripts/bench/rt_floor.c scripts/bench/rt_floor_own.h \
+	scripts/bench/rt_floor_own.c scripts/bench/rt_floor_own8.c scripts/bench/rt_floor_own16.c
 scripts_bench_rt_floor_LDADD = $(EMBREE_LIBS) $(PTHREAD_LIBS) -lm
 endif
+EXTRA_DIST += scripts/bench/rt_floor_own.inc

@@ -35,8 +35,11 @@
  *             (default 8) spheres nearest the sphere it leaves (by the gap between their
  *             surfaces; found with a grid before the timing, as is the sphere each ray
  *             leaves, which a render knows from its hit)
+ *   own       a tree of our own over the spheres instead of Embree's (rt_floor_own.inc):
+ *             Embree's builder, our node layout and traversal, 16 children a node with
+ *             AVX-512 or 8 with AVX2 (RTFLOOR_WIDTH=8|16 asks for one)
  *
- *   rt_floor [-t threads] [-v variant] [-r repeats] [-shuffle | -mixed] [-c embree-config] dump
+ *   rt_floor [-t threads] [-v variant] [-r repeats] [-shuffle | -mixed] [-c embree-config] [-ab] dump
  *
  * -shuffle traces each kind's rays in a random order instead of the render's (tile by tile,
  * a hit's occlusion rays together): what the coherence of the render's order is worth.
@@ -45,10 +48,17 @@
  * them, instead of each kind's in turn: what grouping the rays by kind would be worth (the
  * builtin and placed variants only).
  * -c adds to Embree's device configuration (e.g. max_isa=avx2).
+ * -ab compares the variant with builtin in one process on one thread: each chunk of rays is
+ * traced by both in turn (which goes first alternating), each timed by the thread's CPU
+ * clock, so the host's drifting speed (other machines' load) moves both alike; it prints
+ * each kind's two times and their ratio, per repeat. (The two share the caches, which
+ * favours the smaller tree a little: own against builtin read 0.96 here, 0.95-1.00 apart.)
  *
  * Only spheres and meshes are in the dump's geometry: a dump whose scene had other primitives
  * (cylinders, cones, discs) is traced without them, and the program says so. The variants
- * after reuse (instance to nbr) are for scenes of spheres alone, and say so. */
+ * after reuse (instance to own) are for scenes of spheres alone, and say so. */
+#include "rt_floor_own.h"
+
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <pthread.h>
@@ -86,8 +96,8 @@ typedef struct dump {
     size_t nrays[NKINDS + 1];
 } dump;
 
-typedef enum variant { V_BUILTIN, V_PLACED, V_COHERENT, V_REUSE, V_INSTANCE, V_USER, V_PACKET, V_CACHE, V_CAMERA8, V_NBR, NVARIANTS } variant;
-static const char *const variant_names[] = {"builtin", "placed", "coherent", "reuse", "instance", "user", "packet", "cache", "camera8", "nbr"};
+typedef enum variant { V_BUILTIN, V_PLACED, V_COHERENT, V_REUSE, V_INSTANCE, V_USER, V_PACKET, V_CACHE, V_CAMERA8, V_NBR, V_OWN, NVARIANTS } variant;
+static const char *const variant_names[] = {"builtin", "placed", "coherent", "reuse", "instance", "user", "packet", "cache", "camera8", "nbr", "own"};
 
 /* The nbr variant: each sphere's K nearest neighbours (by the gap between the surfaces),
  * and each shadow and occlusion ray's sphere (the one its origin lies on). */
@@ -533,6 +543,9 @@ static void build_scenes(RTCDevice dev, const dump *d, variant v, RTCScene sc[2]
 
 /* ---------------------------------------------------------------- tracing */
 
+static const own_ops *own_op;   /* the own variant: its tree's width, and the tree */
+static own_tree *own;
+
 typedef struct job {
     RTCScene scene, trans;      /* the opaque scene and the transparent one (or NULL) */
     const float *spheres;
@@ -557,6 +570,14 @@ static uint64_t trace_one(const job *j, query *qc, const rayrec *q)
 {
     struct RTCIntersectContext *ctx = &qc->ec;
     int kind = j->kind == MIXED ? (int)(q->info & 0xffu) : j->kind;
+    if (j->v == V_OWN) {
+        if (kind == PRIMARY || kind == SECONDARY) {
+            float tfar = INFINITY;
+            uint32_t prim;
+            return (uint64_t)own_op->intersect(own, q->org, q->dir, q->tnear, &tfar, &prim);
+        }
+        return (uint64_t)own_op->occluded(own, q->org, q->dir, q->tnear, INFINITY);
+    }
     if (kind == PRIMARY || kind == SECONDARY) {
         struct RTCRayHit rh;
         set_ray(&rh.ray, q);
@@ -777,14 +798,66 @@ static uint64_t trace_kind(RTCScene s[2], variant v, const dump *d, int kind, in
     return j.hits;
 }
 
+static double thread_cpu(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* -ab: each kind's rays chunk by chunk on one thread, each chunk by the builtin variant and
+ * by variant v in turn (which goes first alternating), each timed by the thread's CPU clock:
+ * a comparison that the host's drifting speed moves alike. */
+static void trace_ab(RTCScene a[2], RTCScene b[2], variant v, const dump *d)
+{
+    double ta[NKINDS] = {0}, tb[NKINDS] = {0};
+    for (int k = 0; k < NKINDS; k++) {
+        if (!d->nrays[k]) continue;
+        job ja = {a[0], a[1], d->spheres, V_BUILTIN, k, d->rays[k], d->nrays[k], 0, PTHREAD_MUTEX_INITIALIZER, 0};
+        job jb = ja;
+        jb.scene = b[0], jb.trans = b[1], jb.v = v;
+        query q;
+        rtcInitIntersectContext(&q.ec);
+        q.last = ~0u, q.caught = 0;
+        uint64_t ha = 0, hb = 0;
+        size_t c = 0;
+        for (size_t i = 0; i < d->nrays[k]; i += CHUNK, c++) {
+            size_t e = i + CHUNK < d->nrays[k] ? i + CHUNK : d->nrays[k];
+            for (int side = 0; side < 2; side++) {
+                int first_a = (c & 1) == 0, use_a = side == 0 ? first_a : !first_a;
+                double t0 = thread_cpu();
+                if (use_a) ha += trace_range(&ja, &q, i, e);
+                else hb += trace_range(&jb, &q, i, e);
+                (use_a ? ta : tb)[k] += thread_cpu() - t0;
+            }
+        }
+        printf("ab kind=%s rays=%zu builtin=%.3f %s=%.3f ratio=%.3f hits=%llu/%llu\n", kind_names[k], d->nrays[k],
+               ta[k], variant_names[v], tb[k], tb[k] / ta[k], (unsigned long long)ha, (unsigned long long)hb);
+    }
+    double sa = 0, sb = 0;
+    for (int k = 0; k < NKINDS; k++) sa += ta[k], sb += tb[k];
+    printf("ab total builtin=%.3f %s=%.3f ratio=%.3f\n", sa, variant_names[v], sb, sb / sa);
+}
+
+/* The own variant's tree: the widest this CPU runs (RTFLOOR_WIDTH=8|16 asks for one). */
+static const own_ops *pick_own(void)
+{
+    const char *w = getenv("RTFLOOR_WIDTH");
+    int want = w ? atoi(w) : 0;
+    if (w && want != 8 && want != 16) die("RTFLOOR_WIDTH is 8 or 16, not %s", w);
+    const own_ops *op = own_pick(want);
+    if (!op) die("%s", "this CPU cannot run the own tree (it wants AVX2 and FMA, or AVX-512 for 16)");
+    return op;
+}
+
 static void usage(void)
 {
-    die("%s", "usage: rt_floor [-t threads] [-v builtin|placed|coherent|reuse|instance|user|packet|cache|camera8|nbr] [-r repeats] [-shuffle | -mixed] [-c embree-config] dump");
+    die("%s", "usage: rt_floor [-t threads] [-v builtin|placed|coherent|reuse|instance|user|packet|cache|camera8|nbr|own] [-r repeats] [-shuffle | -mixed] [-c embree-config] [-ab] dump");
 }
 
 int main(int argc, char **argv)
 {
-    int nthreads = 1, repeats = 1, shuffled = 0, mixed = 0;
+    int nthreads = 1, repeats = 1, shuffled = 0, mixed = 0, ab = 0;
     variant v = V_BUILTIN;
     const char *path = NULL, *extra = "";
     for (int i = 1; i < argc; i++) {
@@ -793,6 +866,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "-r") && i + 1 < argc) repeats = atoi(argv[++i]);
         else if (!strcmp(argv[i], "-shuffle")) shuffled = 1;
         else if (!strcmp(argv[i], "-mixed")) mixed = 1;
+        else if (!strcmp(argv[i], "-ab")) ab = 1;
         else if (!strcmp(argv[i], "-v") && i + 1 < argc) {
             const char *name = argv[++i];
             for (v = 0; v < NVARIANTS && strcmp(name, variant_names[v]); v++) {}
@@ -803,7 +877,7 @@ int main(int argc, char **argv)
     if (!path || nthreads < 1 || nthreads > 256 || repeats < 1) usage();
     dump d;
     read_dump(path, &d, mixed);
-    if (mixed && (shuffled || v > V_PLACED)) usage();
+    if (mixed && (shuffled || ab || v > V_PLACED)) usage();
     if (shuffled) shuffle(&d);
     if (v == V_NBR) {
         if (getenv("RTFLOOR_K")) nbr_k = atoi(getenv("RTFLOOR_K"));
@@ -820,11 +894,20 @@ int main(int argc, char **argv)
     if (!dev) die("%s", "Embree did not start");
     double b0 = now(), bc0 = cpu();
     RTCScene s[2];
-    build_scenes(dev, &d, v, s);
+    if (v == V_OWN) {
+        own_op = pick_own();
+        own = own_op->build(dev, d.spheres, (size_t)d.nspheres);
+        if (!own) die("%s", "out of memory for the own tree");
+        s[0] = rtcNewScene(dev), s[1] = NULL;
+        rtcCommitScene(s[0]);
+    } else {
+        build_scenes(dev, &d, v, s);
+    }
     uint64_t ntris = 0;
     for (uint64_t i = 0; i < d.nmeshes; i++) ntris += d.meshes[i].ntris;
-    printf("floor variant=%s%s threads=%d spheres=%llu meshes=%llu triangles=%llu build=%.3f build_cpu=%.3f\n",
-           variant_names[v], shuffled ? " (shuffled)" : "", nthreads, (unsigned long long)d.nspheres,
+    printf("floor variant=%s%s%s threads=%d spheres=%llu meshes=%llu triangles=%llu build=%.3f build_cpu=%.3f\n",
+           variant_names[v], v == V_OWN ? (own_op->width == 16 ? " (16 wide)" : " (8 wide)") : "",
+           shuffled ? " (shuffled)" : "", nthreads, (unsigned long long)d.nspheres,
            (unsigned long long)d.nmeshes, (unsigned long long)ntris, now() - b0, cpu() - bc0);
     if (v == V_REUSE && d.nrays[SECONDARY]) {
         reuse_tfar = malloc(d.nrays[SECONDARY] * sizeof *reuse_tfar);
@@ -839,9 +922,16 @@ int main(int argc, char **argv)
             reuse_tfar[i] = rh.ray.tfar;
         }
     }
+    if (ab) {
+        RTCScene base[2];
+        build_scenes(dev, &d, V_BUILTIN, base);
+        for (int r = 0; r < repeats; r++) trace_ab(base, s, v, &d);
+        rtcReleaseScene(base[0]);
+        if (base[1]) rtcReleaseScene(base[1]);
+    }
     double total = 0, total_cpu = 0;
     uint64_t nall = 0;
-    for (int k = 0; k <= NKINDS; k++) {
+    for (int k = 0; k <= NKINDS && !ab; k++) {
         if (!d.nrays[k]) continue;
         double best = INFINITY, best_cpu = INFINITY, wall, c;
         uint64_t hits = 0;
@@ -856,10 +946,12 @@ int main(int argc, char **argv)
     if (v == V_NBR)
         printf("nbr: %llu shadow and occlusion rays blocked by a neighbour (all repeats)\n",
                (unsigned long long)nbr_caught);
-    printf("total rays=%llu wall=%.3f cpu=%.3f mrays=%.2f\n", (unsigned long long)nall, total, total_cpu,
+    if (!ab)
+        printf("total rays=%llu wall=%.3f cpu=%.3f mrays=%.2f\n", (unsigned long long)nall, total, total_cpu,
            (double)nall / total / 1e6);
     rtcReleaseScene(s[0]);
     if (s[1]) rtcReleaseScene(s[1]);
+    if (own) own_op->release(own);
     rtcReleaseDevice(dev);
     return 0;
 }
