@@ -96,6 +96,48 @@ proc read_bytes {path} {
     return $b
 }
 
+# The text of a file, whole (the platform's line endings and encoding).
+proc read_text {path} {
+    set f [open $path]
+    set t [read $f]
+    close $f
+    return $t
+}
+
+# Write bytes to a file (replacing it); returns the path.
+proc write_bytes {path bytes} {
+    set f [open $path wb]
+    puts -nonewline $f $bytes
+    close $f
+    return $path
+}
+
+# Whether two files hold the same bytes.
+proc same_file {a b} { expr {[read_bytes $a] eq [read_bytes $b]} }
+
+# A binary PPM (P6, 8 bits): {width height pixels}; an error when the file is not one.
+proc read_ppm {file} {
+    set data [read_bytes $file]
+    if {![regexp {^P6\s+(\d+)\s+(\d+)\s+(\d+)\s} $data head w h max]} { error "$file is not a PPM" }
+    list $w $h [string range $data [string length $head] end]
+}
+
+# The {r g b} of pixel (x, y) of a read_ppm image, rows from the top.
+proc pixel {img x y} {
+    lassign $img w h d
+    binary scan $d @[expr {3 * ($y * $w + $x)}]cu3 rgb
+    return $rgb
+}
+
+# Whether two lists of numbers agree element by element within tol.
+proc near3 {a b tol} {
+    foreach x $a y $b { if {abs($x - $y) > $tol} { return 0 } }
+    return 1
+}
+
+# A colour (by id or name) as VMD's 0-255 integers.
+proc rgb255 {id} { lmap v [colorinfo rgb $id] { expr {int(round($v * 255))} } }
+
 if {[catch {source [lindex $argv 0]} err]} {
     ::t_report FAIL "(file)" "script error: $err [string range $::errorInfo 0 300]"
 }
