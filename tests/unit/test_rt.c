@@ -730,10 +730,6 @@ static void test_passes(void)
     ms_dl_free(&dl);
 }
 
-/* ---------------------------------------------------------------- errors */
-
-/* Degenerate primitives are left out, a degenerate camera gives background, and a mesh whose
- * triangle names a missing vertex is an error: nothing crashes or reads out of bounds. */
 /* A session (rt.h): its first pass is the pinhole image whose centre pixel the shading
  * formula gives; after n passes its image is the one ms_rt_render makes with n passes, byte
  * for byte; before any pass there is no image. */
@@ -779,6 +775,10 @@ static void test_session(void)
     ms_dl_free(&dl);
 }
 
+/* ---------------------------------------------------------------- errors */
+
+/* Degenerate primitives are left out, a degenerate camera gives background, and a mesh whose
+ * triangle names a missing vertex is an error: nothing crashes or reads out of bounds. */
 static void test_degenerate(void)
 {
     t_suite = "degenerate input";
