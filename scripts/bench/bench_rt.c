@@ -12,7 +12,8 @@
  * BENCH_RT_OPAQUESHELL, BENCH_RT_STACKS=n (a shell of 4 n^2 triangles; default 500),
  * BENCH_RT_NOAO, BENCH_RT_NOSHADOWS, BENCH_RT_TRACERS="rt ocl" (which tracers render each sample count, in that
  * order: rt TachyonInternal, ocl TachyonLOpenCLInternal; default "rt"), BENCH_RT_OWNBVH (the
- * OpenCL tracer's BVH from its own SAH builder instead of rtcBuildBVH). */
+ * OpenCL tracer's BVH from its own SAH builder instead of rtcBuildBVH). The tracers' own
+ * variables apply as in a render (doc/rt.md: MOLSCOPE_RT_ORDER, MOLSCOPE_RT_LEAVES, ...). */
 #include "config.h"
 #include "assemble/view.h"
 #include "base/threads.h"
@@ -139,6 +140,10 @@ static void run(const ms_scene *sc, int spp, int ocl, const char *out, ms_error 
     ms_rt_options_default(&o);
     o.aasamples = spp - 1;
     o.aosamples = 12;
+    if (ms_rt_options_from_env(&o, err)) {     /* MOLSCOPE_RT_ORDER, _LEAVES, ... (doc/rt.md) */
+        printf("%s\n", err->msg);
+        return;
+    }
     ms_rt_stats st;
     char path[1024];
     const char *tag = ocl ? "ocl" : "rt";

@@ -15,6 +15,22 @@ void ms_rt_options_default(ms_rt_options *o)
     o->aosamples = 12;
 }
 
+/* One of names (NULL-terminated) from the environment, as its index into *out (unset or
+ * empty: *out is left); an error naming the choices (expected) otherwise. */
+static int env_choice(const char *name, const char *const *names, const char *expected, int *out,
+                      ms_error *err)
+{
+    const char *v = getenv(name);
+    if (!v || !*v) return 0;
+    for (int k = 0; names[k]; k++)
+        if (!strcmp(v, names[k])) {
+            *out = k;
+            return 0;
+        }
+    ms_error_set(err, "%s='%s': expected %s", name, v, expected);
+    return -1;
+}
+
 /* A positive number from the environment (unset or empty: 0). */
 static int env_number(const char *name, double max, double *out, ms_error *err)
 {
@@ -50,17 +66,11 @@ int ms_rt_options_from_env(ms_rt_options *o, ms_error *err)
     o->max_depth = (int)depth;
     o->time_budget = seconds;
     o->raydump = getenv("MOLSCOPE_RT_RAYDUMP");
-    const char *leaves = getenv("MOLSCOPE_RT_LEAVES");
-    if (leaves && *leaves) {
-        static const char *const names[] = {"auto", "compact", "fast"};
-        int k = 0;
-        while (k < 3 && strcmp(leaves, names[k])) k++;
-        if (k == 3) {
-            ms_error_set(err, "MOLSCOPE_RT_LEAVES='%s': expected auto, compact or fast", leaves);
-            return -1;
-        }
-        o->leaves = k;
-    }
+    static const char *const leaves[] = {"auto", "compact", "fast", NULL};
+    static const char *const order[] = {"tiles", "passes", NULL};
+    if (env_choice("MOLSCOPE_RT_LEAVES", leaves, "auto, compact or fast", &o->leaves, err) ||
+        env_choice("MOLSCOPE_RT_ORDER", order, "tiles or passes", &o->order, err))
+        return -1;
     o->progress = isatty(2);
     return 0;
 }
