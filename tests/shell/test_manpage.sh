@@ -19,7 +19,7 @@ for s in NAME SYNOPSIS DESCRIPTION OPTIONS ENVIRONMENT FILES "EXIT STATUS" EXAMP
     if grep -q "^\.SH \"\?$s\"\?\$" "$man1"; then pass "molscope(1) has $s"; else fail "molscope(1) has $s" "missing"; fi
 done
 # Every MOLSCOPE_* variable the program reads is documented in ENVIRONMENT.
-vars=$(grep -rhoE 'getenv\("MOLSCOPE_[A-Z_]+"\)|ms_env_flag\("MOLSCOPE_[A-Z_]+"\)' \
+vars=$(grep -rhoE '(getenv|ms_env_flag|env_number|env_choice)\("MOLSCOPE_[A-Z_]+"' \
        "$MS_SRCDIR/src" "$MS_SRCDIR/plugins" | grep -oE 'MOLSCOPE_[A-Z_]+' | sort -u)
 missing=""
 for v in $vars; do grep -q "$v" "$man1" || missing="$missing $v"; done
