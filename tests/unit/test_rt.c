@@ -696,30 +696,52 @@ static void test_passes(void)
     rc = ms_rt_render(&s, &o, &img, &st, &err);
     t_ok(rc == 0 && st.passes == 3, "a pass limit stops early (%d)", st.passes);
     if (!rc) ms_image_free(&img);
-    /* progress: a line per pass on stderr (the device asks for it when stderr is a terminal) */
-    char log[512];
-    snprintf(log, sizeof log, "%s/rt_progress.txt", getenv("MS_TEST_OUT") ? getenv("MS_TEST_OUT") : "/tmp");
-    fflush(stderr);
-    int saved = dup(2);
-    FILE *lf = fopen(log, "w");
-    int lines = 0;
-    if (lf && saved >= 0) {
-        dup2(fileno(lf), 2);
-        o.progress = 1;
-        rc = ms_rt_render(&s, &o, &img, &st, &err);
+    /* progress on stderr (the device asks for it when stderr is a terminal): pass by pass, a
+     * line a pass; tile by tile (the default), a line a round of tiles, at least 16 rounds
+     * and no more than the tiles (here 4), the last at 100%; the OpenCL tracer goes pass by
+     * pass whatever the order */
+    for (int order = MS_RT_ORDER_TILES; order <= MS_RT_ORDER_PASSES; order++) {
+#ifdef MS_TEST_OCLRT
+        int by_pass = 1;
+#else
+        int by_pass = order == MS_RT_ORDER_PASSES;
+#endif
+        char log[512], last[256] = "";
+        snprintf(log, sizeof log, "%s/rt_progress.txt", getenv("MS_TEST_OUT") ? getenv("MS_TEST_OUT") : "/tmp");
         fflush(stderr);
-        dup2(saved, 2);
-        o.progress = 0;
-        if (!rc) ms_image_free(&img);
-        fclose(lf);
-        lf = fopen(log, "r");
-        char line[256];
-        while (lf && fgets(line, sizeof line, lf)) lines += !strncmp(line, TRACER ": pass ", strlen(TRACER ": pass "));
-        if (lf) fclose(lf);
+        int saved = dup(2);
+        FILE *lf = fopen(log, "w");
+        int lines = 0, ours = 0;
+        if (lf && saved >= 0) {
+            dup2(fileno(lf), 2);
+            o.progress = 1;
+            o.order = order;
+            rc = ms_rt_render(&s, &o, &img, &st, &err);
+            fflush(stderr);
+            dup2(saved, 2);
+            o.progress = 0;
+            o.order = MS_RT_ORDER_TILES;
+            if (!rc) ms_image_free(&img);
+            fclose(lf);
+            lf = fopen(log, "r");
+            char line[256];
+            const char *want = by_pass ? TRACER ": pass " : TRACER ": ";
+            while (lf && fgets(line, sizeof line, lf)) {
+                lines++;
+                ours += !strncmp(line, want, strlen(want));
+                snprintf(last, sizeof last, "%s", line);
+            }
+            if (lf) fclose(lf);
+        }
+        if (saved >= 0) close(saved);
+        remove(log);
+        if (by_pass)
+            t_ok(lines == 3 && ours == 3 && !strncmp(last, TRACER ": pass 3/3,", strlen(TRACER ": pass 3/3,")),
+                 "progress pass by pass: a line a pass (%d lines for 3 passes; the last: %s)", lines, last);
+        else
+            t_ok(lines == 4 && ours == 4 && !strncmp(last, TRACER ": 100% of 3 passes,", strlen(TRACER ": 100% of 3 passes,")),
+                 "progress tile by tile: a line a round of tiles (%d lines for 4 tiles; the last: %s)", lines, last);
     }
-    if (saved >= 0) close(saved);
-    remove(log);
-    t_ok(lines == 3, "progress: a line per pass (%d lines for 3 passes)", lines);
     o.max_passes = 0;
     o.aasamples = 60000;
     o.time_budget = 1e-6;
