@@ -2,13 +2,14 @@
  * buffer and the pixels' random states; what is left bounds Embree's build), the world is
  * built, then each pass adds one sample to every pixel (sample.c says where): 16 x 16 tiles
  * spread over all threads by ms_parallel_for, with flush-to-zero and denormals-are-zero on
- * while they trace. A render traces each tile's passes one after another, so that the tile's
- * part of the trees is still in the caches for its next pass (3-10% of the CPU time on
- * issue 21's benchmarks); the picture is the one of pass after pass over the whole frame,
- * each pixel's samples and random numbers coming in the same order. A time budget (checked
- * after each pass) and the live view's sessions trace pass after pass over the frame. A pass
- * limit or a time budget may end the frame early; the average of the passes becomes the
- * image, which is written through image/image.h. */
+ * while they trace. A render traces each pixel's passes one after another, tile by tile:
+ * a pixel's samples hit about the same point, and their rays walk the same part of the trees,
+ * which is then still in the caches (3-20% of the CPU time on issue 21's benchmarks). The
+ * picture is the one of pass after pass over the whole frame, each pixel's samples, random
+ * numbers and sums coming in the same order. A time budget (checked after each pass) and the
+ * live view's sessions trace pass after pass over the frame. A pass limit or a time budget
+ * may end the frame early; the average of the passes becomes the image, which is written
+ * through image/image.h. */
 #include "config.h"
 #include "rt/rt_internal.h"
 #include "base/threads.h"
@@ -25,7 +26,7 @@
 typedef struct frame {
     const rt_shader *sh;
     int width, height, tiles_x, pass, depth;
-    int passes;                 /* each tile traces passes pass .. pass + passes - 1 */
+    int passes;                 /* each pixel traces passes pass .. pass + passes - 1 */
     size_t tile0;               /* the first tile of the round being traced */
     float *accum;               /* 3 floats per pixel: sums of the samples */
     uint32_t *rng;              /* per-pixel random state, kept from pass to pass */
@@ -33,23 +34,26 @@ typedef struct frame {
     rt_raydump *dump;           /* MOLSCOPE_RT_RAYDUMP's file, or NULL */
 } frame;
 
-static void trace_tile_pass(const frame *f, rt_thread *th, size_t tile, int pass)
+/* A tile's pixels, each its passes f->pass .. f->pass + f->passes - 1 in turn. */
+static void trace_tile(const frame *f, rt_thread *th, size_t tile)
 {
     int x0 = (int)(tile % (size_t)f->tiles_x) * TILE, y0 = (int)(tile / (size_t)f->tiles_x) * TILE;
     int x1 = MS_MIN(x0 + TILE, f->width), y1 = MS_MIN(y0 + TILE, f->height);
     for (int y = y0; y < y1; y++)
         for (int x = x0; x < x1; x++) {
             size_t idx = (size_t)y * (size_t)f->width + (size_t)x;
-            float sx, sy, lens[2], org[3], dir[3], col[3];
-            th->rng = f->rng[idx];
-            rt_sample_pixel((uint32_t)idx, pass, &sx, &sy);
-            int lensed = pass > 0 && f->sh->cam.dof;
-            if (lensed) rt_sample_disc(&th->rng, lens);
-            else if (pass > 0) rt_rand(&th->rng), rt_rand(&th->rng);  /* the lens numbers, unused: the stream stays */
-            rt_camera_ray(&f->sh->cam, (float)x + sx, (float)y + sy, lensed ? lens : NULL, org, dir);
-            rt_trace(f->sh, th, org, dir, f->depth, 1, col);
             float *a = f->accum + 3 * idx;
-            for (int k = 0; k < 3; k++) a[k] += isfinite(col[k]) ? col[k] : 0.0f;   /* a degenerate camera */
+            th->rng = f->rng[idx];
+            for (int pass = f->pass; pass < f->pass + f->passes; pass++) {
+                float sx, sy, lens[2], org[3], dir[3], col[3];
+                rt_sample_pixel((uint32_t)idx, pass, &sx, &sy);
+                int lensed = pass > 0 && f->sh->cam.dof;
+                if (lensed) rt_sample_disc(&th->rng, lens);
+                else if (pass > 0) rt_rand(&th->rng), rt_rand(&th->rng);  /* the lens numbers, unused: the stream stays */
+                rt_camera_ray(&f->sh->cam, (float)x + sx, (float)y + sy, lensed ? lens : NULL, org, dir);
+                rt_trace(f->sh, th, org, dir, f->depth, 1, col);
+                for (int k = 0; k < 3; k++) a[k] += isfinite(col[k]) ? col[k] : 0.0f;   /* a degenerate camera */
+            }
             f->rng[idx] = th->rng;
         }
 }
@@ -62,8 +66,7 @@ static void trace_tiles(void *ctx, size_t b, size_t e, int thread)
     memset(&th, 0, sizeof th);
     rtcInitIntersectContext(&th.ctx.ec);
     th.dump = rt_raydump_buf(f->dump, thread);
-    for (size_t t = f->tile0 + b; t < f->tile0 + e; t++)
-        for (int p = f->pass; p < f->pass + f->passes; p++) trace_tile_pass(f, &th, t, p);
+    for (size_t t = f->tile0 + b; t < f->tile0 + e; t++) trace_tile(f, &th, t);
     for (int k = 0; k < MS_RT_NRAYKINDS; k++) f->rays[thread][k] += th.rays[k];
     rt_fpu_restore(fpu);
 }
@@ -124,8 +127,8 @@ static size_t frame_tiles(const frame *f)
     return (size_t)f->tiles_x * (size_t)((f->height + TILE - 1) / TILE);
 }
 
-/* Tiles [t0, t1), each its passes f->pass .. f->pass + f->passes - 1; the counts of rays so
- * far into st. */
+/* Tiles [t0, t1), each pixel its passes f->pass .. f->pass + f->passes - 1; the counts of
+ * rays so far into st. */
 static void trace_round(frame *f, size_t t0, size_t t1, ms_rt_stats *st)
 {
     f->tile0 = t0;
@@ -157,7 +160,7 @@ static void run_passes(frame *f, const ms_rt_options *o, ms_rt_stats *st)
             if (o->progress) progress(st, what, t0);
             if (o->time_budget > 0 && ms_now() - t0 >= o->time_budget) break;
         }
-    } else {                    /* tile after tile, all passes: in rounds to report or dump */
+    } else {                    /* pixel after pixel, all passes: in rounds to report or dump */
         size_t ntiles = frame_tiles(f), rounds = 1;
         if (o->progress || f->dump) rounds = MS_MIN(ntiles, (size_t)MS_MAX(16, total));
         f->pass = 0;

@@ -67,9 +67,9 @@ int ms_rt_options_from_env(ms_rt_options *o, ms_error *err)
     o->time_budget = seconds;
     o->raydump = getenv("MOLSCOPE_RT_RAYDUMP");
     static const char *const leaves[] = {"auto", "compact", "fast", NULL};
-    static const char *const order[] = {"tiles", "passes", NULL};
+    static const char *const order[] = {"pixels", "passes", NULL};
     if (env_choice("MOLSCOPE_RT_LEAVES", leaves, "auto, compact or fast", &o->leaves, err) ||
-        env_choice("MOLSCOPE_RT_ORDER", order, "tiles or passes", &o->order, err))
+        env_choice("MOLSCOPE_RT_ORDER", order, "pixels or passes", &o->order, err))
         return -1;
     o->progress = isatty(2);
     return 0;

@@ -40,13 +40,13 @@ typedef struct ms_rt_options {
                            * ms_rt_render and ms_rt_write write it */
     int leaves;           /* large meshes' leaves: MS_RT_LEAVES_AUTO (by memory and rays),
                            * _COMPACT (less memory) or _FAST (faster rays) */
-    int order;            /* MS_RT_ORDER_TILES: each tile's passes in turn (the default), or
-                           * _PASSES: each pass over the frame (as with a time budget); the
-                           * same picture */
+    int order;            /* MS_RT_ORDER_PIXELS: each pixel's passes in turn, tile by tile
+                           * (the default), or _PASSES: each pass over the frame (as with a
+                           * time budget); the same picture */
 } ms_rt_options;
 
 enum { MS_RT_LEAVES_AUTO, MS_RT_LEAVES_COMPACT, MS_RT_LEAVES_FAST };
-enum { MS_RT_ORDER_TILES, MS_RT_ORDER_PASSES };
+enum { MS_RT_ORDER_PIXELS, MS_RT_ORDER_PASSES };
 
 enum { MS_RT_PRIMARY, MS_RT_SHADOW, MS_RT_AO, MS_RT_SECONDARY, MS_RT_NRAYKINDS };
 

@@ -697,10 +697,10 @@ static void test_passes(void)
     t_ok(rc == 0 && st.passes == 3, "a pass limit stops early (%d)", st.passes);
     if (!rc) ms_image_free(&img);
     /* progress on stderr (the device asks for it when stderr is a terminal): pass by pass, a
-     * line a pass; tile by tile (the default), a line a round of tiles, at least 16 rounds
+     * line a pass; pixel by pixel (the default), a line a round of tiles, at least 16 rounds
      * and no more than the tiles (here 4), the last at 100%; the OpenCL tracer goes pass by
      * pass whatever the order */
-    for (int order = MS_RT_ORDER_TILES; order <= MS_RT_ORDER_PASSES; order++) {
+    for (int order = MS_RT_ORDER_PIXELS; order <= MS_RT_ORDER_PASSES; order++) {
 #ifdef MS_TEST_OCLRT
         int by_pass = 1;
 #else
@@ -720,7 +720,7 @@ static void test_passes(void)
             fflush(stderr);
             dup2(saved, 2);
             o.progress = 0;
-            o.order = MS_RT_ORDER_TILES;
+            o.order = MS_RT_ORDER_PIXELS;
             if (!rc) ms_image_free(&img);
             fclose(lf);
             lf = fopen(log, "r");
@@ -740,7 +740,7 @@ static void test_passes(void)
                  "progress pass by pass: a line a pass (%d lines for 3 passes; the last: %s)", lines, last);
         else
             t_ok(lines == 4 && ours == 4 && !strncmp(last, TRACER ": 100% of 3 passes,", strlen(TRACER ": 100% of 3 passes,")),
-                 "progress tile by tile: a line a round of tiles (%d lines for 4 tiles; the last: %s)", lines, last);
+                 "progress pixel by pixel: a line a round of tiles (%d lines for 4 tiles; the last: %s)", lines, last);
     }
     o.max_passes = 0;
     o.aasamples = 60000;
