@@ -19,6 +19,7 @@ by chromedriver through python3-selenium; those checks are skipped when either i
   - `quit` (and `display live off`) close the server: the port refuses connections
   - under mpirun, rank 0 serves and the other ranks say they do not
 """
+import collections
 from http.client import HTTPConnection
 import json
 import os
@@ -54,11 +55,13 @@ class Session:
                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                   text=True, bufsize=1)
         self.lines = queue.Queue()
+        self.recent = collections.deque(maxlen=40)     # the last lines, for a failed exit
         threading.Thread(target=self._read, daemon=True).start()
         self.n = 0
 
     def _read(self):
         for line in self.p.stdout:
+            self.recent.append(line.rstrip("\n"))
             self.lines.put(line.rstrip("\n"))
         self.lines.put(None)
 
@@ -87,6 +90,13 @@ class Session:
         if not out.startswith("http://"):
             raise RuntimeError("display live on: " + out)
         return out
+
+    def ended(self, code):
+        """An exit status for a report: on a failure, with what molscope printed last (its
+        standard error too), since a crash says why only there."""
+        if code == 0:
+            return "0"
+        return "%s; its last output: %s" % (code, " | ".join(self.recent))
 
     def quit(self):
         try:
@@ -568,7 +578,7 @@ def gl_session():
         t, res = long_poll(base, token, st1["serial"] if st1 else 0)
         time.sleep(0.3)
         code = s.quit()
-        R.report(code == 0, "quit ends molscope", str(code))
+        R.report(code == 0, "quit ends molscope", s.ended(code))
         t.join(5)
         R.report(not t.is_alive(), "quit ends a waiting long poll", str(res))
         R.report(refused(port), "after quit the port refuses connections")
@@ -619,7 +629,7 @@ def text_session():
         R.report(refused(port), "display live off closes the port")
         R.report(s.cmd("display live status") == "off", "display live status is off")
         code = s.quit()
-        R.report(code == 0, "quit ends molscope", str(code))
+        R.report(code == 0, "quit ends molscope", s.ended(code))
     finally:
         if s.p.poll() is None:
             s.p.kill()

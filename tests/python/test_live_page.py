@@ -579,7 +579,7 @@ def page_session():
             if d is not None:
                 d.quit()
         code = s.quit()
-        R.report(code == 0, "quit ends molscope", str(code))
+        R.report(code == 0, "quit ends molscope", s.ended(code))
 
 
 # ---------------------------------------------------------------- drag frames: level of detail
@@ -661,7 +661,8 @@ def lod_session():
         R.report(differ == 0, "lod: the whole image after a drag is the full-quality image "
                  "(render snapshot of that view, pixel for pixel)", "%d pixels differ" % differ)
     finally:
-        R.report(s.quit() == 0, "lod: quit ends molscope")
+        code = s.quit()
+        R.report(code == 0, "lod: quit ends molscope", s.ended(code))
 
 
 def main():
