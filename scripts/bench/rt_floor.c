@@ -966,8 +966,8 @@ static void trace_ab(RTCScene a[2], RTCScene b[2], variant v, const dump *d)
     }
     double sa = 0, sb = 0;
     for (int k = 0; k < NKINDS; k++) sa += ta[k], sb += tb[k];
-    printf("ab total builtin=%.3f %s%s=%.3f ratio=%.3f\n", sa, variant_names[v], d->sorted[AO] ? " sorted" : "", sb,
-           sb / sa);
+    int sorted = d->sorted[SHADOW] || d->sorted[AO] || d->sorted[SECONDARY];
+    printf("ab total builtin=%.3f %s%s=%.3f ratio=%.3f\n", sa, variant_names[v], sorted ? " sorted" : "", sb, sb / sa);
 }
 
 /* The own variant's tree: the widest this CPU runs (RTFLOOR_WIDTH=8|16 asks for one). */
@@ -1008,15 +1008,15 @@ int main(int argc, char **argv)
     }
     if (!path || nthreads < 1 || nthreads > 256 || repeats < 1) usage();
     if (sortw && (sortw < 1 || CHUNK % sortw || shuffled || mixed || v == V_REUSE || v == V_NBR)) usage();
+    const char *key = getenv("RTFLOOR_SORT");
+    if (sortw && key && *key) {     /* checked before the dump, which may take a while to read */
+        for (sort_key = 0; sort_key < NKEYS && strcmp(key, key_names[sort_key]); sort_key++) {}
+        if (sort_key == NKEYS) die("RTFLOOR_SORT is cellorigin, cell, octant, face or origin, not %s", key);
+    }
     dump d;
     read_dump(path, &d, mixed);
     if (mixed && (shuffled || ab || v > V_PLACED)) usage();
     if (shuffled) shuffle(&d);
-    const char *key = getenv("RTFLOOR_SORT");
-    if (key && *key) {
-        for (sort_key = 0; sort_key < NKEYS && strcmp(key, key_names[sort_key]); sort_key++) {}
-        if (sort_key == NKEYS) die("RTFLOOR_SORT is cellorigin, cell, octant, face or origin, not %s", key);
-    }
     if (sortw) sort_rays(&d, (size_t)sortw, ab);
     if (v == V_NBR) {
         if (getenv("RTFLOOR_K")) nbr_k = atoi(getenv("RTFLOOR_K"));

@@ -156,8 +156,10 @@ static void run_passes(frame *f, const ms_rt_options *o, ms_rt_stats *st)
     if (o->time_budget > 0 || o->order == MS_RT_ORDER_PASSES) {  /* a budget is checked after each pass */
         for (f->pass = 0; f->pass < total; f->pass++) {
             one_pass(f, st);
-            snprintf(what, sizeof what, "pass %d/%d", st->passes, total);
-            if (o->progress) progress(st, what, t0);
+            if (o->progress) {
+                snprintf(what, sizeof what, "pass %d/%d", st->passes, total);
+                progress(st, what, t0);
+            }
             if (o->time_budget > 0 && ms_now() - t0 >= o->time_budget) break;
         }
     } else {                    /* pixel after pixel, all passes: in rounds to report or dump */
@@ -167,8 +169,10 @@ static void run_passes(frame *f, const ms_rt_options *o, ms_rt_stats *st)
         f->passes = total;
         for (size_t r = 0; r < rounds; r++) {
             trace_round(f, ntiles * r / rounds, ntiles * (r + 1) / rounds, st);
-            snprintf(what, sizeof what, "%d%% of %d passes", (int)(100 * (r + 1) / rounds), total);
-            if (o->progress) progress(st, what, t0);
+            if (o->progress) {
+                snprintf(what, sizeof what, "%d%% of %d passes", (int)(100 * (r + 1) / rounds), total);
+                progress(st, what, t0);
+            }
         }
         f->pass = st->passes = total;
     }
